@@ -1,0 +1,68 @@
+// Clump templates (an element shape made of spheres, with its mass properties) and batches of
+// clump instances added to a simulation.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "Materials.h"
+#include "VariableTypes.h"
+
+namespace deme {
+
+// Component sphere positions are in the clump's principal frame, relative to its centre of mass;
+// MOI holds the principal moments of inertia about that frame's axes.
+class DEMClumpTemplate {
+  public:
+    float mass = 0.f;
+    float3 MOI = make_float3(0.f);
+    std::vector<float> radii;
+    std::vector<float3> relPos;
+    std::vector<std::shared_ptr<DEMMaterial>> materials;  // one per component sphere
+
+    // Scales geometry by s, mass by s^3 and MOI by s^5 (constant density). s > 0.
+    void Scale(float s);
+    size_t GetNumSpheres() const { return radii.size(); }
+    // Largest distance from the centre to any point of the component spheres.
+    float GetExtent() const;
+
+  private:
+    friend class DEMSolver;
+    bool m_frozen = false;  // set at Initialize: a template in use can no longer change
+};
+
+// Clumps added by one AddClumps call. Setters take one value for all clumps or one per clump.
+class DEMClumpBatch {
+  public:
+    DEMClumpBatch(std::vector<std::shared_ptr<DEMClumpTemplate>> types, std::vector<float3> positions);
+
+    size_t GetNumClumps() const { return m_pos.size(); }
+    void SetVel(const float3& v);
+    void SetVel(const std::vector<float3>& v);
+    void SetAngVel(const float3& w);  // local frame
+    void SetAngVel(const std::vector<float3>& w);
+    void SetOriQ(const float4& q);
+    void SetOriQ(const std::vector<float4>& q);
+    void SetFamily(unsigned int family);
+    void SetFamily(const std::vector<unsigned int>& families);
+
+    const std::vector<std::shared_ptr<DEMClumpTemplate>>& GetTypes() const { return m_types; }
+    const std::vector<float3>& GetPositions() const { return m_pos; }
+    const std::vector<float3>& GetVelocities() const { return m_vel; }
+    const std::vector<float3>& GetAngVelocities() const { return m_angVel; }
+    const std::vector<float4>& GetOriQs() const { return m_oriQ; }
+    const std::vector<family_t>& GetFamilies() const { return m_family; }
+    // Index of the batch's first clump among all owners; valid after Initialize.
+    size_t GetOwnerOffset() const { return m_ownerOffset; }
+
+  private:
+    friend class DEMSolver;
+    std::vector<std::shared_ptr<DEMClumpTemplate>> m_types;
+    std::vector<float3> m_pos, m_vel, m_angVel;
+    std::vector<float4> m_oriQ;
+    std::vector<family_t> m_family;
+    size_t m_ownerOffset = 0;
+    bool m_initialized = false;
+};
+
+}  // namespace deme

@@ -1,0 +1,134 @@
+// DEMSolver: the user's entry point, with the method names of the paper's listings (§4).
+// A thin facade: each method validates its input and forwards to the scene description (before
+// Initialize) or to the running simulation.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ClumpTemplate.h"
+#include "ExternalObject.h"
+#include "Inspector.h"
+#include "Materials.h"
+#include "Tracker.h"
+#include "VariableTypes.h"
+
+namespace deme {
+
+class Scene;
+class Simulation;
+
+class DEMSolver {
+  public:
+    DEMSolver();
+    ~DEMSolver();
+    DEMSolver(const DEMSolver&) = delete;
+    DEMSolver& operator=(const DEMSolver&) = delete;
+
+    // ---- Messages and output ----
+    // "QUIET", "ERROR", "WARNING", "INFO", "STEP_METRIC" (each includes the ones before it).
+    void SetVerbosity(const std::string& level);
+    void SetOutputFormat(const std::string& format);  // "CSV"
+    // Extra sphere-file columns: "XYZ" (always written), "ABSV", "VEL", "ANG_VEL", "FAMILY", "OWNER",
+    // "MAT", "QUAT". A single string may list several separated by spaces or '|'.
+    void SetOutputContent(const std::string& content);
+    void SetOutputContent(const std::vector<std::string>& content);
+
+    // ---- Materials ----
+    std::shared_ptr<DEMMaterial> LoadMaterial(const std::map<std::string, double>& props);
+    // Pairwise value of a property (CoR, mu or Crr) between two materials; otherwise the average.
+    void SetMaterialPropertyPair(const std::string& name, const std::shared_ptr<DEMMaterial>& a,
+                                 const std::shared_ptr<DEMMaterial>& b, double value);
+
+    // ---- Domain and analytical boundaries ----
+    // Box of size x * y * z centred on the origin; every grain must stay inside it.
+    void InstructBoxDomainDimension(float x, float y, float z);
+    // Walls on the domain's faces: "all", "top_open" (no +z wall) or "none".
+    void InstructBoxDomainBoundingBC(const std::string& type, const std::shared_ptr<DEMMaterial>& mat);
+    std::shared_ptr<DEMExternObj> AddExternalObject();
+    std::shared_ptr<DEMExternObj> AddBCPlane(const float3& pos, const float3& normal,
+                                             const std::shared_ptr<DEMMaterial>& mat);
+
+    // ---- Clump templates and clumps ----
+    std::shared_ptr<DEMClumpTemplate> LoadClumpType(float mass, const float3& moi, const std::string& csvFile,
+                                                    const std::shared_ptr<DEMMaterial>& mat);
+    std::shared_ptr<DEMClumpTemplate> LoadClumpType(float mass, const float3& moi, const std::vector<float>& radii,
+                                                    const std::vector<float3>& positions,
+                                                    const std::shared_ptr<DEMMaterial>& mat);
+    std::shared_ptr<DEMClumpTemplate> LoadClumpType(float mass, const float3& moi, const std::vector<float>& radii,
+                                                    const std::vector<float3>& positions,
+                                                    const std::vector<std::shared_ptr<DEMMaterial>>& mats);
+    std::shared_ptr<DEMClumpTemplate> LoadSphereType(float mass, float radius,
+                                                     const std::shared_ptr<DEMMaterial>& mat);
+    std::shared_ptr<DEMClumpBatch> AddClumps(const std::shared_ptr<DEMClumpTemplate>& type,
+                                             const std::vector<float3>& positions);
+    std::shared_ptr<DEMClumpBatch> AddClumps(const std::vector<std::shared_ptr<DEMClumpTemplate>>& types,
+                                             const std::vector<float3>& positions);
+
+    // ---- Families (tags 0..255) ----
+    void SetFamilyFixed(unsigned int family);
+    // Each string is an expression of the simulation time t, or "none" to leave that component free.
+    void SetFamilyPrescribedLinVel(unsigned int family, const std::string& vx, const std::string& vy,
+                                   const std::string& vz);
+    // Angular velocity in the owner's local frame.
+    void SetFamilyPrescribedAngVel(unsigned int family, const std::string& wx, const std::string& wy,
+                                   const std::string& wz);
+    void DisableContactBetweenFamilies(unsigned int a, unsigned int b);
+    void EnableContactBetweenFamilies(unsigned int a, unsigned int b);
+    // Moves every owner of family `from` to family `to` (before or between DoDynamics calls).
+    void ChangeFamily(unsigned int from, unsigned int to);
+
+    // ---- Trackers and inspectors ----
+    std::shared_ptr<DEMTracker> Track(const std::shared_ptr<DEMClumpBatch>& batch);
+    std::shared_ptr<DEMTracker> Track(const std::shared_ptr<DEMExternObj>& obj);
+    std::shared_ptr<DEMInspector> CreateInspector(const std::string& kind);
+
+    // ---- Time stepping ----
+    void SetInitTimeStep(double dt);
+    void SetGravitationalAcceleration(const float3& g);
+    // A simulation whose fastest owner exceeds this speed stops with an error naming the owner.
+    void SetErrorOutVelocity(float v);
+    // Expected largest speed, used to size the contact margin (the measured speed is used too).
+    void SetMaxVelocity(float v);
+    void SetExpandSafetyMultiplier(float m);
+    void SetExpandSafetyAdder(float a);
+    // Contact detection runs at least every n steps (and earlier whenever the margin is used up).
+    void SetCDUpdateFreq(unsigned int n);
+    void SetInitBinSize(double size);
+    // GPU tuning hint; recorded for the CUDA backend, no effect on the CPU.
+    void SetForceCalcThreadsPerBlock(unsigned int n);
+    // CPU threads for the parallel loops (default: OpenMP's default).
+    void SetCPUThreads(unsigned int n);
+
+    void Initialize();
+    void DoDynamics(double duration);
+    void DoDynamicsThenSync(double duration);
+    void DoStepDynamics();
+
+    // ---- Queries ----
+    double GetSimTime() const;
+    double GetTimeStep() const;
+    size_t GetNumClumps() const;
+    size_t GetNumSpheres() const;
+    // Geometry pairs in physical contact (overlap > 0) after the last step.
+    size_t GetNumContacts() const;
+    // Contacts per sphere: each sphere-sphere contact counts for both spheres.
+    double GetAvgSphContacts() const;
+    float3 GetGravitationalAcceleration() const;
+
+    // ---- Output ----
+    void WriteSphereFile(const std::string& path) const;
+    void WriteClumpFile(const std::string& path) const;
+    void WriteContactFile(const std::string& path) const;
+    void ShowTimingStats() const;
+
+  private:
+    void requireNotInitialized(const char* call) const;
+    void requireInitialized(const char* call) const;
+    std::unique_ptr<Scene> m_scene;
+    std::unique_ptr<Simulation> m_sim;
+};
+
+}  // namespace deme

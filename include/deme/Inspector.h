@@ -1,0 +1,23 @@
+// Inspectors: reductions over all clumps, evaluated on demand.
+#pragma once
+
+#include <string>
+
+namespace deme {
+
+class Simulation;
+
+// Kinds: "clump_max_z", "clump_min_z" (of clump centres), "clump_max_absv" (largest speed),
+// "clump_kinetic_energy" (translational + rotational, summed), "num_contacts".
+class DEMInspector {
+  public:
+    DEMInspector(Simulation* sim, std::string kind);
+    double GetValue() const;
+    const std::string& GetKind() const { return m_kind; }
+
+  private:
+    Simulation* m_sim;
+    std::string m_kind;
+};
+
+}  // namespace deme

@@ -1,0 +1,13 @@
+// Umbrella header of the DEM engine.
+#pragma once
+
+#include "ClumpTemplate.h"
+#include "DEMSolver.h"
+#include "Error.h"
+#include "ExternalObject.h"
+#include "Inspector.h"
+#include "Materials.h"
+#include "Samplers.h"
+#include "Tracker.h"
+#include "VariableTypes.h"
+#include "VectorTypes.h"

@@ -1,0 +1,72 @@
+#include <deme/ClumpTemplate.h>
+
+#include <algorithm>
+
+#include "api/Validate.h"
+
+namespace deme {
+
+void DEMClumpTemplate::Scale(float s) {
+    requirePositive("DEMClumpTemplate::Scale", "scale factor", s);
+    if (m_frozen) throwError("DEMClumpTemplate::Scale", "the template is in use by an initialized simulation");
+    for (auto& r : radii) r *= s;
+    for (auto& p : relPos) p = p * s;
+    mass *= s * s * s;
+    MOI = MOI * (s * s * s * s * s);
+}
+
+float DEMClumpTemplate::GetExtent() const {
+    float e = 0.f;
+    for (size_t i = 0; i < radii.size(); i++) e = std::max(e, length(relPos[i]) + radii[i]);
+    return e;
+}
+
+DEMClumpBatch::DEMClumpBatch(std::vector<std::shared_ptr<DEMClumpTemplate>> types, std::vector<float3> positions)
+    : m_types(std::move(types)),
+      m_pos(std::move(positions)),
+      m_vel(m_pos.size(), make_float3(0.f)),
+      m_angVel(m_pos.size(), make_float3(0.f)),
+      m_oriQ(m_pos.size(), make_float4(0.f, 0.f, 0.f, 1.f)),
+      m_family(m_pos.size(), 0) {}
+
+namespace {
+
+template <typename T>
+void assignPerClump(std::vector<T>& dst, const std::vector<T>& src, bool initialized, const char* call) {
+    if (initialized) throwError(call, "the batch is already initialized; use a tracker to change running clumps");
+    if (src.size() != dst.size())
+        throwError(call, "got " + std::to_string(src.size()) + " values for " + std::to_string(dst.size()) +
+                             " clumps");
+    dst = src;
+}
+
+}  // namespace
+
+void DEMClumpBatch::SetVel(const float3& v) { SetVel(std::vector<float3>(m_pos.size(), v)); }
+void DEMClumpBatch::SetVel(const std::vector<float3>& v) {
+    for (const auto& x : v) requireFinite3("DEMClumpBatch::SetVel", "velocity", x);
+    assignPerClump(m_vel, v, m_initialized, "DEMClumpBatch::SetVel");
+}
+void DEMClumpBatch::SetAngVel(const float3& w) { SetAngVel(std::vector<float3>(m_pos.size(), w)); }
+void DEMClumpBatch::SetAngVel(const std::vector<float3>& w) {
+    for (const auto& x : w) requireFinite3("DEMClumpBatch::SetAngVel", "angular velocity", x);
+    assignPerClump(m_angVel, w, m_initialized, "DEMClumpBatch::SetAngVel");
+}
+void DEMClumpBatch::SetOriQ(const float4& q) { SetOriQ(std::vector<float4>(m_pos.size(), q)); }
+void DEMClumpBatch::SetOriQ(const std::vector<float4>& q) {
+    std::vector<float4> normalized;
+    normalized.reserve(q.size());
+    for (const auto& x : q) normalized.push_back(requireQuaternion("DEMClumpBatch::SetOriQ", x));
+    assignPerClump(m_oriQ, normalized, m_initialized, "DEMClumpBatch::SetOriQ");
+}
+void DEMClumpBatch::SetFamily(unsigned int family) {
+    SetFamily(std::vector<unsigned int>(m_pos.size(), family));
+}
+void DEMClumpBatch::SetFamily(const std::vector<unsigned int>& families) {
+    std::vector<family_t> f;
+    f.reserve(families.size());
+    for (unsigned int x : families) f.push_back(requireFamily("DEMClumpBatch::SetFamily", x));
+    assignPerClump(m_family, f, m_initialized, "DEMClumpBatch::SetFamily");
+}
+
+}  // namespace deme

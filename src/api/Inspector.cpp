@@ -1,0 +1,53 @@
+#include <deme/Inspector.h>
+
+#include <algorithm>
+#include <limits>
+
+#include <deme/Error.h>
+
+#include "runtime/Simulation.h"
+
+namespace deme {
+
+namespace {
+const char* KINDS[] = {"clump_max_z", "clump_min_z", "clump_max_absv", "clump_kinetic_energy", "num_contacts"};
+}
+
+DEMInspector::DEMInspector(Simulation* sim, std::string kind) : m_sim(sim), m_kind(std::move(kind)) {
+    if (std::find(std::begin(KINDS), std::end(KINDS), m_kind) == std::end(KINDS))
+        throwError("CreateInspector", "unknown inspector \"" + m_kind +
+                                          "\" (clump_max_z, clump_min_z, clump_max_absv, clump_kinetic_energy, "
+                                          "num_contacts)");
+}
+
+double DEMInspector::GetValue() const {
+    if (!m_sim->initialized()) throwError("DEMInspector::GetValue", "the solver is not initialized yet");
+    const SimState& s = m_sim->state();
+    const size_t n = s.numClumps;
+    if (m_kind == "num_contacts") return (double)m_sim->numRealContacts();
+    if (m_kind == "clump_max_z" || m_kind == "clump_min_z") {
+        const bool isMax = m_kind == "clump_max_z";
+        double v = isMax ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+        for (size_t o = 0; o < n; o++) {
+            const double z = m_sim->ownerPos(o).z;
+            v = isMax ? std::max(v, z) : std::min(v, z);
+        }
+        return v;
+    }
+    if (m_kind == "clump_max_absv") {
+        double v = 0.0;
+        for (size_t o = 0; o < n; o++) v = std::max(v, (double)length(s.owners.vel[o]));
+        return v;
+    }
+    // clump_kinetic_energy: translational plus rotational (body frame, principal moments).
+    double e = 0.0;
+    for (size_t o = 0; o < n; o++) {
+        const float3 v = s.owners.vel[o], w = s.owners.angVel[o];
+        const float3 I = m_sim->ownerMOI(o);
+        e += 0.5 * (double)m_sim->ownerMass(o) * (double)dot(v, v) +
+             0.5 * ((double)I.x * w.x * w.x + (double)I.y * w.y * w.y + (double)I.z * w.z * w.z);
+    }
+    return e;
+}
+
+}  // namespace deme

@@ -1,0 +1,35 @@
+// The scene as the user describes it before Initialize: materials, templates, clump batches,
+// external objects and the domain. Scene assembly turns it into the flat SimState.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <deme/ClumpTemplate.h>
+#include <deme/ExternalObject.h>
+#include <deme/Materials.h>
+
+namespace deme {
+
+class Scene {
+  public:
+    std::vector<std::shared_ptr<DEMMaterial>> materials;
+    // (property, material a, material b) -> value, with a <= b.
+    std::map<std::tuple<std::string, unsigned int, unsigned int>, double> pairProperties;
+    std::vector<std::shared_ptr<DEMClumpTemplate>> templates;
+    std::vector<std::shared_ptr<DEMClumpBatch>> batches;
+    std::vector<std::shared_ptr<DEMExternObj>> externObjs;
+    bool hasDomain = false;
+    float3 domainSize = make_float3(0.f);
+
+    size_t numClumps() const {
+        size_t n = 0;
+        for (const auto& b : batches) n += b->GetNumClumps();
+        return n;
+    }
+};
+
+}  // namespace deme

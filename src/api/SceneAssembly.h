@@ -1,0 +1,12 @@
+// Turns the user's scene description into the flat SimState (owners, mass properties, spheres,
+// analytical components, material tables), validating what can only be checked as a whole.
+#pragma once
+
+#include "api/Scene.h"
+#include "runtime/SimState.h"
+
+namespace deme {
+
+SimState assembleScene(const Scene& scene);
+
+}  // namespace deme

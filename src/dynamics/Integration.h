@@ -1,0 +1,24 @@
+// Force reduction onto owners and time integration (paper Eq. 5): each owner sums the forces and
+// torques of its contacts, then advances its velocity, angular velocity, position and orientation.
+#pragma once
+
+#include <array>
+
+#include "runtime/FamilyRules.h"
+#include "runtime/SimState.h"
+
+namespace deme {
+
+enum class OwnerFault : uint8_t { NONE = 0, TOO_FAST, NOT_FINITE, LEFT_DOMAIN };
+
+struct IntegrationResult {
+    float maxTravel = 0.f;      // largest travel since the last detection, over all owners
+    float maxSurfaceSpeed = 0.f;  // largest speed of any geometry point (for the next margin)
+    OwnerFault fault = OwnerFault::NONE;
+    size_t faultOwner = 0;      // lowest owner id with a fault
+};
+
+IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,
+                                  const float3& gravity, double dt, float errorOutVelocity);
+
+}  // namespace deme

@@ -1,0 +1,101 @@
+#include "io/OutputWriters.h"
+
+#include <cstdio>
+#include <memory>
+
+#include <deme/Error.h>
+
+#include "dynamics/ContactInputsGather.h"
+#include "runtime/Simulation.h"
+
+namespace deme {
+
+namespace {
+
+struct FileCloser {
+    void operator()(FILE* f) const { std::fclose(f); }
+};
+using File = std::unique_ptr<FILE, FileCloser>;
+
+File openForWriting(const std::string& path, const char* call) {
+    File f(std::fopen(path.c_str(), "w"));
+    if (!f) throwError(call, "cannot open \"" + path + "\" for writing");
+    return f;
+}
+
+void finish(File& f, const std::string& path, const char* call) {
+    if (std::ferror(f.get()) || std::fclose(f.release()) != 0) throwError(call, "error writing \"" + path + "\"");
+}
+
+}  // namespace
+
+void writeSphereCsv(const Simulation& sim, const std::string& path) {
+    const char* call = "WriteSphereFile";
+    const SimState& s = sim.state();
+    const Settings& o = sim.settings;
+    File f = openForWriting(path, call);
+    std::fprintf(f.get(), "X,Y,Z,r");
+    if (o.outAbsv) std::fprintf(f.get(), ",absv");
+    if (o.outVel) std::fprintf(f.get(), ",v_x,v_y,v_z");
+    if (o.outAngVel) std::fprintf(f.get(), ",w_x,w_y,w_z");
+    if (o.outFamily) std::fprintf(f.get(), ",family");
+    if (o.outOwner) std::fprintf(f.get(), ",owner");
+    if (o.outMat) std::fprintf(f.get(), ",material");
+    if (o.outQuat) std::fprintf(f.get(), ",Qw,Qx,Qy,Qz");
+    std::fprintf(f.get(), "\n");
+    for (size_t i = 0; i < s.spheres.size(); i++) {
+        const bodyID_t ow = s.spheres.owner[i];
+        const float4 q = s.owners.oriQ[ow];
+        const double3 p = localPointToGlobal(ownerPosition(s, ow), q, s.spheres.relPos[i]);
+        const float3 w = rotateToGlobal(q, s.owners.angVel[ow]);
+        // A sphere's velocity includes its owner's spin about the owner centre.
+        const float3 v = s.owners.vel[ow] + cross(w, rotateToGlobal(q, s.spheres.relPos[i]));
+        std::fprintf(f.get(), "%.9g,%.9g,%.9g,%.9g", p.x, p.y, p.z, s.spheres.radius[i]);
+        if (o.outAbsv) std::fprintf(f.get(), ",%.9g", length(v));
+        if (o.outVel) std::fprintf(f.get(), ",%.9g,%.9g,%.9g", v.x, v.y, v.z);
+        if (o.outAngVel) std::fprintf(f.get(), ",%.9g,%.9g,%.9g", w.x, w.y, w.z);
+        if (o.outFamily) std::fprintf(f.get(), ",%u", (unsigned)s.owners.family[ow]);
+        if (o.outOwner) std::fprintf(f.get(), ",%u", (unsigned)ow);
+        if (o.outMat) std::fprintf(f.get(), ",%u", (unsigned)s.spheres.material[i]);
+        if (o.outQuat) std::fprintf(f.get(), ",%.9g,%.9g,%.9g,%.9g", q.w, q.x, q.y, q.z);
+        std::fprintf(f.get(), "\n");
+    }
+    finish(f, path, call);
+}
+
+void writeClumpCsv(const Simulation& sim, const std::string& path) {
+    const char* call = "WriteClumpFile";
+    const SimState& s = sim.state();
+    File f = openForWriting(path, call);
+    std::fprintf(f.get(), "owner,X,Y,Z,Qw,Qx,Qy,Qz,v_x,v_y,v_z,w_x,w_y,w_z,mass,family\n");
+    for (size_t o = 0; o < s.numClumps; o++) {
+        const double3 p = ownerPosition(s, (bodyID_t)o);
+        const float4 q = s.owners.oriQ[o];
+        const float3 v = s.owners.vel[o], w = s.owners.angVel[o];
+        std::fprintf(f.get(), "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%u\n", o,
+                     p.x, p.y, p.z, q.w, q.x, q.y, q.z, v.x, v.y, v.z, w.x, w.y, w.z, sim.ownerMass(o),
+                     (unsigned)s.owners.family[o]);
+    }
+    finish(f, path, call);
+}
+
+void writeContactCsv(const Simulation& sim, const std::string& path) {
+    const char* call = "WriteContactFile";
+    const SimState& s = sim.state();
+    File f = openForWriting(path, call);
+    std::fprintf(f.get(), "type,geomA,geomB,ownerA,ownerB,X,Y,Z,f_x,f_y,f_z,n_x,n_y,n_z,overlap\n");
+    for (size_t c = 0; c < s.contacts.size(); c++) {
+        ContactInputs in;
+        gatherContactInputs(s, c, (float)sim.time(), (float)sim.settings.dt, in);
+        if (!(in.overlapDepth > 0.0)) continue;
+        const float3 F = s.contacts.force[c];
+        const bool ss = s.contacts.type[c] == SPHERE_SPHERE;
+        const unsigned long geomB = ss ? in.BGeo : in.BGeo - (unsigned long)s.spheres.size();
+        std::fprintf(f.get(), "%s,%u,%lu,%u,%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", ss ? "SS" : "SA",
+                     (unsigned)in.AGeo, geomB, (unsigned)in.AOwner, (unsigned)in.BOwner, in.contactPnt.x,
+                     in.contactPnt.y, in.contactPnt.z, F.x, F.y, F.z, in.B2A.x, in.B2A.y, in.B2A.z, in.overlapDepth);
+    }
+    finish(f, path, call);
+}
+
+}  // namespace deme

@@ -1,0 +1,45 @@
+// The built-in force model compiled statically for the CPU: it defines the variables that model
+// bodies refer to and includes the default model body, the same text a GPU build compiles at run time.
+#pragma once
+
+#include "ContactInputs.h"
+#include "MaterialMixing.h"
+#include "Quaternion.h"
+
+namespace deme {
+
+// Material tables the default model reads: per material E and nu; per pair CoR, mu and Crr.
+struct DefaultModelMaterials {
+    const float* E;
+    const float* nu;
+    PairTable CoR, mu, Crr;
+};
+
+// Number and order of the default model's per-contact wildcards.
+constexpr unsigned int DEFAULT_MODEL_NUM_WILDCARDS = 4;  // delta_tan_x, delta_tan_y, delta_tan_z, delta_time
+
+DEME_HD inline void defaultForceModel(const ContactInputs& in, const DefaultModelMaterials& mat, float* wildcards,
+                                      float3& force, float3& torque_only_force) {
+    const double3 contactPnt = in.contactPnt;
+    const float3 B2A = in.B2A;
+    const double overlapDepth = in.overlapDepth;
+    const float ts = in.ts;
+    const float3 locCPA = in.locCPA, locCPB = in.locCPB;
+    const float4 AOriQ = in.AOriQ, BOriQ = in.BOriQ;
+    const float AOwnerMass = in.AOwnerMass, BOwnerMass = in.BOwnerMass;
+    const float ARadius = in.ARadius, BRadius = in.BRadius;
+    const materialID_t bodyAMatType = in.bodyAMatType, bodyBMatType = in.bodyBMatType;
+    const float3 ALinVel = in.ALinVel, BLinVel = in.BLinVel;
+    const float3 ARotVel = in.ARotVel, BRotVel = in.BRotVel;
+    const float* E = mat.E;
+    const float* nu = mat.nu;
+    const PairTable CoR = mat.CoR, mu = mat.mu, Crr = mat.Crr;
+    float& delta_tan_x = wildcards[0];
+    float& delta_tan_y = wildcards[1];
+    float& delta_tan_z = wildcards[2];
+    float& delta_time = wildcards[3];
+    (void)contactPnt;
+#include "models/HertzMindlin.inl"
+}
+
+}  // namespace deme

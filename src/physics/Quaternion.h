@@ -1,0 +1,60 @@
+// Quaternion operations on float4 (w = scalar part). Orientation q maps local (body) vectors to global.
+#pragma once
+
+#include <deme/VectorTypes.h>
+
+namespace deme {
+
+// v_global = q * v_local * conj(q), computed in the expanded form (no temporaries).
+DEME_HD inline float3 rotateToGlobal(const float4& q, const float3& v) {
+    const float3 u = make_float3(q.x, q.y, q.z);
+    const float3 t = 2.f * cross(u, v);
+    return v + q.w * t + cross(u, t);
+}
+
+// v_local = conj(q) * v_global * q.
+DEME_HD inline float3 rotateToLocal(const float4& q, const float3& v) {
+    const float3 u = make_float3(-q.x, -q.y, -q.z);
+    const float3 t = 2.f * cross(u, v);
+    return v + q.w * t + cross(u, t);
+}
+
+// Double-precision rotation of a float offset; used where an offset is added to a double position.
+DEME_HD inline double3 rotateToGlobal(const float4& q, const double3& v) {
+    const double3 u = make_double3(q.x, q.y, q.z);
+    const double3 t = 2.0 * cross(u, v);
+    return v + (double)q.w * t + cross(u, t);
+}
+
+// The paper's helper: rotate (x, y, z) in place by the quaternion (w, qx, qy, qz).
+DEME_HD inline void applyOriQToVector3(float& x, float& y, float& z, float w, float qx, float qy, float qz) {
+    const float3 r = rotateToGlobal(make_float4(qx, qy, qz, w), make_float3(x, y, z));
+    x = r.x;
+    y = r.y;
+    z = r.z;
+}
+
+DEME_HD inline float4 quatMultiply(const float4& a, const float4& b) {
+    return make_float4(a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,  //
+                       a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,  //
+                       a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,  //
+                       a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z);
+}
+
+DEME_HD inline float4 quatNormalize(const float4& q) {
+    const float n = sqrtf(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    return make_float4(q.x / n, q.y / n, q.z / n, q.w / n);
+}
+
+// Advances q by a rotation of angle |w|*dt about the body-frame axis w (exact exponential map for
+// constant w over the step, so a prescribed spin turns by exactly w*t), then renormalises.
+DEME_HD inline float4 integrateOrientation(const float4& q, const float3& omegaLocal, float dt) {
+    const float wmag = length(omegaLocal);
+    if (!(wmag * dt > 0.f)) return q;
+    const float half = 0.5f * wmag * dt;
+    const float s = sinf(half) / wmag;
+    const float4 dq = make_float4(omegaLocal.x * s, omegaLocal.y * s, omegaLocal.z * s, cosf(half));
+    return quatNormalize(quatMultiply(q, dq));
+}
+
+}  // namespace deme

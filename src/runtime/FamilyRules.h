@@ -1,0 +1,67 @@
+// Per-family rules: fixed, prescribed velocities (expressions of time) and the contact mask.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <deme/VariableTypes.h>
+
+#include "api/Expression.h"
+
+namespace deme {
+
+struct FamilyMotion {
+    bool fixed = false;
+    bool linPrescribed[3] = {false, false, false};
+    bool angPrescribed[3] = {false, false, false};
+    Expression lin[3], ang[3];
+    bool hasAny() const {
+        return fixed || linPrescribed[0] || linPrescribed[1] || linPrescribed[2] || angPrescribed[0] ||
+               angPrescribed[1] || angPrescribed[2];
+    }
+};
+
+// What the integrator needs of a family in one step: the expressions evaluated at that step.
+struct FamilyStepMotion {
+    uint8_t fixed = 0;
+    uint8_t linMask = 0, angMask = 0;  // bit i: component i prescribed
+    float3 lin = make_float3(0.f), ang = make_float3(0.f);
+};
+
+class FamilyRules {
+  public:
+    FamilyRules() : m_contactEnabled(NUM_FAMILIES * NUM_FAMILIES, 1) {}
+
+    FamilyMotion& motion(unsigned int family) { return m_motion[family]; }
+    const FamilyMotion& motion(unsigned int family) const { return m_motion[family]; }
+    void setContact(unsigned int a, unsigned int b, bool enabled) {
+        m_contactEnabled[a * NUM_FAMILIES + b] = enabled;
+        m_contactEnabled[b * NUM_FAMILIES + a] = enabled;
+    }
+    // 256 x 256 table: 1 where contacts between the two families are resolved.
+    const uint8_t* contactMask() const { return m_contactEnabled.data(); }
+
+    // Evaluates every family's prescription at time t.
+    void evaluate(double t, std::array<FamilyStepMotion, NUM_FAMILIES>& out) const {
+        for (unsigned int f = 0; f < NUM_FAMILIES; f++) {
+            const FamilyMotion& m = m_motion[f];
+            FamilyStepMotion& s = out[f];
+            s = FamilyStepMotion();
+            if (!m.hasAny()) continue;
+            s.fixed = m.fixed;
+            float lin[3] = {0.f, 0.f, 0.f}, ang[3] = {0.f, 0.f, 0.f};
+            for (int i = 0; i < 3; i++) {
+                if (m.linPrescribed[i]) { s.linMask |= (uint8_t)(1u << i); lin[i] = (float)m.lin[i].evaluate(&t); }
+                if (m.angPrescribed[i]) { s.angMask |= (uint8_t)(1u << i); ang[i] = (float)m.ang[i].evaluate(&t); }
+            }
+            s.lin = make_float3(lin[0], lin[1], lin[2]);
+            s.ang = make_float3(ang[0], ang[1], ang[2]);
+        }
+    }
+
+  private:
+    std::array<FamilyMotion, NUM_FAMILIES> m_motion;
+    std::vector<uint8_t> m_contactEnabled;
+};
+
+}  // namespace deme

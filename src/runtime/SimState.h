@@ -1,0 +1,94 @@
+// The simulation's flat structure-of-arrays state, built once at Initialize() (paper §2.3, §2.4).
+// Owners carry mass, pose, velocity and family; geometries (spheres, analytical components) carry
+// shape and material and point at their owner. Contacts are between geometries.
+#pragma once
+
+#include <vector>
+
+#include <deme/VariableTypes.h>
+
+#include "physics/CompactPosition.h"
+
+namespace deme {
+
+struct OwnerArrays {
+    std::vector<voxelID_t> voxel;
+    std::vector<subVoxelPos_t> subX, subY, subZ;
+    std::vector<oriQ_t> oriQ;
+    std::vector<float3> vel;        // global
+    std::vector<float3> angVel;     // local (body) frame
+    std::vector<family_t> family;
+    std::vector<uint8_t> type;      // OwnerType
+    std::vector<inertiaID_t> inertia;  // index into MassProperties
+    std::vector<float> extent;      // largest distance from the owner centre to any point of its spheres
+    // Results of the last step, for trackers and inspectors: contact force and torque (global).
+    std::vector<float3> contactForce, contactTorque;
+    // Extra acceleration added by trackers (AddAcc), applied during the next DoDynamics call.
+    std::vector<float3> extraAcc, extraAngAcc;
+    // Path length travelled since the last contact detection (upper bound over all its geometry).
+    std::vector<float> travel;
+
+    size_t size() const { return voxel.size(); }
+};
+
+struct MassProperties {
+    std::vector<float> mass;
+    std::vector<float3> moi;  // principal moments, in the owner's local frame
+};
+
+struct SphereArrays {
+    std::vector<bodyID_t> owner;
+    std::vector<float3> relPos;  // centre in the owner's local frame
+    std::vector<float> radius;
+    std::vector<materialID_t> material;
+    size_t size() const { return owner.size(); }
+};
+
+struct AnalyticalArrays {
+    std::vector<bodyID_t> owner;
+    std::vector<uint8_t> type;     // AnalyticalType
+    std::vector<float3> relPos;    // a point of the surface, owner frame
+    std::vector<float3> relDir;    // plane normal (towards grains) or cylinder axis, owner frame
+    std::vector<float> radius;     // cylinder radius
+    std::vector<uint8_t> inside;   // cylinder: 1 if grains live inside
+    std::vector<materialID_t> material;
+    size_t size() const { return owner.size(); }
+};
+
+// The active-contact set. Sorted by key = (geomA << 32) | geomB with geometry ids in one space:
+// spheres [0, nSpheres), analytical components [nSpheres, nSpheres + nAnalytical).
+struct ContactArrays {
+    std::vector<bodyID_t> geomA, geomB;
+    std::vector<uint8_t> type;  // ContactType
+    std::vector<float> wildcards;  // numWildcards values per contact, contact-major
+    // Results of the force pass.
+    std::vector<float3> force;            // on A, global
+    std::vector<float3> torqueA, torqueB;  // about each owner's centre, global
+    // For force reduction: for each owner the contacts it takes part in, as (contact << 1) | isB.
+    std::vector<uint32_t> ownerStart, ownerEntries;
+    size_t size() const { return geomA.size(); }
+};
+
+inline uint64_t contactKey(bodyID_t a, bodyID_t b) { return (uint64_t(a) << 32) | uint64_t(b); }
+
+// Material property tables for the force model.
+struct MaterialTables {
+    unsigned int count = 0;
+    std::vector<float> E, nu;        // per material
+    std::vector<float> CoR, mu, Crr;  // per pair, count x count
+};
+
+struct SimState {
+    DomainFrame frame;
+    double3 domainSize;
+    OwnerArrays owners;
+    MassProperties massProps;
+    SphereArrays spheres;
+    AnalyticalArrays analytical;
+    ContactArrays contacts;
+    MaterialTables materials;
+    unsigned int numWildcards = 0;
+    size_t numClumps = 0;  // owners [0, numClumps) are clumps; analytical owners follow
+};
+
+}  // namespace deme

@@ -1,0 +1,67 @@
+// The running simulation: owns the flat state and advances it. Until the asynchronous kinematics
+// and dynamics threads exist, contact detection runs synchronously inside the step loop.
+#pragma once
+
+#include <array>
+#include <memory>
+
+#include "kinematics/ContactDetection.h"
+#include "runtime/FamilyRules.h"
+#include "runtime/Settings.h"
+#include "runtime/SimState.h"
+#include "runtime/TimingStats.h"
+
+namespace deme {
+
+class Simulation {
+  public:
+    Settings settings;
+    FamilyRules families;
+
+    bool initialized() const { return m_initialized; }
+    // Takes over an assembled state and runs the first contact detection.
+    void start(SimState&& state);
+    // Advances n steps of settings.dt.
+    void advance(unsigned long long n);
+
+    double time() const { return m_time; }
+    SimState& state() { return m_state; }
+    const SimState& state() const { return m_state; }
+    const TimingStats& timing() const { return m_timing; }
+    size_t numRealContacts() const { return m_realContacts; }
+    size_t numSphereSphereContacts() const { return m_realSphereSphere; }
+    double currentMargin() const { return m_margin; }
+    const BinGrid& binGrid() const { return m_grid; }
+
+    // Host-side changes to the state (tracker setters, family changes) call this so that the next
+    // step re-detects contacts instead of trusting the old margin.
+    void invalidateContacts() { m_needDetection = true; }
+
+    // Owner queries used by trackers, inspectors and writers.
+    double3 ownerPos(size_t owner) const;
+    void setOwnerPos(size_t owner, const double3& p, const char* call);
+    float ownerMass(size_t owner) const { return m_state.massProps.mass[m_state.owners.inertia[owner]]; }
+    float3 ownerMOI(size_t owner) const { return m_state.massProps.moi[m_state.owners.inertia[owner]]; }
+
+    void log(Verbosity level, const std::string& msg) const;
+
+  private:
+    void detectContacts();
+    double chooseMargin() const;
+    void clearTrackerLoads();
+
+    SimState m_state;
+    TimingStats m_timing;
+    ContactDetector m_detector;
+    BinGrid m_grid;
+    std::array<FamilyStepMotion, NUM_FAMILIES> m_stepMotion;
+    double m_time = 0.0;
+    double m_margin = 0.0;
+    unsigned int m_stepsSinceDetection = 0;
+    bool m_needDetection = true;
+    bool m_initialized = false;
+    size_t m_realContacts = 0, m_realSphereSphere = 0;
+    float m_lastMaxSpeed = 0.f;
+};
+
+}  // namespace deme
