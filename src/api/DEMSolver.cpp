@@ -203,9 +203,13 @@ std::shared_ptr<DEMClumpTemplate> DEMSolver::LoadClumpType(float mass, const flo
 
 std::shared_ptr<DEMClumpTemplate> DEMSolver::LoadSphereType(float mass, float radius,
                                                             const std::shared_ptr<DEMMaterial>& mat) {
-    requirePositive("LoadSphereType", "radius", radius);
-    requirePositive("LoadSphereType", "mass", mass);
+    const char* call = "LoadSphereType";
+    requireNotInitialized(call);
+    requirePositive(call, "radius", radius);
+    requirePositive(call, "mass", mass);
+    if (!mat) throwError(call, "material is null");
     const float moi = 0.4f * mass * radius * radius;
+    requirePositive(call, "moment of inertia 0.4 m r^2", moi);
     return LoadClumpType(mass, make_float3(moi), std::vector<float>{radius}, std::vector<float3>{make_float3(0.f)},
                          mat);
 }
@@ -240,12 +244,14 @@ void DEMSolver::SetFamilyFixed(unsigned int family) {
 
 namespace {
 
+// Parses all three components before storing any, so a bad expression changes nothing.
 void setPrescription(FamilyMotion& m, bool angular, const std::string* exprs, const char* call) {
+    Expression parsed[3];
+    for (int i = 0; i < 3; i++)
+        if (exprs[i] != "none") parsed[i] = Expression::parse(exprs[i], {"t"}, call);
     for (int i = 0; i < 3; i++) {
-        const bool none = exprs[i] == "none";
-        Expression e = none ? Expression() : Expression::parse(exprs[i], {"t"}, call);
-        (angular ? m.angPrescribed : m.linPrescribed)[i] = !none;
-        (angular ? m.ang : m.lin)[i] = e;
+        (angular ? m.angPrescribed : m.linPrescribed)[i] = exprs[i] != "none";
+        (angular ? m.ang : m.lin)[i] = parsed[i];
     }
 }
 
@@ -298,12 +304,16 @@ void DEMSolver::ChangeFamily(unsigned int from, unsigned int to) {
 // ---------------------------------------------------------------- trackers and inspectors
 std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMClumpBatch>& batch) {
     if (!batch) throwError("Track", "batch is null");
+    if (std::find(m_scene->batches.begin(), m_scene->batches.end(), batch) == m_scene->batches.end())
+        throwError("Track", "the batch was not added to this solver");
     DEMClumpBatch* b = batch.get();
     return std::make_shared<DEMTracker>(m_sim.get(), [b]() { return b->GetOwnerOffset(); }, batch->GetNumClumps());
 }
 
 std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMExternObj>& obj) {
     if (!obj) throwError("Track", "object is null");
+    if (std::find(m_scene->externObjs.begin(), m_scene->externObjs.end(), obj) == m_scene->externObjs.end())
+        throwError("Track", "the object was not added to this solver");
     DEMExternObj* o = obj.get();
     return std::make_shared<DEMTracker>(m_sim.get(), [o]() { return o->GetOwnerID(); }, 1);
 }
@@ -384,6 +394,8 @@ void DEMSolver::DoDynamics(double duration) {
     // Steps to the nearest whole step, so that repeated frames do not drift.
     const double dt = m_sim->settings.dt;
     const double steps = std::floor(duration / dt + 0.5);
+    if (steps > 1e15) throwError(call, "duration " + std::to_string(duration) + " s is too many steps of " +
+                                           std::to_string(dt) + " s");
     m_sim->advance((unsigned long long)steps);
 }
 

@@ -10,6 +10,11 @@ namespace deme {
 
 namespace {
 
+inline bool insideBox(const double3& x, const double3& lo, const double3& size) {
+    return x.x >= lo.x && x.y >= lo.y && x.z >= lo.z && x.x <= lo.x + size.x && x.y <= lo.y + size.y &&
+           x.z <= lo.z + size.z;
+}
+
 inline bool finite3(const float3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 inline float3 applyMask(const float3& free, const float3& prescribed, uint8_t mask) {
@@ -93,7 +98,8 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
             f = OwnerFault::NOT_FINITE;
         } else if (ow.type[o] == OWNER_CLUMP && length(v) > errorOutVelocity) {
             f = OwnerFault::TOO_FAST;
-        } else if (!encodePosition(x, s.frame, ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o])) {
+        } else if ((ow.type[o] == OWNER_CLUMP && !insideBox(x, s.frame.origin, s.domainSize)) ||
+                   !encodePosition(x, s.frame, ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o])) {
             f = OwnerFault::LEFT_DOMAIN;
         }
         if (f != OwnerFault::NONE) {
