@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ClumpTemplate.h"
@@ -45,6 +46,9 @@ class DEMSolver {
     // ---- Domain and analytical boundaries ----
     // Box of size x * y * z centred on the origin; every grain must stay inside it.
     void InstructBoxDomainDimension(float x, float y, float z);
+    // Box spanning [x.first, x.second] x [y.first, y.second] x [z.first, z.second].
+    void InstructBoxDomainDimension(const std::pair<float, float>& x, const std::pair<float, float>& y,
+                                    const std::pair<float, float>& z);
     // Walls on the domain's faces: "all", "top_open" (no +z wall) or "none".
     void InstructBoxDomainBoundingBC(const std::string& type, const std::shared_ptr<DEMMaterial>& mat);
     std::shared_ptr<DEMExternObj> AddExternalObject();

@@ -125,6 +125,21 @@ void DEMSolver::InstructBoxDomainDimension(float x, float y, float z) {
     requirePositive(call, "z", z);
     m_scene->hasDomain = true;
     m_scene->domainSize = make_float3(x, y, z);
+    m_scene->domainLo = make_float3(-0.5f * x, -0.5f * y, -0.5f * z);
+}
+
+void DEMSolver::InstructBoxDomainDimension(const std::pair<float, float>& x, const std::pair<float, float>& y,
+                                           const std::pair<float, float>& z) {
+    const char* call = "InstructBoxDomainDimension";
+    requireNotInitialized(call);
+    for (const auto* r : {&x, &y, &z}) {
+        requireFinite(call, "lower bound", r->first);
+        requireFinite(call, "upper bound", r->second);
+        if (!(r->second > r->first)) throwError(call, "each range needs upper > lower");
+    }
+    m_scene->hasDomain = true;
+    m_scene->domainLo = make_float3(x.first, y.first, z.first);
+    m_scene->domainSize = make_float3(x.second - x.first, y.second - y.first, z.second - z.first);
 }
 
 void DEMSolver::InstructBoxDomainBoundingBC(const std::string& type, const std::shared_ptr<DEMMaterial>& mat) {
@@ -135,14 +150,14 @@ void DEMSolver::InstructBoxDomainBoundingBC(const std::string& type, const std::
     if (!m_scene->hasDomain) throwError(call, "call InstructBoxDomainDimension first");
     if (type == "none") return;
     if (!mat) throwError(call, "material is null");
-    const float3 h = m_scene->domainSize * 0.5f;
+    const float3 lo = m_scene->domainLo, hi = m_scene->domainLo + m_scene->domainSize;
     auto walls = AddExternalObject();
-    walls->AddPlane(make_float3(-h.x, 0, 0), make_float3(1, 0, 0), mat);
-    walls->AddPlane(make_float3(h.x, 0, 0), make_float3(-1, 0, 0), mat);
-    walls->AddPlane(make_float3(0, -h.y, 0), make_float3(0, 1, 0), mat);
-    walls->AddPlane(make_float3(0, h.y, 0), make_float3(0, -1, 0), mat);
-    walls->AddPlane(make_float3(0, 0, -h.z), make_float3(0, 0, 1), mat);
-    if (type == "all") walls->AddPlane(make_float3(0, 0, h.z), make_float3(0, 0, -1), mat);
+    walls->AddPlane(make_float3(lo.x, 0, 0), make_float3(1, 0, 0), mat);
+    walls->AddPlane(make_float3(hi.x, 0, 0), make_float3(-1, 0, 0), mat);
+    walls->AddPlane(make_float3(0, lo.y, 0), make_float3(0, 1, 0), mat);
+    walls->AddPlane(make_float3(0, hi.y, 0), make_float3(0, -1, 0), mat);
+    walls->AddPlane(make_float3(0, 0, lo.z), make_float3(0, 0, 1), mat);
+    if (type == "all") walls->AddPlane(make_float3(0, 0, hi.z), make_float3(0, 0, -1), mat);
 }
 
 std::shared_ptr<DEMExternObj> DEMSolver::AddExternalObject() {

@@ -24,6 +24,7 @@ class Scene {
     std::vector<std::shared_ptr<DEMExternObj>> externObjs;
     bool hasDomain = false;
     float3 domainSize = make_float3(0.f);
+    float3 domainLo = make_float3(0.f);  // lower corner
 
     size_t numClumps() const {
         size_t n = 0;

@@ -38,9 +38,9 @@ std::vector<float> pairTable(const Scene& scene, const std::string& name, double
     return t;
 }
 
-DomainFrame makeFrame(const float3& size) {
+DomainFrame makeFrame(const float3& lo, const float3& size) {
     DomainFrame f;
-    f.origin = make_double3(-0.5 * size.x, -0.5 * size.y, -0.5 * size.z);
+    f.origin = to_double3(lo);
     const double maxL = std::max({(double)size.x, (double)size.y, (double)size.z});
     // The largest dimension spans all but one of the 2^21 voxels, so the far faces are representable.
     f.voxelSize = maxL / (double)((1 << VOXEL_BITS_PER_AXIS) - 1);
@@ -48,8 +48,9 @@ DomainFrame makeFrame(const float3& size) {
     return f;
 }
 
-bool insideDomain(const double3& p, const float3& size) {
-    return std::fabs(p.x) <= 0.5 * size.x && std::fabs(p.y) <= 0.5 * size.y && std::fabs(p.z) <= 0.5 * size.z;
+bool insideDomain(const double3& p, const float3& lo, const float3& size) {
+    return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= (double)lo.x + size.x && p.y <= (double)lo.y + size.y &&
+           p.z <= (double)lo.z + size.z;
 }
 
 void addOwner(SimState& s, const double3& pos, const float4& q, const float3& v, const float3& w, family_t fam,
@@ -82,7 +83,7 @@ SimState assembleScene(const Scene& scene) {
     if (scene.batches.empty() && scene.externObjs.empty()) throwError(CALL, "the scene is empty: add clumps first");
 
     SimState s;
-    s.frame = makeFrame(scene.domainSize);
+    s.frame = makeFrame(scene.domainLo, scene.domainSize);
     s.domainSize = to_double3(scene.domainSize);
     s.numWildcards = DEFAULT_MODEL_NUM_WILDCARDS;
 
@@ -115,10 +116,10 @@ SimState assembleScene(const Scene& scene) {
             const size_t owner = s.owners.size();
             const double3 pos = to_double3(b->GetPositions()[i]);
             const float4 q = b->GetOriQs()[i];
-            if (!insideDomain(pos, scene.domainSize))
+            if (!insideDomain(pos, scene.domainLo, scene.domainSize))
                 throwError(CALL, "clump " + std::to_string(owner) + " at " + fmt3(b->GetPositions()[i]) +
-                                     " is outside the simulation domain (InstructBoxDomainDimension " +
-                                     fmt3(scene.domainSize) + ", centred on the origin)");
+                                     " is outside the simulation domain (from " + fmt3(scene.domainLo) + " to " +
+                                     fmt3(scene.domainLo + scene.domainSize) + ")");
             addOwner(s, pos, q, b->GetVelocities()[i], b->GetAngVelocities()[i], b->GetFamilies()[i],
                      OWNER_CLUMP, templateIndex.at(&t), t.GetExtent(), owner, "clump");
             for (size_t k = 0; k < t.GetNumSpheres(); k++) {
