@@ -23,6 +23,7 @@ Scene randomScene(unsigned seed, size_t nClumps) {
     Scene sc;
     sc.hasDomain = true;
     sc.domainSize = make_float3(0.04f, 0.04f, 0.04f);
+    sc.domainLo = make_float3(-0.02f, -0.02f, -0.02f);
     auto mat = std::make_shared<DEMMaterial>(std::map<std::string, double>{{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5},
                                                                            {"mu", 0.5}, {"Crr", 0.0}},
                                              0);
