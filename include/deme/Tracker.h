@@ -41,9 +41,11 @@ class DEMTracker {
     void AddAngAcc(const float3& angAccLocal, size_t offset = 0);
 
     size_t GetNumOwners() const { return m_count; }
+    // The owner's id in user order: clumps in the order they were added, then external objects.
     size_t GetOwnerID(size_t offset = 0) const;
 
   private:
+    size_t internalID(size_t offset) const;  // where the owner is stored
     Simulation* m_sim;
     std::function<size_t()> m_resolve;
     size_t m_count;

@@ -75,6 +75,39 @@ void addOwner(SimState& s, const double3& pos, const float4& q, const float3& v,
     o.extent.push_back(extent);
 }
 
+// Order of clumps along a Morton (Z-order) curve over cells of about two grain sizes; ties keep the
+// user order, so the layout is deterministic.
+template <typename PosOf>
+std::vector<size_t> spatialOrder(const Scene& scene, size_t n, PosOf posOf) {
+    float extent = 0.f;
+    for (const auto& b : scene.batches)
+        for (const auto& t : b->GetTypes()) extent = std::max(extent, t->GetExtent());
+    const double cell = std::max(2.0 * extent, 1e-12);
+    auto spread = [](uint64_t v) {  // 21 bits -> every third bit
+        v &= 0x1FFFFF;
+        v = (v | v << 32) & 0x1F00000000FFFFULL;
+        v = (v | v << 16) & 0x1F0000FF0000FFULL;
+        v = (v | v << 8) & 0x100F00F00F00F00FULL;
+        v = (v | v << 4) & 0x10C30C30C30C30C3ULL;
+        v = (v | v << 2) & 0x1249249249249249ULL;
+        return v;
+    };
+    auto coord = [&](float x, float lo) {
+        const double c = std::floor(((double)x - lo) / cell);
+        return (uint64_t)std::min(std::max(c, 0.0), 2097151.0);
+    };
+    std::vector<uint64_t> key(n);
+    for (size_t u = 0; u < n; u++) {
+        const float3 p = posOf(u);
+        key[u] = spread(coord(p.x, scene.domainLo.x)) | spread(coord(p.y, scene.domainLo.y)) << 1 |
+                 spread(coord(p.z, scene.domainLo.z)) << 2;
+    }
+    std::vector<size_t> order(n);
+    for (size_t u = 0; u < n; u++) order[u] = u;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return key[a] < key[b]; });
+    return order;
+}
+
 }  // namespace
 
 SimState assembleScene(const Scene& scene) {
@@ -108,26 +141,47 @@ SimState assembleScene(const Scene& scene) {
                 s.massProps.moi.push_back(t->MOI);
             }
 
-    // Clumps, then their spheres (contiguous per owner).
-    for (const auto& b : scene.batches) {
-        const size_t n = b->GetNumClumps();
-        for (size_t i = 0; i < n; i++) {
-            const DEMClumpTemplate& t = *b->GetTypes()[i];
-            const size_t owner = s.owners.size();
-            const double3 pos = to_double3(b->GetPositions()[i]);
-            const float4 q = b->GetOriQs()[i];
-            if (!insideDomain(pos, scene.domainLo, scene.domainSize))
-                throwError(CALL, "clump " + std::to_string(owner) + " at " + fmt3(b->GetPositions()[i]) +
+    // Clumps in user order (batch by batch), validated, then laid out in space-filling-curve order
+    // so that neighbours in space are neighbours in memory; user ids are kept in a permutation.
+    struct ClumpRef {
+        const DEMClumpBatch* batch;
+        size_t index;
+    };
+    std::vector<ClumpRef> user;
+    for (const auto& b : scene.batches)
+        for (size_t i = 0; i < b->GetNumClumps(); i++) {
+            const float3 p = b->GetPositions()[i];
+            if (!insideDomain(to_double3(p), scene.domainLo, scene.domainSize))
+                throwError(CALL, "clump " + std::to_string(user.size()) + " at " + fmt3(p) +
                                      " is outside the simulation domain (from " + fmt3(scene.domainLo) + " to " +
                                      fmt3(scene.domainLo + scene.domainSize) + ")");
-            addOwner(s, pos, q, b->GetVelocities()[i], b->GetAngVelocities()[i], b->GetFamilies()[i],
-                     OWNER_CLUMP, templateIndex.at(&t), t.GetExtent(), owner, "clump");
-            for (size_t k = 0; k < t.GetNumSpheres(); k++) {
-                s.spheres.owner.push_back((bodyID_t)owner);
-                s.spheres.relPos.push_back(t.relPos[k]);
-                s.spheres.radius.push_back(t.radii[k]);
-                s.spheres.material.push_back((materialID_t)t.materials[k]->GetLoadOrder());
-            }
+            user.push_back({b.get(), i});
+        }
+    const std::vector<size_t> order = spatialOrder(scene, user.size(), [&](size_t u) {
+        return user[u].batch->GetPositions()[user[u].index];
+    });
+    s.ownerUserToInternal.resize(user.size());
+    s.ownerInternalToUser.resize(user.size());
+    std::vector<uint32_t> userSphereStart(user.size() + 1, 0);
+    for (size_t u = 0; u < user.size(); u++)
+        userSphereStart[u + 1] =
+            userSphereStart[u] + (uint32_t)user[u].batch->GetTypes()[user[u].index]->GetNumSpheres();
+    for (size_t u : order) {
+        const DEMClumpBatch* b = user[u].batch;
+        const size_t i = user[u].index;
+        const DEMClumpTemplate& t = *b->GetTypes()[i];
+        const size_t owner = s.owners.size();
+        s.ownerUserToInternal[u] = (bodyID_t)owner;
+        s.ownerInternalToUser[owner] = (bodyID_t)u;
+        addOwner(s, to_double3(b->GetPositions()[i]), b->GetOriQs()[i], b->GetVelocities()[i],
+                 b->GetAngVelocities()[i], b->GetFamilies()[i], OWNER_CLUMP, templateIndex.at(&t), t.GetExtent(), u,
+                 "clump");
+        for (size_t k = 0; k < t.GetNumSpheres(); k++) {
+            s.spheres.owner.push_back((bodyID_t)owner);
+            s.spheres.relPos.push_back(t.relPos[k]);
+            s.spheres.radius.push_back(t.radii[k]);
+            s.spheres.material.push_back((materialID_t)t.materials[k]->GetLoadOrder());
+            s.sphereInternalToUser.push_back(userSphereStart[u] + (uint32_t)k);
         }
     }
     s.numClumps = s.owners.size();
@@ -135,6 +189,8 @@ SimState assembleScene(const Scene& scene) {
     // External objects: kinematic owners made of analytical components.
     for (const auto& obj : scene.externObjs) {
         const size_t owner = s.owners.size();
+        s.ownerUserToInternal.push_back((bodyID_t)owner);
+        s.ownerInternalToUser.push_back((bodyID_t)owner);
         const inertiaID_t inertia = (inertiaID_t)s.massProps.mass.size();
         s.massProps.mass.push_back(obj->GetMass());
         s.massProps.moi.push_back(obj->GetMOI());
@@ -152,6 +208,9 @@ SimState assembleScene(const Scene& scene) {
     }
 
     const size_t nOwners = s.owners.size();
+    s.ownerSphereStart.assign(nOwners + 1, 0);
+    for (bodyID_t o : s.spheres.owner) s.ownerSphereStart[o + 1]++;
+    for (size_t o = 0; o < nOwners; o++) s.ownerSphereStart[o + 1] += s.ownerSphereStart[o];
     s.owners.contactForce.assign(nOwners, make_float3(0.f));
     s.owners.contactTorque.assign(nOwners, make_float3(0.f));
     s.owners.extraAcc.assign(nOwners, make_float3(0.f));

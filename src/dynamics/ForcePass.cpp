@@ -31,8 +31,8 @@ ForcePassResult computeContactForces(SimState& s, double time, double dt) {
         defaultForceModel(in, mat, wc, force, torque_only_force);
         const float3 total = force + torque_only_force;
         c.force[i] = force;
-        c.torqueA[i] = cross(to_float3(in.contactPnt - in.AOwnerPos), total);
-        c.torqueB[i] = cross(to_float3(in.contactPnt - in.BOwnerPos), -total);
+        c.torqueA[i] = cross(in.armA, total);
+        c.torqueB[i] = cross(in.armB, -total);
     }
     return ForcePassResult{real, realSS};
 }

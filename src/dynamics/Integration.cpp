@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "backend/cpu/Parallel.h"
+#include "dynamics/KinematicCache.h"
 #include "physics/RigidBody.h"
 
 namespace deme {
@@ -71,6 +72,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
         float4 q = ow.oriQ[o];
         if (m.fixed) {
             ow.vel[o] = ow.angVel[o] = make_float3(0.f);
+            s.cache.ownerAngVelGlobal[o] = make_float3(0.f);
             continue;
         }
         if (ow.type[o] == OWNER_CLUMP) {
@@ -109,6 +111,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
                 fault = f;
             }
         }
+        updateOwnerCache(s, o);
         if (ow.type[o] == OWNER_CLUMP) {
             const float speed = length(v) + length(w) * ow.extent[o];
             ow.travel[o] += speed * h;
@@ -119,6 +122,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
 
     // Kinematic analytical owners: few, so done serially.
     if (s.analytical.size() > 0) {
+        updateAnalyticalCache(s);
         const double diag = length(s.domainSize);
         std::vector<float> rate(n - s.numClumps, 0.f);
         for (size_t k = 0; k < s.analytical.size(); k++) {

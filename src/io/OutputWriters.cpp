@@ -43,22 +43,25 @@ void writeSphereCsv(const Simulation& sim, const std::string& path) {
     if (o.outMat) std::fprintf(f.get(), ",material");
     if (o.outQuat) std::fprintf(f.get(), ",Qw,Qx,Qy,Qz");
     std::fprintf(f.get(), "\n");
-    for (size_t i = 0; i < s.spheres.size(); i++) {
-        const bodyID_t ow = s.spheres.owner[i];
-        const float4 q = s.owners.oriQ[ow];
-        const double3 p = localPointToGlobal(ownerPosition(s, ow), q, s.spheres.relPos[i]);
-        const float3 w = rotateToGlobal(q, s.owners.angVel[ow]);
-        // A sphere's velocity includes its owner's spin about the owner centre.
-        const float3 v = s.owners.vel[ow] + cross(w, rotateToGlobal(q, s.spheres.relPos[i]));
-        std::fprintf(f.get(), "%.9g,%.9g,%.9g,%.9g", p.x, p.y, p.z, s.spheres.radius[i]);
-        if (o.outAbsv) std::fprintf(f.get(), ",%.9g", length(v));
-        if (o.outVel) std::fprintf(f.get(), ",%.9g,%.9g,%.9g", v.x, v.y, v.z);
-        if (o.outAngVel) std::fprintf(f.get(), ",%.9g,%.9g,%.9g", w.x, w.y, w.z);
-        if (o.outFamily) std::fprintf(f.get(), ",%u", (unsigned)s.owners.family[ow]);
-        if (o.outOwner) std::fprintf(f.get(), ",%u", (unsigned)ow);
-        if (o.outMat) std::fprintf(f.get(), ",%u", (unsigned)s.spheres.material[i]);
-        if (o.outQuat) std::fprintf(f.get(), ",%.9g,%.9g,%.9g,%.9g", q.w, q.x, q.y, q.z);
-        std::fprintf(f.get(), "\n");
+    // Rows in user order: owners as added, each owner's spheres in template order.
+    for (size_t u = 0; u < s.numClumps; u++) {
+        const bodyID_t ow = s.ownerUserToInternal[u];
+        for (uint32_t i = s.ownerSphereStart[ow]; i < s.ownerSphereStart[ow + 1]; i++) {
+            const float4 q = s.owners.oriQ[ow];
+            const double3 p = s.cache.spherePos[i];
+            const float3 w = rotateToGlobal(q, s.owners.angVel[ow]);
+            // A sphere's velocity includes its owner's spin about the owner centre.
+            const float3 v = s.owners.vel[ow] + cross(w, rotateToGlobal(q, s.spheres.relPos[i]));
+            std::fprintf(f.get(), "%.9g,%.9g,%.9g,%.9g", p.x, p.y, p.z, s.spheres.radius[i]);
+            if (o.outAbsv) std::fprintf(f.get(), ",%.9g", length(v));
+            if (o.outVel) std::fprintf(f.get(), ",%.9g,%.9g,%.9g", v.x, v.y, v.z);
+            if (o.outAngVel) std::fprintf(f.get(), ",%.9g,%.9g,%.9g", w.x, w.y, w.z);
+            if (o.outFamily) std::fprintf(f.get(), ",%u", (unsigned)s.owners.family[ow]);
+            if (o.outOwner) std::fprintf(f.get(), ",%u", (unsigned)s.ownerInternalToUser[ow]);
+            if (o.outMat) std::fprintf(f.get(), ",%u", (unsigned)s.spheres.material[i]);
+            if (o.outQuat) std::fprintf(f.get(), ",%.9g,%.9g,%.9g,%.9g", q.w, q.x, q.y, q.z);
+            std::fprintf(f.get(), "\n");
+        }
     }
     finish(f, path, call);
 }
@@ -68,12 +71,13 @@ void writeClumpCsv(const Simulation& sim, const std::string& path) {
     const SimState& s = sim.state();
     File f = openForWriting(path, call);
     std::fprintf(f.get(), "owner,X,Y,Z,Qw,Qx,Qy,Qz,v_x,v_y,v_z,w_x,w_y,w_z,mass,family\n");
-    for (size_t o = 0; o < s.numClumps; o++) {
+    for (size_t u = 0; u < s.numClumps; u++) {
+        const size_t o = s.ownerUserToInternal[u];
         const double3 p = ownerPosition(s, (bodyID_t)o);
         const float4 q = s.owners.oriQ[o];
         const float3 v = s.owners.vel[o], w = s.owners.angVel[o];
-        std::fprintf(f.get(), "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%u\n", o,
-                     p.x, p.y, p.z, q.w, q.x, q.y, q.z, v.x, v.y, v.z, w.x, w.y, w.z, sim.ownerMass(o),
+        std::fprintf(f.get(), "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%u\n", u, p.x,
+                     p.y, p.z, q.w, q.x, q.y, q.z, v.x, v.y, v.z, w.x, w.y, w.z, sim.ownerMass(o),
                      (unsigned)s.owners.family[o]);
     }
     finish(f, path, call);
@@ -90,10 +94,13 @@ void writeContactCsv(const Simulation& sim, const std::string& path) {
         if (!(in.overlapDepth > 0.0)) continue;
         const float3 F = s.contacts.force[c];
         const bool ss = s.contacts.type[c] == SPHERE_SPHERE;
-        const unsigned long geomB = ss ? in.BGeo : in.BGeo - (unsigned long)s.spheres.size();
-        std::fprintf(f.get(), "%s,%u,%lu,%u,%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", ss ? "SS" : "SA",
-                     (unsigned)in.AGeo, geomB, (unsigned)in.AOwner, (unsigned)in.BOwner, in.contactPnt.x,
-                     in.contactPnt.y, in.contactPnt.z, F.x, F.y, F.z, in.B2A.x, in.B2A.y, in.B2A.z, in.overlapDepth);
+        // Ids in user order: spheres as laid out by the templates of the clumps as added.
+        const unsigned long geomA = s.sphereInternalToUser[in.AGeo];
+        const unsigned long geomB = ss ? s.sphereInternalToUser[in.BGeo] : in.BGeo - (unsigned long)s.spheres.size();
+        std::fprintf(f.get(), "%s,%lu,%lu,%u,%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", ss ? "SS" : "SA",
+                     geomA, geomB, (unsigned)s.ownerInternalToUser[in.AOwner],
+                     (unsigned)s.ownerInternalToUser[in.BOwner], in.contactPnt.x, in.contactPnt.y, in.contactPnt.z, F.x,
+                     F.y, F.z, in.B2A.x, in.B2A.y, in.B2A.z, in.overlapDepth);
     }
     finish(f, path, call);
 }

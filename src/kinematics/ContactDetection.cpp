@@ -47,16 +47,13 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
     const size_t nA = s.analytical.size();
     const OwnerArrays& ow = s.owners;
 
-    // 1. Sphere centres and their enlarged boxes' bin ranges.
-    m_spherePos.resize(nS);
+    // 1. The enlarged boxes' bin ranges.
+    const std::vector<double3>& spherePos = s.cache.spherePos;
     m_binLo.resize(3 * nS);
     m_binHi.resize(3 * nS);
 #pragma omp parallel for schedule(static) if (nS > PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < nS; i++) {
-        const bodyID_t o = s.spheres.owner[i];
-        const double3 op = decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], s.frame);
-        const double3 p = localPointToGlobal(op, ow.oriQ[o], s.spheres.relPos[i]);
-        m_spherePos[i] = p;
+        const double3 p = spherePos[i];
         const double e = (double)s.spheres.radius[i] + margin;
         m_binLo[3 * i + 0] = binCoord(p.x - e, grid.origin.x, grid.size, grid.nx);
         m_binLo[3 * i + 1] = binCoord(p.y - e, grid.origin.y, grid.size, grid.ny);
@@ -84,17 +81,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
         for (size_t i = 0; i < nS; i++) forEachBin(i, [&](size_t b) { m_binEntries[fill[b]++] = (uint32_t)i; });
     }
 
-    // 3. Analytical components in the global frame.
-    m_analPos.resize(nA);
-    m_analDir.resize(nA);
-    for (size_t k = 0; k < nA; k++) {
-        const bodyID_t o = s.analytical.owner[k];
-        const double3 op = decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], s.frame);
-        m_analPos[k] = localPointToGlobal(op, ow.oriQ[o], s.analytical.relPos[k]);
-        m_analDir[k] = to_double3(rotateToGlobal(ow.oriQ[o], s.analytical.relDir[k]));
-    }
-
-    // 4. Pair search, per sphere A: partners B > A in A's bins, each pair reported only from the bin
+    // 3. Pair search, per sphere A: partners B > A in A's bins, each pair reported only from the bin
     // that holds the lower corner of the two enlarged boxes' intersection, so exactly once.
     const int T = nS > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
     m_threadOut.resize(T);
@@ -110,7 +97,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
         size_t begin, end;
         threadRange(nS, t, T, begin, end);
         for (size_t a = begin; a < end; a++) {
-            const double3 pA = m_spherePos[a];
+            const double3 pA = spherePos[a];
             const double rA = s.spheres.radius[a];
             const double eA = rA + margin;
             const bodyID_t oA = s.spheres.owner[a];
@@ -126,7 +113,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
                             const uint32_t b = *it;
                             const bodyID_t oB = s.spheres.owner[b];
                             if (oB == oA || !maskRow[ow.family[oB]]) continue;
-                            const double3 pB = m_spherePos[b];
+                            const double3 pB = spherePos[b];
                             const double eB = (double)s.spheres.radius[b] + margin;
                             const double reach = eA + eB;
                             const double3 d = pA - pB;
@@ -150,8 +137,8 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
                 if (!maskRow[ow.family[oB]]) continue;
                 const double dist =
                     s.analytical.type[k] == ANAL_PLANE
-                        ? planeSignedDistance(pA, m_analPos[k], m_analDir[k])
-                        : cylinderSignedDistance(pA, m_analPos[k], m_analDir[k], s.analytical.radius[k],
+                        ? planeSignedDistance(pA, s.cache.analPos[k], s.cache.analDir[k])
+                        : cylinderSignedDistance(pA, s.cache.analPos[k], s.cache.analDir[k], s.analytical.radius[k],
                                                  s.analytical.inside[k] != 0);
                 if (dist - rA < twoMargin) {
                     mine.geomA.push_back((bodyID_t)a);
@@ -162,7 +149,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
         }
     }
 
-    // 5. Concatenate in thread order: the result is sorted by (A, B).
+    // 4. Concatenate in thread order: the result is sorted by (A, B).
     size_t total = 0;
     for (const auto& t : m_threadOut) total += t.size();
     out.geomA.resize(total);

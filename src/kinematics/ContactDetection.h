@@ -39,10 +39,8 @@ class ContactDetector {
 
   private:
     // Scratch buffers reused between detections.
-    std::vector<double3> m_spherePos;
     std::vector<int32_t> m_binLo, m_binHi;  // 3 per sphere
     std::vector<uint32_t> m_binStart, m_binEntries;
-    std::vector<double3> m_analPos, m_analDir;
     std::vector<DetectedContacts> m_threadOut;
 };
 

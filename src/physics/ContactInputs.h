@@ -25,6 +25,9 @@ struct ContactInputs {
     float3 ARotVel, BRotVel;    // owner angular velocities, local frames
     bodyID_t AOwner, BOwner;
     bodyID_t AGeo, BGeo;
+    // Beyond Table 3, cheaper forms of the same kinematics, in the global frame:
+    float3 armA, armB;            // contact point minus each owner's centre
+    float3 rotVelCPA, rotVelCPB;  // velocity of the contact point carried by each owner's spin
 };
 
 }  // namespace deme

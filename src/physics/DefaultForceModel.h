@@ -24,13 +24,11 @@ DEME_HD inline void defaultForceModel(const ContactInputs& in, const DefaultMode
     const float3 B2A = in.B2A;
     const double overlapDepth = in.overlapDepth;
     const float ts = in.ts;
-    const float3 locCPA = in.locCPA, locCPB = in.locCPB;
-    const float4 AOriQ = in.AOriQ, BOriQ = in.BOriQ;
+    const float3 rotVelCPA = in.rotVelCPA, rotVelCPB = in.rotVelCPB;
     const float AOwnerMass = in.AOwnerMass, BOwnerMass = in.BOwnerMass;
     const float ARadius = in.ARadius, BRadius = in.BRadius;
     const materialID_t bodyAMatType = in.bodyAMatType, bodyBMatType = in.bodyBMatType;
     const float3 ALinVel = in.ALinVel, BLinVel = in.BLinVel;
-    const float3 ARotVel = in.ARotVel, BRotVel = in.BRotVel;
     const float* E = mat.E;
     const float* nu = mat.nu;
     const PairTable CoR = mat.CoR, mu = mat.mu, Crr = mat.Crr;

@@ -71,6 +71,18 @@ struct ContactArrays {
 
 inline uint64_t contactKey(bodyID_t a, bodyID_t b) { return (uint64_t(a) << 32) | uint64_t(b); }
 
+// Quantities derived from the owner state, refreshed after every integration step (and after any
+// host-side edit) so that the force pass and contact detection read them instead of recomputing
+// them for every contact.
+struct KinematicCache {
+    std::vector<double3> ownerPos;         // decoded owner positions
+    std::vector<float3> ownerAngVelGlobal;
+    std::vector<double3> spherePos;        // sphere centres
+    std::vector<float3> sphereArm;         // sphere centre minus owner centre
+    std::vector<double3> analPos;          // analytical component reference points
+    std::vector<double3> analDir;          // analytical normals / axes (unit)
+};
+
 // Material property tables for the force model.
 struct MaterialTables {
     unsigned int count = 0;
@@ -86,6 +98,12 @@ struct SimState {
     SphereArrays spheres;
     AnalyticalArrays analytical;
     ContactArrays contacts;
+    KinematicCache cache;
+    std::vector<uint32_t> ownerSphereStart;  // spheres of owner o: [start[o], start[o+1])
+    // Owners and spheres are stored in a space-filling-curve order for memory locality; users see
+    // ids in the order they added things (clumps batch by batch, then external objects).
+    std::vector<bodyID_t> ownerUserToInternal, ownerInternalToUser;
+    std::vector<bodyID_t> sphereInternalToUser;
     MaterialTables materials;
     unsigned int numWildcards = 0;
     size_t numClumps = 0;  // owners [0, numClumps) are clumps; analytical owners follow

@@ -10,6 +10,7 @@
 #include "dynamics/ContactInputsGather.h"
 #include "dynamics/ForcePass.h"
 #include "dynamics/Integration.h"
+#include "dynamics/KinematicCache.h"
 #include "kinematics/HistoryMapping.h"
 
 namespace deme {
@@ -23,6 +24,7 @@ void Simulation::log(Verbosity level, const std::string& msg) const {
 
 void Simulation::start(SimState&& state) {
     m_state = std::move(state);
+    refreshKinematicCache(m_state);
     m_grid = makeBinGrid(m_state, settings.binSize);
     m_initialized = true;
     m_needDetection = true;
@@ -92,7 +94,8 @@ void Simulation::advance(unsigned long long n) {
             const double3 p = ownerPosition(m_state, (bodyID_t)ir.faultOwner);
             const float3 v = m_state.owners.vel[ir.faultOwner];
             throwError("DoDynamics", "simulation diverged at t = " + std::to_string(m_time) + " s: owner " +
-                                         std::to_string(ir.faultOwner) + " " + what + "; position (" +
+                                         std::to_string(m_state.ownerInternalToUser[ir.faultOwner]) + " " + what +
+                                         "; position (" +
                                          std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
                                          std::to_string(p.z) + "), velocity (" + std::to_string(v.x) + ", " +
                                          std::to_string(v.y) + ", " + std::to_string(v.z) + ")");
@@ -113,6 +116,11 @@ void Simulation::advance(unsigned long long n) {
 void Simulation::clearTrackerLoads() {
     std::fill(m_state.owners.extraAcc.begin(), m_state.owners.extraAcc.end(), make_float3(0.f));
     std::fill(m_state.owners.extraAngAcc.begin(), m_state.owners.extraAngAcc.end(), make_float3(0.f));
+}
+
+void Simulation::invalidateContacts() {
+    if (m_initialized) refreshKinematicCache(m_state);
+    m_needDetection = true;
 }
 
 double3 Simulation::ownerPos(size_t owner) const { return ownerPosition(m_state, (bodyID_t)owner); }

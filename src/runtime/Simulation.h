@@ -35,7 +35,7 @@ class Simulation {
 
     // Host-side changes to the state (tracker setters, family changes) call this so that the next
     // step re-detects contacts instead of trusting the old margin.
-    void invalidateContacts() { m_needDetection = true; }
+    void invalidateContacts();
 
     // Owner queries used by trackers, inspectors and writers.
     double3 ownerPos(size_t owner) const;

@@ -1,6 +1,8 @@
 // Default contact force model: history-based Hertz-Mindlin with CoR-derived damping, Coulomb-capped
 // Mindlin friction and rolling resistance as a torque-only force (paper §3.1).
-// This file is a model *body*: it is compiled inside a function that defines the Table 3 variables,
+// This file is a model *body*: it is compiled inside a function that defines the Table 3 variables
+// (plus rotVelCPA/rotVelCPB, the global velocity of the contact point carried by each owner's spin,
+// i.e. rotateToGlobal(AOriQ, cross(ARotVel, locCPA)) computed more cheaply),
 // the material arrays E, nu (per material) and CoR, mu, Crr (per material pair), the contact
 // wildcards delta_tan_x/y/z and delta_time, and the outputs force and torque_only_force.
 
@@ -10,10 +12,6 @@ matProxy2ContactParam(E_cnt, G_cnt, E[bodyAMatType], nu[bodyAMatType], E[bodyBMa
 const float CoR_cnt = CoR[bodyAMatType][bodyBMatType];
 const float mu_cnt = mu[bodyAMatType][bodyBMatType];
 const float Crr_cnt = Crr[bodyAMatType][bodyBMatType];
-
-// Velocity of the contact point carried by each body's rotation, in the global frame.
-const float3 rotVelCPA = rotateToGlobal(AOriQ, cross(ARotVel, locCPA));
-const float3 rotVelCPB = rotateToGlobal(BOriQ, cross(BRotVel, locCPB));
 
 // Relative velocity of A's material point with respect to B's; its normal part is positive when separating.
 const float3 velB2A = (ALinVel + rotVelCPA) - (BLinVel + rotVelCPB);

@@ -1,0 +1,31 @@
+#include "dynamics/KinematicCache.h"
+
+#include "backend/cpu/Parallel.h"
+
+namespace deme {
+
+void updateAnalyticalCache(SimState& s) {
+    KinematicCache& k = s.cache;
+    for (size_t c = 0; c < s.analytical.size(); c++) {
+        const bodyID_t o = s.analytical.owner[c];
+        const float4 q = s.owners.oriQ[o];
+        k.analPos[c] = localPointToGlobal(k.ownerPos[o], q, s.analytical.relPos[c]);
+        k.analDir[c] = to_double3(rotateToGlobal(q, s.analytical.relDir[c]));
+    }
+}
+
+void refreshKinematicCache(SimState& s) {
+    KinematicCache& k = s.cache;
+    const size_t n = s.owners.size();
+    k.ownerPos.resize(n);
+    k.ownerAngVelGlobal.resize(n);
+    k.spherePos.resize(s.spheres.size());
+    k.sphereArm.resize(s.spheres.size());
+    k.analPos.resize(s.analytical.size());
+    k.analDir.resize(s.analytical.size());
+#pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
+    for (size_t o = 0; o < n; o++) updateOwnerCache(s, o);
+    updateAnalyticalCache(s);
+}
+
+}  // namespace deme

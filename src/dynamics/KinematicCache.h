@@ -1,0 +1,31 @@
+// Keeps SimState::cache in step with the owner state.
+#pragma once
+
+#include "physics/RigidBody.h"
+#include "runtime/SimState.h"
+
+namespace deme {
+
+// Recomputes the cached quantities of owner o and its spheres from the stored state.
+inline void updateOwnerCache(SimState& s, size_t o) {
+    const OwnerArrays& ow = s.owners;
+    KinematicCache& k = s.cache;
+    const double3 p = decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], s.frame);
+    const float4 q = ow.oriQ[o];
+    k.ownerPos[o] = p;
+    k.ownerAngVelGlobal[o] = rotateToGlobal(q, ow.angVel[o]);
+    for (uint32_t i = s.ownerSphereStart[o]; i < s.ownerSphereStart[o + 1]; i++) {
+        const float3 rel = s.spheres.relPos[i];
+        const double3 arm = rotateToGlobal(q, to_double3(rel));
+        k.spherePos[i] = p + arm;
+        k.sphereArm[i] = to_float3(arm);
+    }
+}
+
+// Analytical components in the global frame (few; done serially).
+void updateAnalyticalCache(SimState& s);
+
+// Everything, e.g. after Initialize or a host-side change of the state.
+void refreshKinematicCache(SimState& s);
+
+}  // namespace deme
