@@ -8,12 +8,6 @@
 #include "physics/RigidBody.h"
 #include "runtime/SimState.h"
 
-#if defined(__GNUC__)
-#define DEME_FORCE_INLINE inline __attribute__((always_inline))
-#else
-#define DEME_FORCE_INLINE inline
-#endif
-
 namespace deme {
 
 inline bodyID_t contactOwnerB(const SimState& s, size_t c) {
@@ -27,7 +21,7 @@ inline double3 ownerPosition(const SimState& s, bodyID_t o) {
     return decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], s.frame);
 }
 
-DEME_FORCE_INLINE void gatherContactInputs(const SimState& s, size_t c, float time, float ts, ContactInputs& in) {
+DEME_HD_INLINE void gatherContactInputs(const SimState& s, size_t c, float time, float ts, ContactInputs& in) {
     const OwnerArrays& ow = s.owners;
     const KinematicCache& k = s.cache;
     const bodyID_t a = s.contacts.geomA[c];

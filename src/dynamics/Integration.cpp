@@ -88,8 +88,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
         w = applyMask(w, m.ang, m.angMask);
         wMid = applyMask(wMid, m.ang, m.angMask);
 
-        const double3 x = decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], s.frame) +
-                          to_double3(v) * dt;
+        const double3 x = s.cache.ownerPos[o] + to_double3(v) * dt;
         q = integrateOrientation(q, wMid, h);
         ow.vel[o] = v;
         ow.angVel[o] = w;
@@ -98,7 +97,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
         OwnerFault f = OwnerFault::NONE;
         if (!finite3(v) || !finite3(w) || !std::isfinite(q.w)) {
             f = OwnerFault::NOT_FINITE;
-        } else if (ow.type[o] == OWNER_CLUMP && length(v) > errorOutVelocity) {
+        } else if (ow.type[o] == OWNER_CLUMP && dot(v, v) > errorOutVelocity * errorOutVelocity) {
             f = OwnerFault::TOO_FAST;
         } else if ((ow.type[o] == OWNER_CLUMP && !insideBox(x, s.frame.origin, s.domainSize)) ||
                    !encodePosition(x, s.frame, ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o])) {

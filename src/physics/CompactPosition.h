@@ -42,9 +42,10 @@ DEME_HD inline double3 decodePosition(voxelID_t voxel, subVoxelPos_t sx, subVoxe
 // position lies outside the representable range: the caller reports the owner as out of the domain.
 DEME_HD inline bool encodePosition(const double3& p, const DomainFrame& f, voxelID_t& voxel, subVoxelPos_t& sx,
                                    subVoxelPos_t& sy, subVoxelPos_t& sz) {
-    const double gx = (p.x - f.origin.x) / f.subStep + 0.5;
-    const double gy = (p.y - f.origin.y) / f.subStep + 0.5;
-    const double gz = (p.z - f.origin.z) / f.subStep + 0.5;
+    const double inv = 1.0 / f.subStep;
+    const double gx = (p.x - f.origin.x) * inv + 0.5;
+    const double gy = (p.y - f.origin.y) * inv + 0.5;
+    const double gz = (p.z - f.origin.z) * inv + 0.5;
     // The negated comparisons also reject NaN.
     if (!(gx >= 0.0 && gy >= 0.0 && gz >= 0.0)) return false;
     if (!(gx <= (double)MAX_GRID_COORD && gy <= (double)MAX_GRID_COORD && gz <= (double)MAX_GRID_COORD)) return false;

@@ -18,7 +18,7 @@ struct DefaultModelMaterials {
 // Number and order of the default model's per-contact wildcards.
 constexpr unsigned int DEFAULT_MODEL_NUM_WILDCARDS = 4;  // delta_tan_x, delta_tan_y, delta_tan_z, delta_time
 
-DEME_HD inline void defaultForceModel(const ContactInputs& in, const DefaultModelMaterials& mat, float* wildcards,
+DEME_HD_INLINE void defaultForceModel(const ContactInputs& in, const DefaultModelMaterials& mat, float* wildcards,
                                       float3& force, float3& torque_only_force) {
     const double3 contactPnt = in.contactPnt;
     const float3 B2A = in.B2A;

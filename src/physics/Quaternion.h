@@ -49,11 +49,21 @@ DEME_HD inline float4 quatNormalize(const float4& q) {
 // Advances q by a rotation of angle |w|*dt about the body-frame axis w (exact exponential map for
 // constant w over the step, so a prescribed spin turns by exactly w*t), then renormalises.
 DEME_HD inline float4 integrateOrientation(const float4& q, const float3& omegaLocal, float dt) {
-    const float wmag = length(omegaLocal);
-    if (!(wmag * dt > 0.f)) return q;
-    const float half = 0.5f * wmag * dt;
-    const float s = sinf(half) / wmag;
-    const float4 dq = make_float4(omegaLocal.x * s, omegaLocal.y * s, omegaLocal.z * s, cosf(half));
+    const float w2 = dot(omegaLocal, omegaLocal);
+    if (!(w2 > 0.f)) return q;
+    const float h2 = 0.25f * w2 * dt * dt;  // (half angle)^2
+    float sinc, c;                           // sin(half)/half and cos(half)
+    if (h2 < 1e-4f) {
+        // Taylor series; the first omitted terms are below 1e-15, far under float resolution.
+        sinc = 1.f - h2 * (1.f / 6.f - h2 * (1.f / 120.f));
+        c = 1.f - h2 * (0.5f - h2 * (1.f / 24.f));
+    } else {
+        const float half = sqrtf(h2);
+        sinc = sinf(half) / half;
+        c = cosf(half);
+    }
+    const float s = 0.5f * dt * sinc;  // sin(half) / |w|
+    const float4 dq = make_float4(omegaLocal.x * s, omegaLocal.y * s, omegaLocal.z * s, c);
     return quatNormalize(quatMultiply(q, dq));
 }
 
