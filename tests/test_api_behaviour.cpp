@@ -1,0 +1,134 @@
+// API behaviour that the physics tests do not cover: trackers, inspectors, contact masks,
+// family changes, moving analytical objects, template scaling.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "TestHelpers.h"
+
+using namespace deme;
+using namespace deme_test;
+
+namespace {
+
+struct TwoBalls {
+    DEMSolver sim;
+    std::shared_ptr<DEMMaterial> mat;
+    std::shared_ptr<DEMClumpBatch> a, b;
+    explicit TwoBalls(float vA = 1.f) {
+        sim.SetVerbosity("QUIET");
+        mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.3));
+        sim.InstructBoxDomainDimension(2, 2, 2);
+        auto t = sim.LoadSphereType(1.f, 0.05f, mat);
+        a = sim.AddClumps(t, {make_float3(-0.2f, 0, 0)});
+        b = sim.AddClumps(t, {make_float3(0.2f, 0, 0)});
+        a->SetVel(make_float3(vA, 0, 0));
+        sim.SetInitTimeStep(1e-4);
+    }
+};
+
+}  // namespace
+
+TEST(Api, DisabledFamiliesPassThroughEachOther) {
+    TwoBalls s;
+    s.b->SetFamily(5);
+    s.sim.DisableContactBetweenFamilies(0, 5);
+    s.sim.Initialize();
+    auto ta = s.sim.Track(s.a);
+    s.sim.DoDynamics(0.5);  // A travels 0.5 m through B
+    EXPECT_NEAR(ta->Pos().x, 0.3, 1e-4);
+    EXPECT_FLOAT_EQ(ta->Vel().x, 1.f);
+    // Re-enabled, the next meeting is a collision: A moving back to the left hits B from the right.
+    s.sim.EnableContactBetweenFamilies(0, 5);
+    ta->SetPos(make_float3(0.4f, 0, 0));
+    ta->SetVel(make_float3(-1.f, 0, 0));
+    s.sim.DoDynamics(0.5);
+    EXPECT_GT(ta->Vel().x, -0.9f);  // slowed or reversed by the collision
+}
+
+TEST(Api, ChangeFamilyReleasesAFixedClump) {
+    TwoBalls s(0.f);
+    s.a->SetFamily(1);
+    s.sim.SetFamilyFixed(1);
+    s.sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    s.sim.Initialize();
+    auto ta = s.sim.Track(s.a);
+    const float z0 = ta->Pos().z;  // 0 to within the position resolution
+    s.sim.DoDynamics(0.1);
+    EXPECT_EQ(ta->Pos().z, z0);
+    s.sim.ChangeFamily(1, 2);
+    EXPECT_EQ(ta->GetFamily(), 2u);
+    s.sim.DoDynamics(0.1);
+    EXPECT_NEAR(ta->Pos().z, -0.5 * 9.81 * 0.1 * 0.1, 1e-3);  // free fall, first-order integration
+}
+
+TEST(Api, TrackerSettersAndLoads) {
+    TwoBalls s(0.f);
+    s.sim.Initialize();
+    auto ta = s.sim.Track(s.a);
+    EXPECT_EQ(ta->GetOwnerID(), 0u);
+    EXPECT_FLOAT_EQ(ta->Mass(), 1.f);
+    EXPECT_NEAR(ta->MOI().x, 0.4 * 1.0 * 0.05 * 0.05, 1e-9);
+    ta->SetPos(make_float3(-0.5f, 0.1f, 0.2f));
+    EXPECT_NEAR(ta->Pos().y, 0.1, 1e-6);
+    // AddAcc acts during the next call only: v = a t, then constant.
+    ta->AddAcc(make_float3(0, 2.f, 0));
+    s.sim.DoDynamics(0.1);
+    EXPECT_NEAR(ta->Vel().y, 0.2, 1e-5);
+    s.sim.DoDynamics(0.1);
+    EXPECT_NEAR(ta->Vel().y, 0.2, 1e-5);
+    // A quarter turn about z set through the orientation.
+    const float h = std::sqrt(0.5f);
+    ta->SetOriQ(make_float4(0, 0, h, h));
+    EXPECT_NEAR(ta->OriQ().z, h, 1e-6);
+    ta->SetAngVel(make_float3(0, 0, 3.f));
+    EXPECT_NEAR(ta->AngVelGlobal().z, 3.f, 1e-6);
+}
+
+TEST(Api, InspectorsReduceOverClumps) {
+    TwoBalls s(2.f);
+    s.sim.Initialize();
+    auto tb = s.sim.Track(s.b);
+    tb->SetPos(make_float3(0.2f, 0.f, 0.3f));
+    EXPECT_NEAR(s.sim.CreateInspector("clump_max_z")->GetValue(), 0.3, 1e-6);
+    EXPECT_NEAR(s.sim.CreateInspector("clump_min_z")->GetValue(), 0.0, 1e-6);
+    EXPECT_NEAR(s.sim.CreateInspector("clump_max_absv")->GetValue(), 2.0, 1e-6);
+    EXPECT_NEAR(s.sim.CreateInspector("clump_kinetic_energy")->GetValue(), 0.5 * 1.0 * 4.0, 1e-6);
+}
+
+// An external object with a prescribed velocity: a plane rising at 0.1 m/s lifts a resting ball,
+// which then moves with it; the tracker reports the load the ball puts on the plane.
+TEST(Api, PrescribedAnalyticalObjectCarriesABall) {
+    DEMSolver sim;
+    sim.SetVerbosity("QUIET");
+    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.2, 0.3));
+    sim.InstructBoxDomainDimension(2, 2, 2);
+    auto lift = sim.AddExternalObject();
+    lift->AddPlane(make_float3(0, 0, 0), make_float3(0, 0, 1), mat);
+    lift->SetInitPos(make_float3(0, 0, -0.5f));
+    lift->SetFamily(7);
+    sim.SetFamilyPrescribedLinVel(7, "0", "0", "0.1");
+    auto ball = sim.AddClumps(sim.LoadSphereType(1.f, 0.05f, mat), {make_float3(0, 0, -0.45f)});
+    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    sim.SetInitTimeStep(1e-4);
+    sim.Initialize();
+    auto tl = sim.Track(lift), tb = sim.Track(ball);
+    sim.DoDynamics(1.0);
+    EXPECT_NEAR(tl->Pos().z, -0.4, 1e-4);
+    EXPECT_NEAR(tb->Vel().z, 0.1, 0.01);
+    EXPECT_NEAR(tb->Pos().z, -0.35, 0.005);                 // rests on the plane, 5 cm up
+    EXPECT_NEAR(-tl->ContactForce().z, 9.81, 0.1);         // carries the ball's weight
+}
+
+TEST(Api, TemplateScaleScalesMassAndInertia) {
+    DEMSolver sim;
+    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.3));
+    auto t = sim.LoadClumpType(2.f, make_float3(1.f, 2.f, 3.f), {0.5f, 0.25f},
+                               {make_float3(1.f, 0, 0), make_float3(0, -1.f, 0)}, mat);
+    t->Scale(2.f);
+    EXPECT_FLOAT_EQ(t->mass, 16.f);
+    EXPECT_FLOAT_EQ(t->MOI.z, 96.f);
+    EXPECT_FLOAT_EQ(t->radii[1], 0.5f);
+    EXPECT_FLOAT_EQ(t->relPos[0].x, 2.f);
+    EXPECT_FLOAT_EQ(t->GetExtent(), 3.f);
+}
