@@ -77,9 +77,8 @@ int main(int argc, char** argv) {
     const float fill_height = quick ? 0.015f : 0.08f;
     const float fill_bottom = 1.1f * r_max;
     const float inner = half_width - 1.1f * r_max;
-    std::vector<float3> grain_xyz =
-        sampler.SampleBox(make_float3(0.f, 0.f, fill_bottom + 0.5f * fill_height),
-                          make_float3(inner, inner, 0.5f * fill_height));
+    std::vector<float3> grain_xyz = sampler.SampleBox(make_float3(0.f, 0.f, fill_bottom + 0.5f * fill_height),
+                                                      make_float3(inner, inner, 0.5f * fill_height));
     // std::mt19937's output is fixed by the standard (distributions are not), so the modulo keeps
     // the size pattern identical on every platform.
     std::mt19937 rng(20240501);
@@ -120,10 +119,11 @@ int main(int argc, char** argv) {
     auto kinetic_energy = DEMSim.CreateInspector("clump_kinetic_energy");
 
     fs::create_directories(out_dir);
-    std::printf("%zu beads (r = %.2f..%.2f mm), ball r = %.0f mm, %.0f kg/m^3; step %.2e s = 10 %% of "
-                "the Rayleigh time %.2e s\n",
-                grain_xyz.size(), 1e3 * grain_radii.front(), 1e3 * grain_radii.back(), 1e3 * ball_radius,
-                ball_density, step_size, t_rayleigh);
+    std::printf(
+        "%zu beads (r = %.2f..%.2f mm), ball r = %.0f mm, %.0f kg/m^3; step %.2e s = 10 %% of "
+        "the Rayleigh time %.2e s\n",
+        grain_xyz.size(), 1e3 * grain_radii.front(), 1e3 * grain_radii.back(), 1e3 * ball_radius, ball_density,
+        step_size, t_rayleigh);
 
     // The bed's kinetic energy falls by four orders of magnitude within ~0.25 s; the ball comes to
     // rest ~0.15 s after release.
@@ -179,8 +179,8 @@ int main(int argc, char** argv) {
         const float3 p = ball_tracker->Pos(), v = ball_tracker->Vel();
         const double depth = surface - (p.z - ball_radius);
         max_depth = std::max(max_depth, depth);
-        std::printf("frame %3d  t = %.3f s  ball v_z = %+.3f m/s, penetration %+.1f mm\n", frame,
-                    DEMSim.GetSimTime(), v.z, 1e3 * depth);
+        std::printf("frame %3d  t = %.3f s  ball v_z = %+.3f m/s, penetration %+.1f mm\n", frame, DEMSim.GetSimTime(),
+                    v.z, 1e3 * depth);
     }
     write_frame();
     std::printf("final penetration %.1f mm (deepest %.1f mm) = %.2f ball diameters\n",

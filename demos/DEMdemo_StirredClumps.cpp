@@ -97,9 +97,8 @@ int main(int argc, char** argv) {
     HCPSampler sampler(3.f * scale);
     const float fill_height = quick ? 0.04f : 0.16f;
     const float fill_bottom = clump_extent + 0.001f;
-    std::vector<float3> candidates =
-        sampler.SampleCylinderZ(make_float3(0.f, 0.f, fill_bottom + 0.5f * fill_height),
-                                drum_radius - clump_extent - 0.001f, 0.5f * fill_height);
+    std::vector<float3> candidates = sampler.SampleCylinderZ(make_float3(0.f, 0.f, fill_bottom + 0.5f * fill_height),
+                                                             drum_radius - clump_extent - 0.001f, 0.5f * fill_height);
     // Leave the rod's column empty.
     std::vector<float3> clump_xyz;
     const float keep_out = rod_radius + clump_extent + 0.001f;
@@ -128,10 +127,11 @@ int main(int argc, char** argv) {
     auto kinetic_energy = DEMSim.CreateInspector("clump_kinetic_energy");
 
     fs::create_directories(out_dir);
-    std::printf("%zu clumps (%zu spheres of r = %.1f mm) in a drum of r = %.0f mm, rod r = %.0f mm at %.0f mm "
-                "from the axis, %.0f rad/s; step %.2e s = %.1f %% of the Rayleigh time %.2e s\n",
-                clump_xyz.size(), DEMSim.GetNumSpheres(), 1e3 * sphere_radius, 1e3 * drum_radius, 1e3 * rod_radius,
-                1e3 * rod_offset, rod_omega, step_size, 100.0 * step_size / t_rayleigh, t_rayleigh);
+    std::printf(
+        "%zu clumps (%zu spheres of r = %.1f mm) in a drum of r = %.0f mm, rod r = %.0f mm at %.0f mm "
+        "from the axis, %.0f rad/s; step %.2e s = %.1f %% of the Rayleigh time %.2e s\n",
+        clump_xyz.size(), DEMSim.GetNumSpheres(), 1e3 * sphere_radius, 1e3 * drum_radius, 1e3 * rod_radius,
+        1e3 * rod_offset, rod_omega, step_size, 100.0 * step_size / t_rayleigh, t_rayleigh);
 
     // The poured lattice reaches the floor within ~0.2 s; after that the rod drives the bed.
     const double frame_time = 0.02;

@@ -116,8 +116,8 @@ TEST(Api, PrescribedAnalyticalObjectCarriesABall) {
     sim.DoDynamics(1.0);
     EXPECT_NEAR(tl->Pos().z, -0.4, 1e-4);
     EXPECT_NEAR(tb->Vel().z, 0.1, 0.01);
-    EXPECT_NEAR(tb->Pos().z, -0.35, 0.005);                 // rests on the plane, 5 cm up
-    EXPECT_NEAR(-tl->ContactForce().z, 9.81, 0.1);         // carries the ball's weight
+    EXPECT_NEAR(tb->Pos().z, -0.35, 0.005);         // rests on the plane, 5 cm up
+    EXPECT_NEAR(-tl->ContactForce().z, 9.81, 0.1);  // carries the ball's weight
 }
 
 TEST(Api, TemplateScaleScalesMassAndInertia) {

@@ -40,10 +40,10 @@ void expectDemeError(const std::function<void()>& f, const std::vector<std::stri
 }
 
 // SCOPED_TRACE so that a failure reports the line of the check, not of the helper.
-#define EXPECT_DEME_ERROR(...)                \
-    do {                                      \
-        SCOPED_TRACE("EXPECT_DEME_ERROR");    \
-        expectDemeError(__VA_ARGS__);         \
+#define EXPECT_DEME_ERROR(...)             \
+    do {                                   \
+        SCOPED_TRACE("EXPECT_DEME_ERROR"); \
+        expectDemeError(__VA_ARGS__);      \
     } while (0)
 
 std::map<std::string, double> goodMaterial() { return {{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}}; }
@@ -71,8 +71,8 @@ class BadInputFiles : public ::testing::Test {
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         dir = fs::temp_directory_path() /
-              ("deme_bad_input_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) +
-               "_" + info->name());
+              ("deme_bad_input_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + "_" +
+               info->name());
         fs::create_directories(dir);
     }
     void TearDown() override {
@@ -123,10 +123,16 @@ TEST(BadInput, LoadClumpTypeNonPositiveRadius) {
     auto mat = sim.LoadMaterial(goodMaterial());
     const float3 moi = make_float3(1e-4f);
     const std::vector<float3> pos = {make_float3(-0.01f, 0, 0), make_float3(0.01f, 0, 0)};
-    EXPECT_DEME_ERROR([&] { sim.LoadClumpType(1.f, moi, std::vector<float>{0.01f, -0.01f}, pos, mat); },
-                      {"LoadClumpType", "radius"});
-    EXPECT_DEME_ERROR([&] { sim.LoadClumpType(1.f, moi, std::vector<float>{0.f, 0.01f}, pos, mat); },
-                      {"LoadClumpType", "radius"});
+    EXPECT_DEME_ERROR(
+        [&] {
+            sim.LoadClumpType(1.f, moi, std::vector<float>{0.01f, -0.01f}, pos, mat);
+        },
+        {"LoadClumpType", "radius"});
+    EXPECT_DEME_ERROR(
+        [&] {
+            sim.LoadClumpType(1.f, moi, std::vector<float>{0.f, 0.01f}, pos, mat);
+        },
+        {"LoadClumpType", "radius"});
     // No spheres at all is also rejected.
     EXPECT_DEME_ERROR([&] { sim.LoadClumpType(1.f, moi, std::vector<float>{}, std::vector<float3>{}, mat); },
                       {"LoadClumpType"});
@@ -214,8 +220,8 @@ TEST(BadInput, LoadMaterialOutOfRange) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     // Ranges from src/api/DEMSolver.cpp: E > 0, 0 <= nu < 0.5, 0 <= CoR <= 1, mu >= 0.
-    const std::vector<std::pair<std::string, double>> bad = {
-        {"nu", 0.5}, {"nu", 0.7}, {"nu", -0.1}, {"CoR", 1.01}, {"CoR", -0.1}, {"E", 0.0}, {"E", -1e8}, {"mu", -0.2}};
+    const std::vector<std::pair<std::string, double>> bad = {{"nu", 0.5},   {"nu", 0.7}, {"nu", -0.1}, {"CoR", 1.01},
+                                                             {"CoR", -0.1}, {"E", 0.0},  {"E", -1e8},  {"mu", -0.2}};
     for (const auto& b : bad) {
         SCOPED_TRACE(b.first + " = " + std::to_string(b.second));
         auto props = goodMaterial();
@@ -259,8 +265,7 @@ TEST_F(BadInputFiles, MissingCsvFile) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial(goodMaterial());
-    EXPECT_DEME_ERROR([&] { sim.LoadClumpType(1.f, make_float3(1e-4f), path, mat); },
-                      {"LoadClumpType", path + ":0:"});
+    EXPECT_DEME_ERROR([&] { sim.LoadClumpType(1.f, make_float3(1e-4f), path, mat); }, {"LoadClumpType", path + ":0:"});
 }
 
 TEST_F(BadInputFiles, ValidCsvLoads) {
@@ -395,8 +400,11 @@ TEST(BadInput, UnknownOutputContent) {
     sim.SetVerbosity("QUIET");
     EXPECT_DEME_ERROR([&] { sim.SetOutputContent("VELOCITY"); }, {"SetOutputContent", "VELOCITY"});
     EXPECT_DEME_ERROR([&] { sim.SetOutputContent("XYZ|ABSV|SPIN"); }, {"SetOutputContent", "SPIN"});
-    EXPECT_DEME_ERROR([&] { sim.SetOutputContent(std::vector<std::string>{"VEL", "COLOR"}); },
-                      {"SetOutputContent", "COLOR"});
+    EXPECT_DEME_ERROR(
+        [&] {
+            sim.SetOutputContent(std::vector<std::string>{"VEL", "COLOR"});
+        },
+        {"SetOutputContent", "COLOR"});
     EXPECT_DEME_ERROR([&] { sim.SetOutputFormat("VTK"); }, {"SetOutputFormat", "VTK"});
     EXPECT_NO_THROW(sim.SetOutputContent("XYZ ABSV|VEL"));
 }
@@ -483,9 +491,8 @@ TEST(BadInput, AddClumpsMismatchedSizesAndNull) {
         {"AddClumps", "2 templates for 1 positions"});
     EXPECT_DEME_ERROR([&] { s.sim.AddClumps(std::shared_ptr<DEMClumpTemplate>(), {make_float3(0.f)}); },
                       {"AddClumps", "null"});
-    EXPECT_DEME_ERROR(
-        [&] { s.sim.AddClumps(s.type, {make_float3(std::numeric_limits<float>::quiet_NaN(), 0, 0)}); },
-        {"AddClumps", "finite"});
+    EXPECT_DEME_ERROR([&] { s.sim.AddClumps(s.type, {make_float3(std::numeric_limits<float>::quiet_NaN(), 0, 0)}); },
+                      {"AddClumps", "finite"});
     // The failed calls added nothing.
     EXPECT_EQ(s.sim.GetNumClumps(), 1u);
 }

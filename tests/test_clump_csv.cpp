@@ -19,8 +19,8 @@ class ClumpCsv : public ::testing::Test {
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         dir = fs::temp_directory_path() /
-              ("deme_clump_csv_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) +
-               "_" + info->name());
+              ("deme_clump_csv_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + "_" +
+               info->name());
         fs::create_directories(dir);
     }
     void TearDown() override {

@@ -25,13 +25,11 @@ Scene randomScene(unsigned seed, size_t nClumps) {
     sc.hasDomain = true;
     sc.domainSize = make_float3(0.04f, 0.04f, 0.04f);
     sc.domainLo = make_float3(-0.02f, -0.02f, -0.02f);
-    auto mat = std::make_shared<DEMMaterial>(std::map<std::string, double>{{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5},
-                                                                           {"mu", 0.5}, {"Crr", 0.0}},
-                                             0);
+    auto mat = std::make_shared<DEMMaterial>(
+        std::map<std::string, double>{{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}, {"Crr", 0.0}}, 0);
     sc.materials.push_back(mat);
     std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-0.018f, 0.018f), rad(0.0003f, 0.002f), off(-0.002f, 0.002f),
-        qd(-1.f, 1.f);
+    std::uniform_real_distribution<float> u(-0.018f, 0.018f), rad(0.0003f, 0.002f), off(-0.002f, 0.002f), qd(-1.f, 1.f);
     std::uniform_int_distribution<int> nsph(1, 4), fam(0, 2);
     std::vector<std::shared_ptr<DEMClumpTemplate>> types;
     std::vector<float3> pos;
@@ -70,8 +68,8 @@ std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, double mar
     std::vector<double3> p(nS);
     for (size_t i = 0; i < nS; i++) {
         const bodyID_t o = s.spheres.owner[i];
-        const double3 op = decodePosition(s.owners.voxel[o], s.owners.subX[o], s.owners.subY[o], s.owners.subZ[o],
-                                          s.frame);
+        const double3 op =
+            decodePosition(s.owners.voxel[o], s.owners.subX[o], s.owners.subY[o], s.owners.subZ[o], s.frame);
         p[i] = localPointToGlobal(op, s.owners.oriQ[o], s.spheres.relPos[i]);
     }
     auto famOf = [&](bodyID_t o) { return (size_t)s.owners.family[o]; };
@@ -88,10 +86,10 @@ std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, double mar
             if (!mask[famOf(s.spheres.owner[a]) * NUM_FAMILIES + famOf(ob)]) continue;
             const double3 wp = to_double3(s.analytical.relPos[k]);
             const double3 wd = to_double3(s.analytical.relDir[k]);
-            const double dist = s.analytical.type[k] == ANAL_PLANE
-                                    ? planeSignedDistance(p[a], wp, wd)
-                                    : cylinderSignedDistance(p[a], wp, wd, s.analytical.radius[k],
-                                                             s.analytical.inside[k] != 0);
+            const double dist =
+                s.analytical.type[k] == ANAL_PLANE
+                    ? planeSignedDistance(p[a], wp, wd)
+                    : cylinderSignedDistance(p[a], wp, wd, s.analytical.radius[k], s.analytical.inside[k] != 0);
             if (dist - s.spheres.radius[a] < 2.0 * margin) pairs.insert({(bodyID_t)a, (bodyID_t)(nS + k)});
         }
     }

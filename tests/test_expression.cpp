@@ -15,9 +15,7 @@ namespace {
 
 const std::vector<std::string> kT = {"t"};
 
-double eval(const std::string& text, double t = 0.0) {
-    return Expression::parse(text, kT, "test").evaluate(&t);
-}
+double eval(const std::string& text, double t = 0.0) { return Expression::parse(text, kT, "test").evaluate(&t); }
 
 // Parses `text`, expects a deme::Error, and returns its message.
 std::string parseError(const std::string& text, const std::string& call = "setPrescribedMotion") {
@@ -83,8 +81,7 @@ TEST(Expression, Functions) {
     const double t = 0.7;
     EXPECT_DOUBLE_EQ(eval("atan2(1,2)"), std::atan2(1.0, 2.0));
     EXPECT_DOUBLE_EQ(eval("pow(t,3)", t), std::pow(t, 3.0));
-    EXPECT_DOUBLE_EQ(eval("sqrt(exp(t)) + log(t) - log10(t)", t),
-                     std::sqrt(std::exp(t)) + std::log(t) - std::log10(t));
+    EXPECT_DOUBLE_EQ(eval("sqrt(exp(t)) + log(t) - log10(t)", t), std::sqrt(std::exp(t)) + std::log(t) - std::log10(t));
     EXPECT_DOUBLE_EQ(eval("sin(cos(tan(t)))", t), std::sin(std::cos(std::tan(t))));
     EXPECT_DOUBLE_EQ(eval("asin(t)+acos(t)+atan(t)", t), std::asin(t) + std::acos(t) + std::atan(t));
     EXPECT_DOUBLE_EQ(eval("sinh(t)*cosh(t)/tanh(t)", t), std::sinh(t) * std::cosh(t) / std::tanh(t));

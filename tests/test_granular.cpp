@@ -28,8 +28,8 @@ TEST(SettledBed, FloorForceEqualsWeight) {
     auto floorObj = sim.AddBCPlane(make_float3(0, 0, -0.15f), make_float3(0, 0, 1), grain);
     auto tmpl = sim.LoadSphereType((float)sphereMass(r, density), (float)r, grain);
     // A jittered grid, so that the bed does not stay a perfect lattice.
-    std::vector<float3> pts = GridSampler(2.2f * (float)r).SampleBox(make_float3(0, 0, -0.05f),
-                                                                     make_float3(0.05f, 0.05f, 0.05f));
+    std::vector<float3> pts =
+        GridSampler(2.2f * (float)r).SampleBox(make_float3(0, 0, -0.05f), make_float3(0.05f, 0.05f, 0.05f));
     std::mt19937 rng(42);
     std::uniform_real_distribution<float> jitter(-0.05f * (float)r, 0.05f * (float)r);
     for (auto& p : pts) p = p + make_float3(jitter(rng), jitter(rng), jitter(rng));
@@ -111,12 +111,12 @@ TEST(StaticFriction, ClumpSticksOnSlopeBelowFrictionAngle) {
     std::vector<float3> pos = {make_float3(d, 0, 0), make_float3(-0.5f * d, 0.866f * d, 0),
                                make_float3(-0.5f * d, -0.866f * d, 0)};
     const float Ixy = m / 3.f * (1.5f * d * d) + 3.f * 0.4f * (m / 3.f) * rs * rs;
-    auto tmpl = sim.LoadClumpType(m, make_float3(Ixy, Ixy, 2.f * Ixy - 3.f * 0.4f * (m / 3.f) * rs * rs + 0.8f * m * rs * rs / 1.f),
-                                  std::vector<float>(3, rs), pos, mat);
+    auto tmpl = sim.LoadClumpType(
+        m, make_float3(Ixy, Ixy, 2.f * Ixy - 3.f * 0.4f * (m / 3.f) * rs * rs + 0.8f * m * rs * rs / 1.f),
+        std::vector<float>(3, rs), pos, mat);
     auto clump = sim.AddClumps(tmpl, {make_float3(0, 0, rs)});
     sim.SetInitTimeStep(1e-5);
-    sim.SetGravitationalAcceleration(
-        make_float3((float)(-g * std::sin(alpha)), 0, (float)(-g * std::cos(alpha))));
+    sim.SetGravitationalAcceleration(make_float3((float)(-g * std::sin(alpha)), 0, (float)(-g * std::cos(alpha))));
     sim.Initialize();
     auto tr = sim.Track(clump);
     sim.DoDynamics(0.3);  // settle: normal and tangential springs take up the load

@@ -48,9 +48,9 @@ EndState simulate(double alphaDeg, double mu, double crr) {
     sim.Initialize();
     auto tr = sim.Track(ball);
     sim.DoDynamics(2.0);
-    const double v = tr->Vel().x;           // along the slope
-    const double w = tr->AngVelLocal().y;   // rolling down (-x) turns about -y: w < 0, v = w r
-    const double slip = v - w * r;          // velocity of the contact point
+    const double v = tr->Vel().x;          // along the slope
+    const double w = tr->AngVelLocal().y;  // rolling down (-x) turns about -y: w < 0, v = w r
+    const double slip = v - w * r;         // velocity of the contact point
     if (std::fabs(v) < 1e-3 && std::fabs(w * r) < 1e-3) return EndState::STATIONARY;
     if (std::fabs(slip) < 0.01 * std::fabs(v)) return EndState::ROLLING;
     return EndState::SLIDING;

@@ -248,10 +248,10 @@ TEST(MathCompactPosition, EncodeRejectsOutsideAndNaN) {
     const double inf = std::numeric_limits<double>::infinity();
     // Outside the 1 m box centred on the origin (the representable range ends one voxel, ~4.8e-7 m,
     // past the far faces), NaN and infinities in any component.
-    const double3 bad[] = {make_double3(0.6, 0, 0),    make_double3(-0.6, 0, 0),   make_double3(0, 0.6, 0),
-                           make_double3(0, -0.51, 0),  make_double3(0, 0, 1.0),    make_double3(0, 0, -0.500001),
-                           make_double3(0.5 + 1e-6, 0, 0), make_double3(nan, 0, 0), make_double3(0, nan, 0),
-                           make_double3(0, 0, nan),    make_double3(inf, 0, 0),    make_double3(0, -inf, 0)};
+    const double3 bad[] = {make_double3(0.6, 0, 0),        make_double3(-0.6, 0, 0), make_double3(0, 0.6, 0),
+                           make_double3(0, -0.51, 0),      make_double3(0, 0, 1.0),  make_double3(0, 0, -0.500001),
+                           make_double3(0.5 + 1e-6, 0, 0), make_double3(nan, 0, 0),  make_double3(0, nan, 0),
+                           make_double3(0, 0, nan),        make_double3(inf, 0, 0),  make_double3(0, -inf, 0)};
     for (const double3& p : bad) {
         SCOPED_TRACE(std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z));
         // Sentinels: a rejected point leaves the outputs untouched (documented in CompactPosition.h).
@@ -279,8 +279,7 @@ TEST(MathContactGeometry, SphereSphere) {
     // Unequal radii, off-axis: A (r 0.03) at (0.03, 0.04, 0.1), B (r 0.025) at (0, 0, 0.1).
     // Distance 0.05, overlap 0.005, B2A = (0.6, 0.8, 0); the point is B + n * (0.025 - 0.0025).
     {
-        const ContactPoint c =
-            sphereSphereContact(make_double3(0.03, 0.04, 0.1), 0.03, make_double3(0, 0, 0.1), 0.025);
+        const ContactPoint c = sphereSphereContact(make_double3(0.03, 0.04, 0.1), 0.03, make_double3(0, 0, 0.1), 0.025);
         EXPECT_NEAR(c.overlap, 0.005, 1e-12);
         expectNear3(c.B2A, make_float3(0.6f, 0.8f, 0), 1e-7);
         expectNear3(c.point, make_double3(0.6 * 0.0225, 0.8 * 0.0225, 0.1), 1e-12);
@@ -313,8 +312,9 @@ TEST(MathContactGeometry, SpherePlane) {
         expectNear3(c.point, t * 0.3 - n * 0.001, 1e-12);
     }
     // Centre 0.02 above the plane: apart by 0.01, overlap -0.01.
-    EXPECT_NEAR(spherePlaneContact(make_double3(0, 0, 0.02), 0.01, make_double3(0, 0, 0), make_double3(0, 0, 1)).overlap,
-                -0.01, 1e-12);
+    EXPECT_NEAR(
+        spherePlaneContact(make_double3(0, 0, 0.02), 0.01, make_double3(0, 0, 0), make_double3(0, 0, 1)).overlap, -0.01,
+        1e-12);
 }
 
 TEST(MathContactGeometry, SphereCylinderInside) {
@@ -327,10 +327,10 @@ TEST(MathContactGeometry, SphereCylinderInside) {
     expectNear3(c.B2A, make_float3(-0.6f, -0.8f, 0), 1e-7);
     expectNear3(c.point, make_double3(0.6 * 0.1025, 0.8 * 0.1025, 0.3), 1e-12);
     // Near the axis, far from the wall: overlap = r - (R - rho) = 0.01 - 0.09 = -0.08.
-    EXPECT_NEAR(sphereCylinderContact(make_double3(0.01, 0, 0), 0.01, make_double3(0, 0, 0), make_double3(0, 0, 1), 0.1,
-                                      true)
-                    .overlap,
-                -0.08, 1e-12);
+    EXPECT_NEAR(
+        sphereCylinderContact(make_double3(0.01, 0, 0), 0.01, make_double3(0, 0, 0), make_double3(0, 0, 1), 0.1, true)
+            .overlap,
+        -0.08, 1e-12);
     // Agrees with the signed distance used by contact detection: overlap = r - distance.
     EXPECT_NEAR(cylinderSignedDistance(make_double3(0.6 * 0.095, 0.8 * 0.095, 0.3), make_double3(0, 0, -1.0),
                                        make_double3(0, 0, 1), 0.1, true),

@@ -72,16 +72,16 @@ TEST(Output, FilesListOwnersInUserOrderWithHeaders) {
     EXPECT_EQ(clumps[3][0], "2");
     EXPECT_NEAR(std::stod(clumps[3][1]), -0.4, 1e-5);
     EXPECT_NEAR(std::stod(clumps[3][14]), 2.0, 1e-6);  // mass
-    EXPECT_EQ(clumps[3][15], "3");                      // family
+    EXPECT_EQ(clumps[3][15], "3");                     // family
 
     // The second sphere (user sphere id 1, owner 1) rests 1 cm into the plane z = -0.4: one SA contact.
     const auto contacts = readCsv(dir + "/contacts.csv");
     ASSERT_EQ(contacts.size(), 2u);
     EXPECT_EQ(contacts[0][0], "type");
     EXPECT_EQ(contacts[1][0], "SA");
-    EXPECT_EQ(contacts[1][1], "1");  // geomA: user sphere id
-    EXPECT_EQ(contacts[1][3], "1");  // ownerA: user owner id
-    EXPECT_EQ(contacts[1][4], "3");  // ownerB: the plane object, after the three clumps
+    EXPECT_EQ(contacts[1][1], "1");                       // geomA: user sphere id
+    EXPECT_EQ(contacts[1][3], "1");                       // ownerA: user owner id
+    EXPECT_EQ(contacts[1][4], "3");                       // ownerB: the plane object, after the three clumps
     EXPECT_NEAR(std::stod(contacts[1][14]), 0.01, 1e-4);  // overlap
     EXPECT_GT(std::stod(contacts[1][10]), 0.0);           // pushed up
     std::filesystem::remove_all(dir);

@@ -88,9 +88,8 @@ TEST(Samplers, HCPHasTwelveNeighbours) {
     const float3 c = make_float3(1.f, 2.f, 3.f);
     std::vector<float3> pts = HCPSampler(s).SampleBox(c, make_float3(2.f));
     // The point nearest the centre is deep inside: exactly 12 neighbours at s, none closer.
-    const float3 mid = *std::min_element(pts.begin(), pts.end(), [&](const float3& a, const float3& b) {
-        return length(a - c) < length(b - c);
-    });
+    const float3 mid = *std::min_element(
+        pts.begin(), pts.end(), [&](const float3& a, const float3& b) { return length(a - c) < length(b - c); });
     int n = 0;
     for (const float3& p : pts) {
         const double d = length(p - mid);

@@ -64,8 +64,7 @@ class DEMSolver {
     std::shared_ptr<DEMClumpTemplate> LoadClumpType(float mass, const float3& moi, const std::vector<float>& radii,
                                                     const std::vector<float3>& positions,
                                                     const std::vector<std::shared_ptr<DEMMaterial>>& mats);
-    std::shared_ptr<DEMClumpTemplate> LoadSphereType(float mass, float radius,
-                                                     const std::shared_ptr<DEMMaterial>& mat);
+    std::shared_ptr<DEMClumpTemplate> LoadSphereType(float mass, float radius, const std::shared_ptr<DEMMaterial>& mat);
     std::shared_ptr<DEMClumpBatch> AddClumps(const std::shared_ptr<DEMClumpTemplate>& type,
                                              const std::vector<float3>& positions);
     std::shared_ptr<DEMClumpBatch> AddClumps(const std::vector<std::shared_ptr<DEMClumpTemplate>>& types,

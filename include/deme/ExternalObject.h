@@ -14,10 +14,10 @@ class DEMExternObj {
   public:
     struct Component {
         AnalyticalType type;
-        float3 pos;     // a point of the surface, object frame
-        float3 dir;     // plane: unit normal towards the grains; cylinder: unit axis
-        float radius;   // cylinder only
-        bool inside;    // cylinder only: grains inside
+        float3 pos;    // a point of the surface, object frame
+        float3 dir;    // plane: unit normal towards the grains; cylinder: unit axis
+        float radius;  // cylinder only
+        bool inside;   // cylinder only: grains inside
         std::shared_ptr<DEMMaterial> material;
     };
 

@@ -39,9 +39,24 @@ DEME_HD inline float3 operator*(float s, const float3& a) { return {a.x * s, a.y
 DEME_HD inline float3 operator/(const float3& a, float s) { return {a.x / s, a.y / s, a.z / s}; }
 DEME_HD inline float3 operator+(const float3& a, float s) { return {a.x + s, a.y + s, a.z + s}; }
 DEME_HD inline float3 operator-(const float3& a, float s) { return {a.x - s, a.y - s, a.z - s}; }
-DEME_HD inline float3& operator+=(float3& a, const float3& b) { a.x += b.x; a.y += b.y; a.z += b.z; return a; }
-DEME_HD inline float3& operator-=(float3& a, const float3& b) { a.x -= b.x; a.y -= b.y; a.z -= b.z; return a; }
-DEME_HD inline float3& operator*=(float3& a, float s) { a.x *= s; a.y *= s; a.z *= s; return a; }
+DEME_HD inline float3& operator+=(float3& a, const float3& b) {
+    a.x += b.x;
+    a.y += b.y;
+    a.z += b.z;
+    return a;
+}
+DEME_HD inline float3& operator-=(float3& a, const float3& b) {
+    a.x -= b.x;
+    a.y -= b.y;
+    a.z -= b.z;
+    return a;
+}
+DEME_HD inline float3& operator*=(float3& a, float s) {
+    a.x *= s;
+    a.y *= s;
+    a.z *= s;
+    return a;
+}
 DEME_HD inline float dot(const float3& a, const float3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 DEME_HD inline float3 cross(const float3& a, const float3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
@@ -57,7 +72,12 @@ DEME_HD inline double3 operator*(double s, const double3& a) { return {a.x * s, 
 DEME_HD inline double3 operator/(const double3& a, double s) { return {a.x / s, a.y / s, a.z / s}; }
 DEME_HD inline double3 operator+(const double3& a, const float3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 DEME_HD inline double3 operator-(const double3& a, const float3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-DEME_HD inline double3& operator+=(double3& a, const double3& b) { a.x += b.x; a.y += b.y; a.z += b.z; return a; }
+DEME_HD inline double3& operator+=(double3& a, const double3& b) {
+    a.x += b.x;
+    a.y += b.y;
+    a.z += b.z;
+    return a;
+}
 DEME_HD inline double dot(const double3& a, const double3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 DEME_HD inline double3 cross(const double3& a, const double3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};

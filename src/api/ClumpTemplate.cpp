@@ -35,8 +35,7 @@ template <typename T>
 void assignPerClump(std::vector<T>& dst, const std::vector<T>& src, bool initialized, const char* call) {
     if (initialized) throwError(call, "the batch is already initialized; use a tracker to change running clumps");
     if (src.size() != dst.size())
-        throwError(call, "got " + std::to_string(src.size()) + " values for " + std::to_string(dst.size()) +
-                             " clumps");
+        throwError(call, "got " + std::to_string(src.size()) + " values for " + std::to_string(dst.size()) + " clumps");
     dst = src;
 }
 
@@ -59,9 +58,7 @@ void DEMClumpBatch::SetOriQ(const std::vector<float4>& q) {
     for (const auto& x : q) normalized.push_back(requireQuaternion("DEMClumpBatch::SetOriQ", x));
     assignPerClump(m_oriQ, normalized, m_initialized, "DEMClumpBatch::SetOriQ");
 }
-void DEMClumpBatch::SetFamily(unsigned int family) {
-    SetFamily(std::vector<unsigned int>(m_pos.size(), family));
-}
+void DEMClumpBatch::SetFamily(unsigned int family) { SetFamily(std::vector<unsigned int>(m_pos.size(), family)); }
 void DEMClumpBatch::SetFamily(const std::vector<unsigned int>& families) {
     std::vector<family_t> f;
     f.reserve(families.size());

@@ -61,14 +61,22 @@ void DEMSolver::SetOutputContent(const std::string& content) {
 void DEMSolver::SetOutputContent(const std::vector<std::string>& content) {
     Settings& s = m_sim->settings;
     for (const auto& c : content) {
-        if (c == "XYZ") continue;  // always written
-        else if (c == "ABSV") s.outAbsv = true;
-        else if (c == "VEL") s.outVel = true;
-        else if (c == "ANG_VEL") s.outAngVel = true;
-        else if (c == "FAMILY") s.outFamily = true;
-        else if (c == "OWNER") s.outOwner = true;
-        else if (c == "MAT") s.outMat = true;
-        else if (c == "QUAT") s.outQuat = true;
+        if (c == "XYZ")
+            continue;  // always written
+        else if (c == "ABSV")
+            s.outAbsv = true;
+        else if (c == "VEL")
+            s.outVel = true;
+        else if (c == "ANG_VEL")
+            s.outAngVel = true;
+        else if (c == "FAMILY")
+            s.outFamily = true;
+        else if (c == "OWNER")
+            s.outOwner = true;
+        else if (c == "MAT")
+            s.outMat = true;
+        else if (c == "QUAT")
+            s.outQuat = true;
         else
             throwError("SetOutputContent",
                        "unknown content \"" + c + "\" (XYZ, ABSV, VEL, ANG_VEL, FAMILY, OWNER, MAT, QUAT)");
@@ -239,8 +247,8 @@ std::shared_ptr<DEMClumpBatch> DEMSolver::AddClumps(const std::vector<std::share
     const char* call = "AddClumps";
     requireNotInitialized(call);
     if (types.size() != positions.size())
-        throwError(call, "got " + std::to_string(types.size()) + " templates for " +
-                             std::to_string(positions.size()) + " positions");
+        throwError(call, "got " + std::to_string(types.size()) + " templates for " + std::to_string(positions.size()) +
+                             " positions");
     for (size_t i = 0; i < types.size(); i++) {
         if (!types[i]) throwError(call, "template of clump " + std::to_string(i) + " is null");
         if (!(types[i]->mass > 0.f) || types[i]->radii.empty())
@@ -322,7 +330,8 @@ std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMClumpBatch
     if (std::find(m_scene->batches.begin(), m_scene->batches.end(), batch) == m_scene->batches.end())
         throwError("Track", "the batch was not added to this solver");
     DEMClumpBatch* b = batch.get();
-    return std::make_shared<DEMTracker>(m_sim.get(), [b]() { return b->GetOwnerOffset(); }, batch->GetNumClumps());
+    return std::make_shared<DEMTracker>(
+        m_sim.get(), [b]() { return b->GetOwnerOffset(); }, batch->GetNumClumps());
 }
 
 std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMExternObj>& obj) {
@@ -330,7 +339,8 @@ std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMExternObj>
     if (std::find(m_scene->externObjs.begin(), m_scene->externObjs.end(), obj) == m_scene->externObjs.end())
         throwError("Track", "the object was not added to this solver");
     DEMExternObj* o = obj.get();
-    return std::make_shared<DEMTracker>(m_sim.get(), [o]() { return o->GetOwnerID(); }, 1);
+    return std::make_shared<DEMTracker>(
+        m_sim.get(), [o]() { return o->GetOwnerID(); }, 1);
 }
 
 std::shared_ptr<DEMInspector> DEMSolver::CreateInspector(const std::string& kind) {
@@ -409,8 +419,9 @@ void DEMSolver::DoDynamics(double duration) {
     // Steps to the nearest whole step, so that repeated frames do not drift.
     const double dt = m_sim->settings.dt;
     const double steps = std::floor(duration / dt + 0.5);
-    if (steps > 1e15) throwError(call, "duration " + std::to_string(duration) + " s is too many steps of " +
-                                           std::to_string(dt) + " s");
+    if (steps > 1e15)
+        throwError(call,
+                   "duration " + std::to_string(duration) + " s is too many steps of " + std::to_string(dt) + " s");
     m_sim->advance((unsigned long long)steps);
 }
 

@@ -60,14 +60,22 @@ using Op = Expression::Op;
 // Applies a non-leaf instruction to its operands; shared by constant folding and evaluate().
 inline double apply(const Op& op, double a, double b) {
     switch (op.code) {
-        case Op::Neg: return -a;
-        case Op::Add: return a + b;
-        case Op::Sub: return a - b;
-        case Op::Mul: return a * b;
-        case Op::Div: return a / b;
-        case Op::Fn1: return op.fn1(a);
-        case Op::Fn2: return op.fn2(a, b);
-        default: return 0.0;  // leaves are handled by the callers
+        case Op::Neg:
+            return -a;
+        case Op::Add:
+            return a + b;
+        case Op::Sub:
+            return a - b;
+        case Op::Mul:
+            return a * b;
+        case Op::Div:
+            return a / b;
+        case Op::Fn1:
+            return op.fn1(a);
+        case Op::Fn2:
+            return op.fn2(a, b);
+        default:
+            return 0.0;  // leaves are handled by the callers
     }
 }
 
@@ -116,13 +124,14 @@ class Parser {
     // code a Const is a whole subexpression, so trailing Consts are exactly this op's operands.
     void emit(Op op) {
         const int nIn = (op.code == Op::Const || op.code == Op::Var) ? 0
-                        : (op.code == Op::Neg || op.code == Op::Fn1) ? 1 : 2;
+                        : (op.code == Op::Neg || op.code == Op::Fn1) ? 1
+                                                                     : 2;
         depth_ += 1 - nIn;  // pops nIn values, pushes one (folded or not)
         if (depth_ > Expression::kMaxStack) fail(pos_, "the expression is too complex to evaluate");
         const size_t n = code_.size();
         if (nIn > 0 && code_[n - 1].code == Op::Const && (nIn == 1 || code_[n - 2].code == Op::Const)) {
-            const double v = nIn == 1 ? apply(op, code_[n - 1].value, 0.0)
-                                      : apply(op, code_[n - 2].value, code_[n - 1].value);
+            const double v =
+                nIn == 1 ? apply(op, code_[n - 1].value, 0.0) : apply(op, code_[n - 2].value, code_[n - 1].value);
             code_.resize(n - nIn);
             op = Op{Op::Const};
             op.value = v;
@@ -189,7 +198,7 @@ class Parser {
         // The scan above admits only valid syntax, so the one possible failure is overflow/underflow.
         if (std::from_chars(s_.data() + start, s_.data() + pos_, op.value).ec != std::errc())
             fail(start, "number " + s_.substr(start, pos_ - start) + " is out of the range of double");
-        if (peek() == 'f' || peek() == 'F') ++pos_;                       // C++ float suffix: ignored
+        if (peek() == 'f' || peek() == 'F') ++pos_;  // C++ float suffix: ignored
         if (isIdentChar(peek()) || peek() == '.') fail(pos_, "malformed number");
         emit(op);
     }
@@ -271,11 +280,20 @@ double Expression::evaluate(const double* values) const {
     int sp = 0;               // number of values on the stack
     for (const Op& op : code_) {
         switch (op.code) {
-            case Op::Const: stack[sp++] = op.value; break;
-            case Op::Var: stack[sp++] = values[op.var]; break;
+            case Op::Const:
+                stack[sp++] = op.value;
+                break;
+            case Op::Var:
+                stack[sp++] = values[op.var];
+                break;
             case Op::Neg:
-            case Op::Fn1: stack[sp - 1] = apply(op, stack[sp - 1], 0.0); break;
-            default: --sp; stack[sp - 1] = apply(op, stack[sp - 1], stack[sp]); break;
+            case Op::Fn1:
+                stack[sp - 1] = apply(op, stack[sp - 1], 0.0);
+                break;
+            default:
+                --sp;
+                stack[sp - 1] = apply(op, stack[sp - 1], stack[sp]);
+                break;
         }
     }
     return stack[0];

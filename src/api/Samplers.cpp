@@ -17,9 +17,9 @@ enum class Shape { Box, CylX, CylY, CylZ, Sphere };
 
 struct Region {
     Shape shape;
-    double c[3];   // centre
-    double h[3];   // half extents of the bounding box
-    double radius;  // cylinders and sphere
+    double c[3];         // centre
+    double h[3];         // half extents of the bounding box
+    double radius;       // cylinders and sphere
     double half_height;  // cylinders
 };
 
@@ -41,10 +41,14 @@ bool inside(const Region& R, const double p[3], double tol) {
     };
     switch (R.shape) {
         case Shape::Box:
-            return std::fabs(d[0]) <= R.h[0] + tol && std::fabs(d[1]) <= R.h[1] + tol && std::fabs(d[2]) <= R.h[2] + tol;
-        case Shape::CylX: return radial(1, 2, 0);
-        case Shape::CylY: return radial(0, 2, 1);
-        case Shape::CylZ: return radial(0, 1, 2);
+            return std::fabs(d[0]) <= R.h[0] + tol && std::fabs(d[1]) <= R.h[1] + tol &&
+                   std::fabs(d[2]) <= R.h[2] + tol;
+        case Shape::CylX:
+            return radial(1, 2, 0);
+        case Shape::CylY:
+            return radial(0, 2, 1);
+        case Shape::CylZ:
+            return radial(0, 1, 2);
         case Shape::Sphere: {
             double rr = R.radius + tol;
             return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rr * rr;
@@ -84,8 +88,10 @@ std::vector<float3> sample(const std::string& call, double s, bool hcp, const Re
     // Guard before allocating (and before the candidate loop, which could otherwise run for ages):
     // estimated points = lattice points in the bounding box * (region volume / bounding-box volume).
     double frac = 1.0;
-    if (R.shape == Shape::Sphere) frac = kPi / 6;
-    else if (R.shape != Shape::Box) frac = kPi / 4;
+    if (R.shape == Shape::Sphere)
+        frac = kPi / 6;
+    else if (R.shape != Shape::Box)
+        frac = kPi / 4;
     const double estimate = approx * frac;
     if (!(estimate <= 2147483648.0))
         throwError(call, "region would hold about " + std::to_string(estimate) +

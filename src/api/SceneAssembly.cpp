@@ -157,9 +157,8 @@ SimState assembleScene(const Scene& scene) {
                                      fmt3(scene.domainLo + scene.domainSize) + ")");
             user.push_back({b.get(), i});
         }
-    const std::vector<size_t> order = spatialOrder(scene, user.size(), [&](size_t u) {
-        return user[u].batch->GetPositions()[user[u].index];
-    });
+    const std::vector<size_t> order =
+        spatialOrder(scene, user.size(), [&](size_t u) { return user[u].batch->GetPositions()[user[u].index]; });
     s.ownerUserToInternal.resize(user.size());
     s.ownerInternalToUser.resize(user.size());
     std::vector<uint32_t> userSphereStart(user.size() + 1, 0);
@@ -173,9 +172,8 @@ SimState assembleScene(const Scene& scene) {
         const size_t owner = s.owners.size();
         s.ownerUserToInternal[u] = (bodyID_t)owner;
         s.ownerInternalToUser[owner] = (bodyID_t)u;
-        addOwner(s, to_double3(b->GetPositions()[i]), b->GetOriQs()[i], b->GetVelocities()[i],
-                 b->GetAngVelocities()[i], b->GetFamilies()[i], OWNER_CLUMP, templateIndex.at(&t), t.GetExtent(), u,
-                 "clump");
+        addOwner(s, to_double3(b->GetPositions()[i]), b->GetOriQs()[i], b->GetVelocities()[i], b->GetAngVelocities()[i],
+                 b->GetFamilies()[i], OWNER_CLUMP, templateIndex.at(&t), t.GetExtent(), u, "clump");
         for (size_t k = 0; k < t.GetNumSpheres(); k++) {
             s.spheres.owner.push_back((bodyID_t)owner);
             s.spheres.relPos.push_back(t.relPos[k]);

@@ -30,9 +30,7 @@ float4 DEMTracker::OriQ(size_t offset) const { return m_sim->state().owners.oriQ
 float DEMTracker::Mass(size_t offset) const { return m_sim->ownerMass(internalID(offset)); }
 float3 DEMTracker::MOI(size_t offset) const { return m_sim->ownerMOI(internalID(offset)); }
 unsigned int DEMTracker::GetFamily(size_t offset) const { return m_sim->state().owners.family[internalID(offset)]; }
-float3 DEMTracker::ContactForce(size_t offset) const {
-    return m_sim->state().owners.contactForce[internalID(offset)];
-}
+float3 DEMTracker::ContactForce(size_t offset) const { return m_sim->state().owners.contactForce[internalID(offset)]; }
 float3 DEMTracker::ContactTorque(size_t offset) const {
     return m_sim->state().owners.contactTorque[internalID(offset)];
 }

@@ -33,7 +33,8 @@ inline float3 requireUnitDirection(const char* call, const char* what, const flo
 }
 inline family_t requireFamily(const char* call, unsigned int family) {
     if (family >= NUM_FAMILIES)
-        throwError(call, "family " + std::to_string(family) + " is out of range 0.." + std::to_string(NUM_FAMILIES - 1));
+        throwError(call,
+                   "family " + std::to_string(family) + " is out of range 0.." + std::to_string(NUM_FAMILIES - 1));
     return (family_t)family;
 }
 inline float4 requireQuaternion(const char* call, const float4& q) {

@@ -7,7 +7,7 @@
 namespace deme {
 
 struct ForcePassResult {
-    size_t realContacts = 0;        // pairs with overlap > 0
+    size_t realContacts = 0;  // pairs with overlap > 0
     size_t realSphereSphere = 0;
 };
 

@@ -12,10 +12,10 @@ namespace deme {
 enum class OwnerFault : uint8_t { NONE = 0, TOO_FAST, NOT_FINITE, LEFT_DOMAIN };
 
 struct IntegrationResult {
-    float maxTravel = 0.f;      // largest travel since the last detection, over all owners
+    float maxTravel = 0.f;        // largest travel since the last detection, over all owners
     float maxSurfaceSpeed = 0.f;  // largest speed of any geometry point (for the next margin)
     OwnerFault fault = OwnerFault::NONE;
-    size_t faultOwner = 0;      // lowest owner id with a fault
+    size_t faultOwner = 0;  // lowest owner id with a fault
 };
 
 IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,

@@ -84,14 +84,15 @@ ClumpSpheres readClumpCsv(const std::string& path, const std::string& call) {
             errno = 0;
             const double d = f.empty() ? 0.0 : std::strtod(f.c_str(), &end);
             if (f.empty() || end != f.c_str() + f.size())
-                throwFileError(call, path, line_no, std::string("column '") + kNames[k] + "': '" + f + "' is not a number");
+                throwFileError(call, path, line_no,
+                               std::string("column '") + kNames[k] + "': '" + f + "' is not a number");
             // Checking after the float cast also rejects values that overflow float (e.g. 1e300).
             v[k] = (float)d;
             if (!std::isfinite(d) || !std::isfinite(v[k]))
-                throwFileError(call, path, line_no, std::string("column '") + kNames[k] + "': '" + f + "' is not finite");
+                throwFileError(call, path, line_no,
+                               std::string("column '") + kNames[k] + "': '" + f + "' is not finite");
         }
-        if (!(v[3] > 0.f))
-            throwFileError(call, path, line_no, "radius must be positive, got " + fields[col[3]]);
+        if (!(v[3] > 0.f)) throwFileError(call, path, line_no, "radius must be positive, got " + fields[col[3]]);
         out.positions.push_back(make_float3(v[0], v[1], v[2]));
         out.radii.push_back(v[3]);
     }

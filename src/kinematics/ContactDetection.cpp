@@ -135,11 +135,10 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
             for (size_t k = 0; k < nA; k++) {
                 const bodyID_t oB = s.analytical.owner[k];
                 if (!maskRow[ow.family[oB]]) continue;
-                const double dist =
-                    s.analytical.type[k] == ANAL_PLANE
-                        ? planeSignedDistance(pA, s.cache.analPos[k], s.cache.analDir[k])
-                        : cylinderSignedDistance(pA, s.cache.analPos[k], s.cache.analDir[k], s.analytical.radius[k],
-                                                 s.analytical.inside[k] != 0);
+                const double dist = s.analytical.type[k] == ANAL_PLANE
+                                        ? planeSignedDistance(pA, s.cache.analPos[k], s.cache.analDir[k])
+                                        : cylinderSignedDistance(pA, s.cache.analPos[k], s.cache.analDir[k],
+                                                                 s.analytical.radius[k], s.analytical.inside[k] != 0);
                 if (dist - rA < twoMargin) {
                     mine.geomA.push_back((bodyID_t)a);
                     mine.geomB.push_back((bodyID_t)(nS + k));

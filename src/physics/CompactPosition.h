@@ -7,9 +7,9 @@
 namespace deme {
 
 struct DomainFrame {
-    double3 origin;     // lower corner of the domain
-    double voxelSize;   // edge of one voxel
-    double subStep;     // voxelSize / 2^16: the position resolution
+    double3 origin;    // lower corner of the domain
+    double voxelSize;  // edge of one voxel
+    double subStep;    // voxelSize / 2^16: the position resolution
 };
 
 DEME_HD inline voxelID_t packVoxel(uint64_t vx, uint64_t vy, uint64_t vz) {

@@ -7,22 +7,22 @@
 namespace deme {
 
 struct ContactInputs {
-    double3 contactPnt;         // contact point, global
-    float3 B2A;                 // unit normal from geometry B to geometry A
-    double overlapDepth;        // penetration (negative: apart)
-    float ts;                   // time step
-    float time;                 // simulation time
-    float3 locCPA, locCPB;      // contact point in the owners' local frames (relative to the owner centre)
+    double3 contactPnt;     // contact point, global
+    float3 B2A;             // unit normal from geometry B to geometry A
+    double overlapDepth;    // penetration (negative: apart)
+    float ts;               // time step
+    float time;             // simulation time
+    float3 locCPA, locCPB;  // contact point in the owners' local frames (relative to the owner centre)
     double3 AOwnerPos, BOwnerPos;
     double3 bodyAPos, bodyBPos;  // positions of the contact geometries
     float4 AOriQ, BOriQ;
     float AOwnerMass, BOwnerMass;
     float3 AOwnerMOI, BOwnerMOI;
-    float ARadius, BRadius;     // curvature radii at the contact
+    float ARadius, BRadius;  // curvature radii at the contact
     materialID_t bodyAMatType, bodyBMatType;
     family_t AOwnerFamily, BOwnerFamily;
-    float3 ALinVel, BLinVel;    // owner velocities, global
-    float3 ARotVel, BRotVel;    // owner angular velocities, local frames
+    float3 ALinVel, BLinVel;  // owner velocities, global
+    float3 ARotVel, BRotVel;  // owner angular velocities, local frames
     bodyID_t AOwner, BOwner;
     bodyID_t AGeo, BGeo;
     // Beyond Table 3, cheaper forms of the same kinematics, in the global frame:

@@ -52,7 +52,7 @@ DEME_HD inline float4 integrateOrientation(const float4& q, const float3& omegaL
     const float w2 = dot(omegaLocal, omegaLocal);
     if (!(w2 > 0.f)) return q;
     const float h2 = 0.25f * w2 * dt * dt;  // (half angle)^2
-    float sinc, c;                           // sin(half)/half and cos(half)
+    float sinc, c;                          // sin(half)/half and cos(half)
     if (h2 < 1e-4f) {
         // Taylor series; the first omitted terms are below 1e-15, far under float resolution.
         sinc = 1.f - h2 * (1.f / 6.f - h2 * (1.f / 120.f));

@@ -51,8 +51,14 @@ class FamilyRules {
             s.fixed = m.fixed;
             float lin[3] = {0.f, 0.f, 0.f}, ang[3] = {0.f, 0.f, 0.f};
             for (int i = 0; i < 3; i++) {
-                if (m.linPrescribed[i]) { s.linMask |= (uint8_t)(1u << i); lin[i] = (float)m.lin[i].evaluate(&t); }
-                if (m.angPrescribed[i]) { s.angMask |= (uint8_t)(1u << i); ang[i] = (float)m.ang[i].evaluate(&t); }
+                if (m.linPrescribed[i]) {
+                    s.linMask |= (uint8_t)(1u << i);
+                    lin[i] = (float)m.lin[i].evaluate(&t);
+                }
+                if (m.angPrescribed[i]) {
+                    s.angMask |= (uint8_t)(1u << i);
+                    ang[i] = (float)m.ang[i].evaluate(&t);
+                }
             }
             s.lin = make_float3(lin[0], lin[1], lin[2]);
             s.ang = make_float3(ang[0], ang[1], ang[2]);

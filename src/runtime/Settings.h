@@ -14,13 +14,13 @@ struct Settings {
     double dt = -1.0;  // must be set
     float3 gravity = make_float3(0.f, 0.f, 0.f);
     float errorOutVelocity = 1e30f;
-    float maxVelocity = 0.f;       // user's expected largest speed (0: measured only)
+    float maxVelocity = 0.f;        // user's expected largest speed (0: measured only)
     float safetyMultiplier = 1.1f;  // margin = multiplier * vmax * dt * n + adder
     float safetyAdder = 0.f;
-    unsigned int updateFreq = 20;   // steps between contact detections at most
-    double binSize = 0.0;           // 0: chosen at Initialize
+    unsigned int updateFreq = 20;  // steps between contact detections at most
+    double binSize = 0.0;          // 0: chosen at Initialize
     unsigned int threadsPerBlock = 256;
-    unsigned int cpuThreads = 0;    // 0: OpenMP default
+    unsigned int cpuThreads = 0;  // 0: OpenMP default
     Verbosity verbosity = Verbosity::INFO;
     // Sphere file columns beyond X,Y,Z,r.
     bool outAbsv = false, outVel = false, outAngVel = false, outFamily = false, outOwner = false, outMat = false,

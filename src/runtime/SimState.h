@@ -15,12 +15,12 @@ struct OwnerArrays {
     std::vector<voxelID_t> voxel;
     std::vector<subVoxelPos_t> subX, subY, subZ;
     std::vector<oriQ_t> oriQ;
-    std::vector<float3> vel;        // global
-    std::vector<float3> angVel;     // local (body) frame
+    std::vector<float3> vel;     // global
+    std::vector<float3> angVel;  // local (body) frame
     std::vector<family_t> family;
-    std::vector<uint8_t> type;      // OwnerType
+    std::vector<uint8_t> type;         // OwnerType
     std::vector<inertiaID_t> inertia;  // index into MassProperties
-    std::vector<float> extent;      // largest distance from the owner centre to any point of its spheres
+    std::vector<float> extent;         // largest distance from the owner centre to any point of its spheres
     // Results of the last step, for trackers and inspectors: contact force and torque (global).
     std::vector<float3> contactForce, contactTorque;
     // Extra acceleration added by trackers (AddAcc), applied during the next DoDynamics call.
@@ -46,11 +46,11 @@ struct SphereArrays {
 
 struct AnalyticalArrays {
     std::vector<bodyID_t> owner;
-    std::vector<uint8_t> type;     // AnalyticalType
-    std::vector<float3> relPos;    // a point of the surface, owner frame
-    std::vector<float3> relDir;    // plane normal (towards grains) or cylinder axis, owner frame
-    std::vector<float> radius;     // cylinder radius
-    std::vector<uint8_t> inside;   // cylinder: 1 if grains live inside
+    std::vector<uint8_t> type;    // AnalyticalType
+    std::vector<float3> relPos;   // a point of the surface, owner frame
+    std::vector<float3> relDir;   // plane normal (towards grains) or cylinder axis, owner frame
+    std::vector<float> radius;    // cylinder radius
+    std::vector<uint8_t> inside;  // cylinder: 1 if grains live inside
     std::vector<materialID_t> material;
     size_t size() const { return owner.size(); }
 };
@@ -59,10 +59,10 @@ struct AnalyticalArrays {
 // spheres [0, nSpheres), analytical components [nSpheres, nSpheres + nAnalytical).
 struct ContactArrays {
     std::vector<bodyID_t> geomA, geomB;
-    std::vector<uint8_t> type;  // ContactType
+    std::vector<uint8_t> type;     // ContactType
     std::vector<float> wildcards;  // numWildcards values per contact, contact-major
     // Results of the force pass.
-    std::vector<float3> force;            // on A, global
+    std::vector<float3> force;             // on A, global
     std::vector<float3> torqueA, torqueB;  // about each owner's centre, global
     // For force reduction: for each owner the contacts it takes part in, as (contact << 1) | isB.
     std::vector<uint32_t> ownerStart, ownerEntries;
@@ -75,18 +75,18 @@ inline uint64_t contactKey(bodyID_t a, bodyID_t b) { return (uint64_t(a) << 32) 
 // host-side edit) so that the force pass and contact detection read them instead of recomputing
 // them for every contact.
 struct KinematicCache {
-    std::vector<double3> ownerPos;         // decoded owner positions
+    std::vector<double3> ownerPos;  // decoded owner positions
     std::vector<float3> ownerAngVelGlobal;
-    std::vector<double3> spherePos;        // sphere centres
-    std::vector<float3> sphereArm;         // sphere centre minus owner centre
-    std::vector<double3> analPos;          // analytical component reference points
-    std::vector<double3> analDir;          // analytical normals / axes (unit)
+    std::vector<double3> spherePos;  // sphere centres
+    std::vector<float3> sphereArm;   // sphere centre minus owner centre
+    std::vector<double3> analPos;    // analytical component reference points
+    std::vector<double3> analDir;    // analytical normals / axes (unit)
 };
 
 // Material property tables for the force model.
 struct MaterialTables {
     unsigned int count = 0;
-    std::vector<float> E, nu;        // per material
+    std::vector<float> E, nu;         // per material
     std::vector<float> CoR, mu, Crr;  // per pair, count x count
 };
 

@@ -18,7 +18,9 @@ namespace deme {
 void Simulation::log(Verbosity level, const std::string& msg) const {
     if (settings.verbosity < level) return;
     std::ostream& os = level <= Verbosity::WARNING ? std::cerr : std::cout;
-    os << (level == Verbosity::ERROR ? "[deme] error: " : level == Verbosity::WARNING ? "[deme] warning: " : "[deme] ")
+    os << (level == Verbosity::ERROR     ? "[deme] error: "
+           : level == Verbosity::WARNING ? "[deme] warning: "
+                                         : "[deme] ")
        << msg << std::endl;
 }
 
@@ -84,19 +86,16 @@ void Simulation::advance(unsigned long long n) {
         m_stepsSinceDetection++;
         m_lastMaxSpeed = ir.maxSurfaceSpeed;
         if (ir.fault != OwnerFault::NONE) {
-            const std::string what = ir.fault == OwnerFault::TOO_FAST
-                                         ? "moves faster than the error-out velocity (" +
-                                               std::to_string(settings.errorOutVelocity) +
-                                               " m/s, see SetErrorOutVelocity)"
-                                         : ir.fault == OwnerFault::NOT_FINITE
-                                               ? "has a non-finite velocity or orientation"
-                                               : "left the simulation domain";
+            const std::string what = ir.fault == OwnerFault::TOO_FAST ? "moves faster than the error-out velocity (" +
+                                                                            std::to_string(settings.errorOutVelocity) +
+                                                                            " m/s, see SetErrorOutVelocity)"
+                                     : ir.fault == OwnerFault::NOT_FINITE ? "has a non-finite velocity or orientation"
+                                                                          : "left the simulation domain";
             const double3 p = ownerPosition(m_state, (bodyID_t)ir.faultOwner);
             const float3 v = m_state.owners.vel[ir.faultOwner];
             throwError("DoDynamics", "simulation diverged at t = " + std::to_string(m_time) + " s: owner " +
                                          std::to_string(m_state.ownerInternalToUser[ir.faultOwner]) + " " + what +
-                                         "; position (" +
-                                         std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
+                                         "; position (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
                                          std::to_string(p.z) + "), velocity (" + std::to_string(v.x) + ", " +
                                          std::to_string(v.y) + ", " + std::to_string(v.z) + ")");
         }
@@ -128,8 +127,8 @@ double3 Simulation::ownerPos(size_t owner) const { return ownerPosition(m_state,
 void Simulation::setOwnerPos(size_t owner, const double3& p, const char* call) {
     OwnerArrays& ow = m_state.owners;
     if (!encodePosition(p, m_state.frame, ow.voxel[owner], ow.subX[owner], ow.subY[owner], ow.subZ[owner]))
-        throwError(call, "position (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
-                             std::to_string(p.z) + ") is outside the simulation domain");
+        throwError(call, "position (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
+                             ") is outside the simulation domain");
     invalidateContacts();
 }
 

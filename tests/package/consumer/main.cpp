@@ -96,8 +96,9 @@ int main() {
             if (!(std::fabs(v.z - vz) < 0.01f * std::fabs(vz) && std::fabs(v.x) < 1e-5f && std::fabs(v.y) < 1e-5f &&
                   std::fabs(dp.z - dz) < 0.05f * std::fabs(dz) + 1e-6f && std::fabs(dp.x) < 1e-6f &&
                   std::fabs(dp.y) < 1e-6f)) {
-                std::fprintf(stderr, "clump %zu: v = (%g, %g, %g), displacement = (%g, %g, %g); expected vz %g, dz %g\n",
-                             i, v.x, v.y, v.z, dp.x, dp.y, dp.z, vz, dz);
+                std::fprintf(stderr,
+                             "clump %zu: v = (%g, %g, %g), displacement = (%g, %g, %g); expected vz %g, dz %g\n", i,
+                             v.x, v.y, v.z, dp.x, dp.y, dp.z, vz, dz);
                 return fail("clumps are not in free fall");
             }
         }
