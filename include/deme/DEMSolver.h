@@ -13,6 +13,7 @@
 #include "ExternalObject.h"
 #include "Inspector.h"
 #include "Materials.h"
+#include "Mesh.h"
 #include "Tracker.h"
 #include "VariableTypes.h"
 
@@ -55,6 +56,16 @@ class DEMSolver {
     std::shared_ptr<DEMExternObj> AddBCPlane(const float3& pos, const float3& normal,
                                              const std::shared_ptr<DEMMaterial>& mat);
 
+    // ---- Meshes ----
+    // Loads a Wavefront OBJ file as one rigid mesh owner with one material.
+    std::shared_ptr<DEMMeshConnected> AddWavefrontMeshObject(const std::string& objFile,
+                                                            const std::shared_ptr<DEMMaterial>& mat);
+    // Adds a mesh built in code (its material must be set).
+    std::shared_ptr<DEMMeshConnected> AddWavefrontMeshObject(const DEMMeshConnected& mesh);
+    void SetMeshOutputFormat(const std::string& format);  // "VTK"
+    // Every mesh in its current pose, as one legacy VTK file (cell data: owner id).
+    void WriteMeshFile(const std::string& path) const;
+
     // ---- Clump templates and clumps ----
     std::shared_ptr<DEMClumpTemplate> LoadClumpType(float mass, const float3& moi, const std::string& csvFile,
                                                     const std::shared_ptr<DEMMaterial>& mat);
@@ -86,6 +97,7 @@ class DEMSolver {
     // ---- Trackers and inspectors ----
     std::shared_ptr<DEMTracker> Track(const std::shared_ptr<DEMClumpBatch>& batch);
     std::shared_ptr<DEMTracker> Track(const std::shared_ptr<DEMExternObj>& obj);
+    std::shared_ptr<DEMTracker> Track(const std::shared_ptr<DEMMeshConnected>& mesh);
     std::shared_ptr<DEMInspector> CreateInspector(const std::string& kind);
 
     // ---- Time stepping ----

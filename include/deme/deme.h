@@ -7,6 +7,7 @@
 #include "ExternalObject.h"
 #include "Inspector.h"
 #include "Materials.h"
+#include "Mesh.h"
 #include "Samplers.h"
 #include "Tracker.h"
 #include "VariableTypes.h"

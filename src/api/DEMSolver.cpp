@@ -12,6 +12,7 @@
 #include "api/Validate.h"
 #include "backend/cpu/Parallel.h"
 #include "io/ClumpCsvReader.h"
+#include "io/ObjReader.h"
 #include "io/OutputWriters.h"
 #include "runtime/Simulation.h"
 
@@ -183,6 +184,35 @@ std::shared_ptr<DEMExternObj> DEMSolver::AddBCPlane(const float3& pos, const flo
     return obj;
 }
 
+// ---------------------------------------------------------------- meshes
+std::shared_ptr<DEMMeshConnected> DEMSolver::AddWavefrontMeshObject(const std::string& objFile,
+                                                                   const std::shared_ptr<DEMMaterial>& mat) {
+    const char* call = "AddWavefrontMeshObject";
+    requireNotInitialized(call);
+    if (!mat) throwError(call, "material is null");
+    ObjMesh obj = readObj(objFile, call);
+    return AddWavefrontMeshObject(DEMMeshConnected(std::move(obj.vertices), std::move(obj.faces), mat));
+}
+
+std::shared_ptr<DEMMeshConnected> DEMSolver::AddWavefrontMeshObject(const DEMMeshConnected& mesh) {
+    const char* call = "AddWavefrontMeshObject";
+    requireNotInitialized(call);
+    if (!mesh.GetMaterial()) throwError(call, "the mesh has no material (SetMaterial)");
+    if (mesh.GetNumTriangles() == 0) throwError(call, "the mesh has no triangles");
+    auto m = std::make_shared<DEMMeshConnected>(mesh);
+    m_scene->meshes.push_back(m);
+    return m;
+}
+
+void DEMSolver::SetMeshOutputFormat(const std::string& format) {
+    if (format != "VTK") throwError("SetMeshOutputFormat", "unsupported format \"" + format + "\" (VTK)");
+}
+
+void DEMSolver::WriteMeshFile(const std::string& path) const {
+    requireInitialized("WriteMeshFile");
+    writeMeshVtk(*m_sim, path);
+}
+
 // ---------------------------------------------------------------- clump templates and clumps
 std::shared_ptr<DEMClumpTemplate> DEMSolver::LoadClumpType(float mass, const float3& moi, const std::string& csvFile,
                                                            const std::shared_ptr<DEMMaterial>& mat) {
@@ -343,6 +373,14 @@ std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMExternObj>
         m_sim.get(), [o]() { return o->GetOwnerID(); }, 1);
 }
 
+std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMMeshConnected>& mesh) {
+    if (!mesh) throwError("Track", "mesh is null");
+    if (std::find(m_scene->meshes.begin(), m_scene->meshes.end(), mesh) == m_scene->meshes.end())
+        throwError("Track", "the mesh was not added to this solver");
+    DEMMeshConnected* m = mesh.get();
+    return std::make_shared<DEMTracker>(m_sim.get(), [m]() { return m->GetOwnerID(); }, 1);
+}
+
 std::shared_ptr<DEMInspector> DEMSolver::CreateInspector(const std::string& kind) {
     return std::make_shared<DEMInspector>(m_sim.get(), kind);
 }
@@ -408,6 +446,10 @@ void DEMSolver::Initialize() {
     for (auto& o : m_scene->externObjs) {
         o->m_ownerID = offset++;
         o->m_initialized = true;
+    }
+    for (auto& m : m_scene->meshes) {
+        m->m_ownerID = offset++;
+        m->m_initialized = true;
     }
     m_sim->start(std::move(state));
 }

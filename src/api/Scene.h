@@ -11,6 +11,7 @@
 #include <deme/ClumpTemplate.h>
 #include <deme/ExternalObject.h>
 #include <deme/Materials.h>
+#include <deme/Mesh.h>
 
 namespace deme {
 
@@ -22,6 +23,7 @@ class Scene {
     std::vector<std::shared_ptr<DEMClumpTemplate>> templates;
     std::vector<std::shared_ptr<DEMClumpBatch>> batches;
     std::vector<std::shared_ptr<DEMExternObj>> externObjs;
+    std::vector<std::shared_ptr<DEMMeshConnected>> meshes;
     bool hasDomain = false;
     float3 domainSize = make_float3(0.f);
     float3 domainLo = make_float3(0.f);  // lower corner

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 
 #include <deme/Error.h>
 
@@ -54,7 +55,7 @@ bool insideDomain(const double3& p, const float3& lo, const float3& size) {
 }
 
 void addOwner(SimState& s, const double3& pos, const float4& q, const float3& v, const float3& w, family_t fam,
-              OwnerType type, inertiaID_t inertia, float extent, size_t ownerIndex, const char* what) {
+              OwnerType type, bool dynamic, inertiaID_t inertia, float extent, size_t ownerIndex, const char* what) {
     OwnerArrays& o = s.owners;
     voxelID_t vox;
     subVoxelPos_t sx, sy, sz;
@@ -71,8 +72,47 @@ void addOwner(SimState& s, const double3& pos, const float4& q, const float3& v,
     o.angVel.push_back(w);
     o.family.push_back(fam);
     o.type.push_back((uint8_t)type);
+    o.dynamic.push_back(dynamic ? 1 : 0);
     o.inertia.push_back(inertia);
     o.extent.push_back(extent);
+}
+
+// Appends a mesh's triangles; vertices with bit-identical coordinates are welded into one id.
+void appendMeshTriangles(SimState& s, const DEMMeshConnected& mesh, bodyID_t owner) {
+    TriangleArrays& t = s.triangles;
+    const uint32_t base = t.vertTriStart.empty() ? 0 : (uint32_t)t.vertTriStart.size();
+    std::map<std::tuple<float, float, float>, uint32_t> weld;
+    std::vector<uint32_t> weldedOf(mesh.GetNumVertices());
+    for (size_t i = 0; i < mesh.GetNumVertices(); i++) {
+        const float3 v = mesh.GetVertices()[i];
+        const auto key = std::make_tuple(v.x, v.y, v.z);
+        auto it = weld.find(key);
+        if (it == weld.end()) it = weld.emplace(key, base + (uint32_t)weld.size()).first;
+        weldedOf[i] = it->second;
+    }
+    const materialID_t mat = (materialID_t)mesh.GetMaterial()->GetLoadOrder();
+    for (const int3& f : mesh.GetFaces()) {
+        t.owner.push_back(owner);
+        t.v0.push_back(mesh.GetVertices()[f.x]);
+        t.v1.push_back(mesh.GetVertices()[f.y]);
+        t.v2.push_back(mesh.GetVertices()[f.z]);
+        t.material.push_back(mat);
+        t.vert.insert(t.vert.end(), {weldedOf[f.x], weldedOf[f.y], weldedOf[f.z]});
+    }
+    // Reserve this mesh's welded ids; the vertex -> triangles index is built once at the end.
+    t.vertTriStart.resize(base + weld.size(), 0);
+}
+
+void finishTriangleTopology(SimState& s) {
+    TriangleArrays& t = s.triangles;
+    const size_t nVerts = t.vertTriStart.size();
+    std::vector<uint32_t> start(nVerts + 1, 0);
+    for (uint32_t v : t.vert) start[v + 1]++;
+    for (size_t v = 0; v < nVerts; v++) start[v + 1] += start[v];
+    t.vertTris.resize(t.vert.size());
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t i = 0; i < t.vert.size(); i++) t.vertTris[fill[t.vert[i]]++] = (uint32_t)(i / 3);
+    t.vertTriStart = std::move(start);
 }
 
 // Order of clumps along a Morton (Z-order) curve over cells of about two grain sizes; ties keep the
@@ -113,7 +153,8 @@ std::vector<size_t> spatialOrder(const Scene& scene, size_t n, PosOf posOf) {
 SimState assembleScene(const Scene& scene) {
     if (!scene.hasDomain) throwError(CALL, "no simulation domain: call InstructBoxDomainDimension first");
     if (scene.materials.empty()) throwError(CALL, "no material loaded: call LoadMaterial first");
-    if (scene.batches.empty() && scene.externObjs.empty()) throwError(CALL, "the scene is empty: add clumps first");
+    if (scene.batches.empty() && scene.externObjs.empty() && scene.meshes.empty())
+        throwError(CALL, "the scene is empty: add clumps first");
 
     SimState s;
     s.frame = makeFrame(scene.domainLo, scene.domainSize);
@@ -173,7 +214,7 @@ SimState assembleScene(const Scene& scene) {
         s.ownerUserToInternal[u] = (bodyID_t)owner;
         s.ownerInternalToUser[owner] = (bodyID_t)u;
         addOwner(s, to_double3(b->GetPositions()[i]), b->GetOriQs()[i], b->GetVelocities()[i], b->GetAngVelocities()[i],
-                 b->GetFamilies()[i], OWNER_CLUMP, templateIndex.at(&t), t.GetExtent(), u, "clump");
+                 b->GetFamilies()[i], OWNER_CLUMP, true, templateIndex.at(&t), t.GetExtent(), u, "clump");
         for (size_t k = 0; k < t.GetNumSpheres(); k++) {
             s.spheres.owner.push_back((bodyID_t)owner);
             s.spheres.relPos.push_back(t.relPos[k]);
@@ -193,7 +234,7 @@ SimState assembleScene(const Scene& scene) {
         s.massProps.mass.push_back(obj->GetMass());
         s.massProps.moi.push_back(obj->GetMOI());
         addOwner(s, to_double3(obj->GetInitPos()), obj->GetInitQuat(), make_float3(0.f), make_float3(0.f),
-                 obj->GetFamily(), OWNER_ANALYTICAL, inertia, 0.f, owner, "external object");
+                 obj->GetFamily(), OWNER_ANALYTICAL, false, inertia, 0.f, owner, "external object");
         for (const auto& c : obj->GetComponents()) {
             s.analytical.owner.push_back((bodyID_t)owner);
             s.analytical.type.push_back((uint8_t)c.type);
@@ -205,7 +246,28 @@ SimState assembleScene(const Scene& scene) {
         }
     }
 
+    s.numAnalyticalOwners = s.owners.size() - s.numClumps;
+
+    // Meshes: owners made of triangles, welded per mesh for the contact rule's topology.
+    for (const auto& mesh : scene.meshes) {
+        const size_t owner = s.owners.size();
+        s.ownerUserToInternal.push_back((bodyID_t)owner);
+        s.ownerInternalToUser.push_back((bodyID_t)owner);
+        const inertiaID_t inertia = (inertiaID_t)s.massProps.mass.size();
+        s.massProps.mass.push_back(mesh->GetMass());
+        s.massProps.moi.push_back(mesh->GetMOI());
+        float extent = 0.f;
+        for (const auto& v : mesh->GetVertices()) extent = std::max(extent, length(v));
+        addOwner(s, to_double3(mesh->GetInitPos()), mesh->GetInitQuat(), make_float3(0.f), make_float3(0.f),
+                 mesh->GetFamily(), OWNER_MESH, mesh->IsFree(), inertia, extent, owner, "mesh");
+        appendMeshTriangles(s, *mesh, (bodyID_t)owner);
+    }
+    finishTriangleTopology(s);
+
     const size_t nOwners = s.owners.size();
+    s.ownerTriStart.assign(nOwners + 1, 0);
+    for (bodyID_t o : s.triangles.owner) s.ownerTriStart[o + 1]++;
+    for (size_t o = 0; o < nOwners; o++) s.ownerTriStart[o + 1] += s.ownerTriStart[o];
     s.ownerSphereStart.assign(nOwners + 1, 0);
     for (bodyID_t o : s.spheres.owner) s.ownerSphereStart[o + 1]++;
     for (size_t o = 0; o < nOwners; o++) s.ownerSphereStart[o + 1] += s.ownerSphereStart[o];

@@ -10,10 +10,25 @@
 
 namespace deme {
 
+inline bodyID_t geometryOwner(const SimState& s, uint8_t type, bodyID_t b) {
+    return type == SPHERE_SPHERE       ? s.spheres.owner[b]
+           : type == SPHERE_ANALYTICAL ? s.analytical.owner[b - s.analyticalIdBase()]
+                                       : s.triangles.owner[b - s.triangleIdBase()];
+}
+
 inline bodyID_t contactOwnerB(const SimState& s, size_t c) {
-    const bodyID_t b = s.contacts.geomB[c];
-    return s.contacts.type[c] == SPHERE_SPHERE ? s.spheres.owner[b]
-                                               : s.analytical.owner[b - (bodyID_t)s.spheres.size()];
+    return geometryOwner(s, s.contacts.type[c], s.contacts.geomB[c]);
+}
+
+// Sphere-triangle geometry: closest point on the triangle, its barycentric coordinates, and the
+// contact it makes with sphere a.
+DEME_HD_INLINE ContactPoint sphereTriangleGeometry(const SimState& s, bodyID_t a, size_t tri, double3& onTri,
+                                                   double3& bary) {
+    const double3* v = &s.cache.triVert[3 * tri];
+    const double3 x = s.cache.spherePos[a];
+    onTri = closestPointOnTriangle(x, v[0], v[1], v[2], bary);
+    const double3 nrm = cross(v[1] - v[0], v[2] - v[0]);
+    return sphereTriangleContact(x, s.spheres.radius[a], onTri, nrm / length(nrm));
 }
 
 inline double3 ownerPosition(const SimState& s, bodyID_t o) {
@@ -27,22 +42,31 @@ DEME_HD_INLINE void gatherContactInputs(const SimState& s, size_t c, float time,
     const bodyID_t a = s.contacts.geomA[c];
     const bodyID_t b = s.contacts.geomB[c];
     const bodyID_t oA = s.spheres.owner[a];
-    const bool ss = s.contacts.type[c] == SPHERE_SPHERE;
-    const bodyID_t oB = ss ? s.spheres.owner[b] : s.analytical.owner[b - (bodyID_t)s.spheres.size()];
+    const uint8_t type = s.contacts.type[c];
+    const bodyID_t oB = geometryOwner(s, type, b);
 
     in.bodyAPos = k.spherePos[a];
     in.ARadius = s.spheres.radius[a];
     in.bodyAMatType = s.spheres.material[a];
     ContactPoint cp;
     float3 offB;  // geometry B's reference point minus its owner's centre
-    if (ss) {
+    if (type == SPHERE_SPHERE) {
         in.bodyBPos = k.spherePos[b];
         in.BRadius = s.spheres.radius[b];
         in.bodyBMatType = s.spheres.material[b];
         offB = k.sphereArm[b];
         cp = sphereSphereContact(in.bodyAPos, in.ARadius, in.bodyBPos, in.BRadius);
+    } else if (type == SPHERE_TRIANGLE) {
+        const size_t t = b - s.triangleIdBase();
+        const double3* v = &k.triVert[3 * t];
+        in.bodyBPos = (v[0] + v[1] + v[2]) / 3.0;
+        in.BRadius = FLAT_SURFACE_RADIUS;
+        in.bodyBMatType = s.triangles.material[t];
+        offB = to_float3(in.bodyBPos - k.ownerPos[oB]);
+        double3 onTri, bary;
+        cp = sphereTriangleGeometry(s, a, t, onTri, bary);
     } else {
-        const size_t j = b - s.spheres.size();
+        const size_t j = b - s.analyticalIdBase();
         in.bodyBPos = k.analPos[j];
         in.BRadius = FLAT_SURFACE_RADIUS;
         in.bodyBMatType = s.analytical.material[j];

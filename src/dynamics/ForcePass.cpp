@@ -19,7 +19,8 @@ ForcePassResult computeContactForces(SimState& s, double time, double dt) {
         ContactInputs in;
         gatherContactInputs(s, i, (float)time, (float)dt, in);
         float* wc = c.wildcards.data() + i * W;
-        if (!(in.overlapDepth > 0.0)) {
+        const bool counts = c.type[i] != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
+        if (!(in.overlapDepth > 0.0) || !counts) {
             // Apart: no force, and the contact's history ends (a later touch starts fresh).
             for (unsigned int w = 0; w < W; w++) wc[w] = 0.f;
             c.force[i] = c.torqueA[i] = c.torqueB[i] = make_float3(0.f);

@@ -75,7 +75,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
             s.cache.ownerAngVelGlobal[o] = make_float3(0.f);
             continue;
         }
-        if (ow.type[o] == OWNER_CLUMP) {
+        if (ow.dynamic[o]) {
             const float mass = s.massProps.mass[ow.inertia[o]];
             const float3 moi = s.massProps.moi[ow.inertia[o]];
             const float3 acc = F / mass + gravity + ow.extraAcc[o];
@@ -97,7 +97,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
         OwnerFault f = OwnerFault::NONE;
         if (!finite3(v) || !finite3(w) || !std::isfinite(q.w)) {
             f = OwnerFault::NOT_FINITE;
-        } else if (ow.type[o] == OWNER_CLUMP && dot(v, v) > errorOutVelocity * errorOutVelocity) {
+        } else if (ow.dynamic[o] && dot(v, v) > errorOutVelocity * errorOutVelocity) {
             f = OwnerFault::TOO_FAST;
         } else if ((ow.type[o] == OWNER_CLUMP && !insideBox(x, s.frame.origin, s.domainSize)) ||
                    !encodePosition(x, s.frame, ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o])) {
@@ -111,7 +111,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
             }
         }
         updateOwnerCache(s, o);
-        if (ow.type[o] == OWNER_CLUMP) {
+        if (ow.type[o] != OWNER_ANALYTICAL) {
             const float speed = length(v) + length(w) * ow.extent[o];
             ow.travel[o] += speed * h;
             maxTravel = std::max(maxTravel, ow.travel[o]);
@@ -123,12 +123,12 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
     if (s.analytical.size() > 0) {
         updateAnalyticalCache(s);
         const double diag = length(s.domainSize);
-        std::vector<float> rate(n - s.numClumps, 0.f);
+        std::vector<float> rate(s.numAnalyticalOwners, 0.f);
         for (size_t k = 0; k < s.analytical.size(); k++) {
             const size_t o = s.analytical.owner[k];
             rate[o - s.numClumps] = std::max(rate[o - s.numClumps], analyticalSurfaceSpeed(s, k, diag));
         }
-        for (size_t o = s.numClumps; o < n; o++) {
+        for (size_t o = s.numClumps; o < s.numClumps + s.numAnalyticalOwners; o++) {
             ow.travel[o] += rate[o - s.numClumps] * h;
             maxTravel = std::max(maxTravel, ow.travel[o]);
             maxSpeed = std::max(maxSpeed, rate[o - s.numClumps]);

@@ -23,6 +23,7 @@ void refreshKinematicCache(SimState& s) {
     k.sphereArm.resize(s.spheres.size());
     k.analPos.resize(s.analytical.size());
     k.analDir.resize(s.analytical.size());
+    k.triVert.resize(3 * s.triangles.size());
 #pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
     for (size_t o = 0; o < n; o++) updateOwnerCache(s, o);
     updateAnalyticalCache(s);

@@ -20,6 +20,12 @@ inline void updateOwnerCache(SimState& s, size_t o) {
         k.spherePos[i] = p + arm;
         k.sphereArm[i] = to_float3(arm);
     }
+    const TriangleArrays& t = s.triangles;
+    for (uint32_t i = s.ownerTriStart[o]; i < s.ownerTriStart[o + 1]; i++) {
+        k.triVert[3 * i + 0] = localPointToGlobal(p, q, t.v0[i]);
+        k.triVert[3 * i + 1] = localPointToGlobal(p, q, t.v1[i]);
+        k.triVert[3 * i + 2] = localPointToGlobal(p, q, t.v2[i]);
+    }
 }
 
 // Analytical components in the global frame (few; done serially).

@@ -6,6 +6,7 @@
 #include <deme/Error.h>
 
 #include "dynamics/ContactInputsGather.h"
+#include "io/VtkWriter.h"
 #include "runtime/Simulation.h"
 
 namespace deme {
@@ -91,18 +92,33 @@ void writeContactCsv(const Simulation& sim, const std::string& path) {
     for (size_t c = 0; c < s.contacts.size(); c++) {
         ContactInputs in;
         gatherContactInputs(s, c, (float)sim.time(), (float)sim.settings.dt, in);
-        if (!(in.overlapDepth > 0.0)) continue;
+        const uint8_t type = s.contacts.type[c];
+        if (!(in.overlapDepth > 0.0) || (type == SPHERE_TRIANGLE && !(s.contacts.meshState[c] & 1u))) continue;
         const float3 F = s.contacts.force[c];
-        const bool ss = s.contacts.type[c] == SPHERE_SPHERE;
+        const bool ss = type == SPHERE_SPHERE;
         // Ids in user order: spheres as laid out by the templates of the clumps as added.
         const unsigned long geomA = s.sphereInternalToUser[in.AGeo];
-        const unsigned long geomB = ss ? s.sphereInternalToUser[in.BGeo] : in.BGeo - (unsigned long)s.spheres.size();
-        std::fprintf(f.get(), "%s,%lu,%lu,%u,%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", ss ? "SS" : "SA",
+        const unsigned long geomB = ss                          ? s.sphereInternalToUser[in.BGeo]
+                                    : type == SPHERE_ANALYTICAL ? in.BGeo - (unsigned long)s.analyticalIdBase()
+                                                                : in.BGeo - (unsigned long)s.triangleIdBase();
+        std::fprintf(f.get(), "%s,%lu,%lu,%u,%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", ss ? "SS" : type == SPHERE_ANALYTICAL ? "SA" : "SM",
                      geomA, geomB, (unsigned)s.ownerInternalToUser[in.AOwner],
                      (unsigned)s.ownerInternalToUser[in.BOwner], in.contactPnt.x, in.contactPnt.y, in.contactPnt.z, F.x,
                      F.y, F.z, in.B2A.x, in.B2A.y, in.B2A.z, in.overlapDepth);
     }
     finish(f, path, call);
+}
+
+void writeMeshVtk(const Simulation& sim, const std::string& path) {
+    const SimState& s = sim.state();
+    const size_t nT = s.triangles.size();
+    std::vector<int3> tris(nT);
+    std::vector<int> owner(nT);
+    for (size_t t = 0; t < nT; t++) {
+        tris[t] = make_int3((int)(3 * t), (int)(3 * t + 1), (int)(3 * t + 2));
+        owner[t] = (int)s.ownerInternalToUser[s.triangles.owner[t]];
+    }
+    writeVtkTriangles(path, s.cache.triVert, tris, owner, "WriteMeshFile");
 }
 
 }  // namespace deme

@@ -10,5 +10,6 @@ class Simulation;
 void writeSphereCsv(const Simulation& sim, const std::string& path);
 void writeClumpCsv(const Simulation& sim, const std::string& path);
 void writeContactCsv(const Simulation& sim, const std::string& path);
+void writeMeshVtk(const Simulation& sim, const std::string& path);
 
 }  // namespace deme

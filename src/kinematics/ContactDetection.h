@@ -31,6 +31,18 @@ struct DetectedContacts {
     size_t size() const { return geomA.size(); }
 };
 
+// Items registered in the bins their boxes touch (counting sort by bin).
+struct BinRegistry {
+    std::vector<int32_t> lo, hi;  // 3 bin coordinates per item
+    std::vector<uint32_t> start, entries;
+    void resize(size_t n) {
+        lo.resize(3 * n);
+        hi.resize(3 * n);
+    }
+    void setBox(const BinGrid& grid, size_t i, const double3& boxLo, const double3& boxHi);
+    void build(const BinGrid& grid, size_t n);
+};
+
 class ContactDetector {
   public:
     // familyMask: 256 x 256, nonzero where contacts between two families are resolved.
@@ -39,8 +51,8 @@ class ContactDetector {
 
   private:
     // Scratch buffers reused between detections.
-    std::vector<int32_t> m_binLo, m_binHi;  // 3 per sphere
-    std::vector<uint32_t> m_binStart, m_binEntries;
+    BinRegistry m_spheres, m_triangles;
+    std::vector<double3> m_triLo, m_triHi;
     std::vector<DetectedContacts> m_threadOut;
 };
 

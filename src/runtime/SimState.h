@@ -19,6 +19,7 @@ struct OwnerArrays {
     std::vector<float3> angVel;  // local (body) frame
     std::vector<family_t> family;
     std::vector<uint8_t> type;         // OwnerType
+    std::vector<uint8_t> dynamic;      // 1: moved by forces (clumps, free meshes); 0: kinematic
     std::vector<inertiaID_t> inertia;  // index into MassProperties
     std::vector<float> extent;         // largest distance from the owner centre to any point of its spheres
     // Results of the last step, for trackers and inspectors: contact force and torque (global).
@@ -55,12 +56,27 @@ struct AnalyticalArrays {
     size_t size() const { return owner.size(); }
 };
 
+// Mesh triangles. Vertices are welded by position within each mesh; `vertTris` lists, per welded
+// vertex, the triangles that use it (the topology the smooth-surface contact rule needs).
+struct TriangleArrays {
+    std::vector<bodyID_t> owner;
+    std::vector<float3> v0, v1, v2;      // owner frame
+    std::vector<materialID_t> material;
+    std::vector<uint32_t> vert;          // 3 welded vertex ids per triangle
+    std::vector<uint32_t> vertTriStart, vertTris;
+    size_t size() const { return owner.size(); }
+};
+
 // The active-contact set. Sorted by key = (geomA << 32) | geomB with geometry ids in one space:
-// spheres [0, nSpheres), analytical components [nSpheres, nSpheres + nAnalytical).
+// spheres [0, nSpheres), analytical components [nSpheres, nSpheres + nAnalytical), then triangles.
 struct ContactArrays {
     std::vector<bodyID_t> geomA, geomB;
     std::vector<uint8_t> type;     // ContactType
     std::vector<float> wildcards;  // numWildcards values per contact, contact-major
+    // Sphere-triangle contacts: bit 0 set if the contact counted this step, bit 1 if it did in the
+    // previous step (see dynamics/MeshContacts.h).
+    std::vector<uint8_t> meshState;
+    std::vector<uint32_t> meshContacts;  // indices of the sphere-triangle contacts
     // Results of the force pass.
     std::vector<float3> force;             // on A, global
     std::vector<float3> torqueA, torqueB;  // about each owner's centre, global
@@ -81,6 +97,7 @@ struct KinematicCache {
     std::vector<float3> sphereArm;   // sphere centre minus owner centre
     std::vector<double3> analPos;    // analytical component reference points
     std::vector<double3> analDir;    // analytical normals / axes (unit)
+    std::vector<double3> triVert;    // 3 global vertices per triangle
 };
 
 // Material property tables for the force model.
@@ -97,16 +114,22 @@ struct SimState {
     MassProperties massProps;
     SphereArrays spheres;
     AnalyticalArrays analytical;
+    TriangleArrays triangles;
     ContactArrays contacts;
     KinematicCache cache;
     std::vector<uint32_t> ownerSphereStart;  // spheres of owner o: [start[o], start[o+1])
+    std::vector<uint32_t> ownerTriStart;     // triangles of owner o: [start[o], start[o+1])
     // Owners and spheres are stored in a space-filling-curve order for memory locality; users see
     // ids in the order they added things (clumps batch by batch, then external objects).
     std::vector<bodyID_t> ownerUserToInternal, ownerInternalToUser;
     std::vector<bodyID_t> sphereInternalToUser;
     MaterialTables materials;
     unsigned int numWildcards = 0;
-    size_t numClumps = 0;  // owners [0, numClumps) are clumps; analytical owners follow
+    size_t numClumps = 0;  // owners [0, numClumps) are clumps; analytical owners, then meshes follow
+    size_t numAnalyticalOwners = 0;
+    // First geometry id of each kind in the unified id space of contacts.
+    bodyID_t analyticalIdBase() const { return (bodyID_t)spheres.size(); }
+    bodyID_t triangleIdBase() const { return (bodyID_t)(spheres.size() + analytical.size()); }
 };
 
 }  // namespace deme

@@ -11,6 +11,7 @@
 #include "dynamics/ForcePass.h"
 #include "dynamics/Integration.h"
 #include "dynamics/KinematicCache.h"
+#include "dynamics/MeshContacts.h"
 #include "kinematics/HistoryMapping.h"
 
 namespace deme {
@@ -71,6 +72,7 @@ void Simulation::advance(unsigned long long n) {
         if (m_needDetection || m_stepsSinceDetection >= settings.updateFreq) detectContacts();
         {
             PhaseTimer t(m_timing, Phase::FORCE);
+            resolveMeshContacts(m_state);
             const ForcePassResult r = computeContactForces(m_state, m_time, settings.dt);
             m_realContacts = r.realContacts;
             m_realSphereSphere = r.realSphereSphere;
