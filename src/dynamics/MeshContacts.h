@@ -2,14 +2,16 @@
 // tessellated surface feels the force one smooth surface would give.
 //
 // The rule: a sphere's contact with triangle T counts if T's closest point to the sphere centre is
-// a local minimum of the distance to the mesh surface, and T owns that point.
-//  - A closest point inside T is a local minimum: it counts.
+// a local minimum of the distance to the mesh surface, and no nearer contact of the same mesh has
+// already taken that point.
+//  - A closest point inside T is a local minimum.
 //  - A closest point on an edge or a vertex of T also lies on the triangles sharing that edge or
-//    vertex. If one of them has a closer point, the distance still decreases across the edge: the
-//    contact is not a local minimum and does not count (this removes the spurious edge contacts of
-//    a flat floor's neighbouring triangles, at any triangle size). If they share the very same
-//    closest point (a convex ridge, or a sphere exactly over a seam of a flat floor), the lowest
-//    triangle id among them owns it: one contact, never a doubled one.
+//    vertex. If one of them is closer to the centre, the distance still decreases across the edge:
+//    not a local minimum, so the contact does not count (this removes the spurious edge contacts of
+//    a flat floor's neighbouring triangles, at any triangle size).
+//  - Contacts of one sphere are taken nearest first (ties by triangle id); one whose point
+//    coincides with a point already taken (a seam, a vertex, a convex ridge) does not count again:
+//    one contact, never a doubled one.
 // Hence on a flat tessellated floor exactly one contact counts, with the normal and overlap of the
 // plane, and nothing jumps when the sphere rolls across an edge; in a V-groove both faces count.
 //

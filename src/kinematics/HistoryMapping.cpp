@@ -33,8 +33,14 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     c.wildcards.swap(wildcards);
     c.meshState.swap(meshState);
     c.meshContacts.clear();
-    for (size_t i = 0; i < nNew; i++)
-        if (c.type[i] == SPHERE_TRIANGLE) c.meshContacts.push_back((uint32_t)i);
+    c.meshContactGroups.clear();
+    for (size_t i = 0; i < nNew; i++) {
+        if (c.type[i] != SPHERE_TRIANGLE) continue;
+        if (c.meshContacts.empty() || c.geomA[c.meshContacts.back()] != c.geomA[i])
+            c.meshContactGroups.push_back((uint32_t)c.meshContacts.size());
+        c.meshContacts.push_back((uint32_t)i);
+    }
+    c.meshContactGroups.push_back((uint32_t)c.meshContacts.size());
     c.force.assign(nNew, make_float3(0.f));
     c.torqueA.assign(nNew, make_float3(0.f));
     c.torqueB.assign(nNew, make_float3(0.f));

@@ -76,7 +76,8 @@ struct ContactArrays {
     // Sphere-triangle contacts: bit 0 set if the contact counted this step, bit 1 if it did in the
     // previous step (see dynamics/MeshContacts.h).
     std::vector<uint8_t> meshState;
-    std::vector<uint32_t> meshContacts;  // indices of the sphere-triangle contacts
+    std::vector<uint32_t> meshContacts;       // indices of the sphere-triangle contacts
+    std::vector<uint32_t> meshContactGroups;  // where each sphere's run in meshContacts starts, plus the end
     // Results of the force pass.
     std::vector<float3> force;             // on A, global
     std::vector<float3> torqueA, torqueB;  // about each owner's centre, global
