@@ -62,7 +62,8 @@ Scene randomScene(unsigned seed, size_t nClumps) {
     return sc;
 }
 
-std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, double margin, const uint8_t* mask) {
+std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, double margin, const uint8_t* mask,
+                                                   const float* extra) {
     std::set<std::pair<bodyID_t, bodyID_t>> pairs;
     const size_t nS = s.spheres.size();
     std::vector<double3> p(nS);
@@ -73,11 +74,12 @@ std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, double mar
         p[i] = localPointToGlobal(op, s.owners.oriQ[o], s.spheres.relPos[i]);
     }
     auto famOf = [&](bodyID_t o) { return (size_t)s.owners.family[o]; };
+    auto m = [&](bodyID_t o) { return margin + (double)extra[famOf(o)]; };
     for (size_t a = 0; a < nS; a++) {
         for (size_t b = a + 1; b < nS; b++) {
             const bodyID_t oa = s.spheres.owner[a], ob = s.spheres.owner[b];
             if (oa == ob || !mask[famOf(oa) * NUM_FAMILIES + famOf(ob)]) continue;
-            const double reach = ((double)s.spheres.radius[a] + margin) + ((double)s.spheres.radius[b] + margin);
+            const double reach = ((double)s.spheres.radius[a] + m(oa)) + ((double)s.spheres.radius[b] + m(ob));
             const double3 d = p[a] - p[b];
             if (dot(d, d) < reach * reach) pairs.insert({(bodyID_t)a, (bodyID_t)b});
         }
@@ -90,7 +92,8 @@ std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, double mar
                 s.analytical.type[k] == ANAL_PLANE
                     ? planeSignedDistance(p[a], wp, wd)
                     : cylinderSignedDistance(p[a], wp, wd, s.analytical.radius[k], s.analytical.inside[k] != 0);
-            if (dist - s.spheres.radius[a] < 2.0 * margin) pairs.insert({(bodyID_t)a, (bodyID_t)(nS + k)});
+            if (dist < ((double)s.spheres.radius[a] + m(s.spheres.owner[a])) + m(ob))
+                pairs.insert({(bodyID_t)a, (bodyID_t)(nS + k)});
         }
     }
     return pairs;
@@ -101,6 +104,8 @@ std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, double mar
 TEST(ContactDetection, MatchesBruteForceExactly) {
     FamilyRules rules;
     rules.setContact(0, 2, false);  // one masked family pair
+    float extra[NUM_FAMILIES] = {};
+    extra[1] = 2e-4f;  // family 1 (and the walls) reach further (SetFamilyExtraMargin)
     int cases = 0;
     for (unsigned seed : {1u, 2u, 3u}) {
         SimState s = assembleScene(randomScene(seed, 1500));
@@ -111,7 +116,8 @@ TEST(ContactDetection, MatchesBruteForceExactly) {
             for (double margin : {0.0, 1e-4}) {
                 ContactDetector det;
                 DetectedContacts found;
-                det.detect(s, grid, margin, rules.contactMask(), found);
+                double binning = 0.0, search = 0.0;
+                det.detect(s, grid, margin, rules.contactMask(), extra, found, binning, search);
                 std::set<std::pair<bodyID_t, bodyID_t>> got;
                 for (size_t i = 0; i < found.size(); i++) {
                     if (i > 0) {  // sorted by (A, B), no duplicates
@@ -120,7 +126,7 @@ TEST(ContactDetection, MatchesBruteForceExactly) {
                     }
                     got.insert({found.geomA[i], found.geomB[i]});
                 }
-                const auto expected = bruteForce(s, margin, rules.contactMask());
+                const auto expected = bruteForce(s, margin, rules.contactMask(), extra);
                 EXPECT_GT(expected.size(), 500u);
                 EXPECT_EQ(got, expected) << "seed " << seed << ", bin " << binSize << ", margin " << margin;
                 cases++;

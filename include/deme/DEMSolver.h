@@ -109,8 +109,19 @@ class DEMSolver {
     void SetMaxVelocity(float v);
     void SetExpandSafetyMultiplier(float m);
     void SetExpandSafetyAdder(float a);
-    // Contact detection runs at least every n steps (and earlier whenever the margin is used up).
+    // n_max: the most steps one contact set may serve (initial value when adaptive). Detection also
+    // runs earlier whenever the margin is used up.
     void SetCDUpdateFreq(unsigned int n);
+    void SetCDMaxUpdateFreq(unsigned int n);  // cap for the adaptive n_max (default 200)
+    // Adapt n_max from the kinematics thread's latency (default on; asynchronous detection only).
+    void UseAdaptiveUpdateFreq();
+    void DisableAdaptiveUpdateFreq();
+    unsigned int GetUpdateFreq() const;  // the current n_max
+    // true: detect contacts on the dynamics thread every n_max steps (no overlap; for debugging and
+    // bit-for-bit tests). false (default): the kinematics thread detects beside the dynamics.
+    void SetSynchronousContactDetection(bool sync);
+    // Extra margin for the geometries of a family's owners: pairs within reach enter the contact set.
+    void SetFamilyExtraMargin(unsigned int family, float margin);
     void SetInitBinSize(double size);
     // GPU tuning hint; recorded for the CUDA backend, no effect on the CPU.
     void SetForceCalcThreadsPerBlock(unsigned int n);
@@ -138,6 +149,9 @@ class DEMSolver {
     void WriteClumpFile(const std::string& path) const;
     void WriteContactFile(const std::string& path) const;
     void ShowTimingStats() const;
+    // How the kinematics and dynamics sides worked together: waits, contact-set updates, n_max,
+    // false-positive share of the contact set.
+    void ShowThreadCollaborationStats() const;
 
   private:
     void requireNotInitialized(const char* call) const;

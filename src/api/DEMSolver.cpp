@@ -15,6 +15,7 @@
 #include "io/ObjReader.h"
 #include "io/OutputWriters.h"
 #include "runtime/Simulation.h"
+#include "runtime/StatsReport.h"
 
 namespace deme {
 
@@ -411,9 +412,35 @@ void DEMSolver::SetExpandSafetyAdder(float a) {
     m_sim->settings.safetyAdder = a;
 }
 void DEMSolver::SetCDUpdateFreq(unsigned int n) {
+    requireNotInitialized("SetCDUpdateFreq");
     if (n == 0) throwError("SetCDUpdateFreq", "update frequency must be at least 1");
     m_sim->settings.updateFreq = n;
 }
+void DEMSolver::SetCDMaxUpdateFreq(unsigned int n) {
+    requireNotInitialized("SetCDMaxUpdateFreq");
+    if (n == 0) throwError("SetCDMaxUpdateFreq", "the maximum update frequency must be at least 1");
+    m_sim->settings.maxUpdateFreq = n;
+}
+void DEMSolver::UseAdaptiveUpdateFreq() {
+    requireNotInitialized("UseAdaptiveUpdateFreq");
+    m_sim->settings.adaptiveUpdateFreq = true;
+}
+void DEMSolver::DisableAdaptiveUpdateFreq() {
+    requireNotInitialized("DisableAdaptiveUpdateFreq");
+    m_sim->settings.adaptiveUpdateFreq = false;
+}
+unsigned int DEMSolver::GetUpdateFreq() const {
+    return m_sim->initialized() ? m_sim->contactSets().nMax() : m_sim->settings.updateFreq;
+}
+void DEMSolver::SetSynchronousContactDetection(bool sync) { m_sim->settings.asyncDetection = !sync; }
+void DEMSolver::SetFamilyExtraMargin(unsigned int family, float margin) {
+    const char* call = "SetFamilyExtraMargin";
+    const family_t f = requireFamily(call, family);
+    if (!(margin >= 0.f) || !std::isfinite(margin)) throwError(call, "extra margin must be >= 0 and finite");
+    m_sim->settings.familyExtraMargin[f] = margin;
+    m_sim->invalidateContacts();
+}
+
 void DEMSolver::SetInitBinSize(double size) {
     requireNotInitialized("SetInitBinSize");
     requirePositive("SetInitBinSize", "bin size", size);
@@ -467,7 +494,10 @@ void DEMSolver::DoDynamics(double duration) {
     m_sim->advance((unsigned long long)steps);
 }
 
-void DEMSolver::DoDynamicsThenSync(double duration) { DoDynamics(duration); }
+void DEMSolver::DoDynamicsThenSync(double duration) {
+    DoDynamics(duration);
+    m_sim->syncContactDetection();
+}
 
 void DEMSolver::DoStepDynamics() {
     requireInitialized("DoStepDynamics");
@@ -510,24 +540,8 @@ void DEMSolver::WriteContactFile(const std::string& path) const {
     writeContactCsv(*m_sim, path);
 }
 
-void DEMSolver::ShowTimingStats() const {
-    const TimingStats& t = m_sim->timing();
-    double total = 0.0;
-    for (double s : t.seconds) total += s;
-    std::ostringstream os;
-    os << std::fixed << std::setprecision(3);
-    os << "Timing over " << t.steps << " steps, " << t.detections << " contact detections (" << t.earlyDetections
-       << " early, margin used up); average active-contact set "
-       << (t.detections ? t.contactsPerDetection / (double)t.detections : 0.0) << " pairs\n";
-    for (int p = 0; p < (int)Phase::COUNT; p++)
-        os << "  " << std::setw(26) << std::left << TimingStats::name((Phase)p) << std::right << std::setw(10)
-           << t.seconds[p] << " s  " << std::setw(6) << std::setprecision(1)
-           << (total > 0 ? 100.0 * t.seconds[p] / total : 0.0) << " %" << std::setprecision(3) << "\n";
-    os << "  total " << total << " s";
-    if (total > 0 && t.steps > 0)
-        os << ", " << std::scientific << std::setprecision(3)
-           << (double)m_sim->state().spheres.size() * (double)t.steps / total << " sphere-steps/s";
-    std::cout << os.str() << std::endl;
-}
+void DEMSolver::ShowTimingStats() const { std::cout << timingReport(*m_sim) << std::endl; }
+
+void DEMSolver::ShowThreadCollaborationStats() const { std::cout << collaborationReport(*m_sim) << std::endl; }
 
 }  // namespace deme

@@ -275,7 +275,7 @@ SimState assembleScene(const Scene& scene) {
     s.owners.contactTorque.assign(nOwners, make_float3(0.f));
     s.owners.extraAcc.assign(nOwners, make_float3(0.f));
     s.owners.extraAngAcc.assign(nOwners, make_float3(0.f));
-    s.owners.travel.assign(nOwners, 0.f);
+    s.owners.travel.assign(nOwners, 0.0);
     if (s.spheres.size() >= (size_t(1) << 31) || nOwners >= (size_t(1) << 31))
         throwError(CALL, "too many geometries for 32-bit ids");
     return s;

@@ -37,20 +37,12 @@ inline float analyticalSurfaceSpeed(const SimState& s, size_t k, double domainDi
 
 }  // namespace
 
-IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,
-                                  const float3& gravity, double dt, float errorOutVelocity) {
+void reduceContactForces(SimState& s) {
     OwnerArrays& ow = s.owners;
     const ContactArrays& c = s.contacts;
     const size_t n = ow.size();
-    const float h = (float)dt;
-    float maxTravel = 0.f, maxSpeed = 0.f;
-    IntegrationResult res;
-    size_t faultOwner = n;
-    OwnerFault fault = OwnerFault::NONE;
-
-#pragma omp parallel for schedule(static) reduction(max : maxTravel, maxSpeed) if (n > PARALLEL_MIN_ITEMS)
+#pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
     for (size_t o = 0; o < n; o++) {
-        // Reduction of this owner's contacts, in a fixed order.
         float3 F = make_float3(0.f), tau = make_float3(0.f);
         for (uint32_t e = c.ownerStart[o]; e < c.ownerStart[o + 1]; e++) {
             const uint32_t entry = c.ownerEntries[e];
@@ -65,7 +57,24 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
         }
         ow.contactForce[o] = F;
         ow.contactTorque[o] = tau;
+    }
+}
 
+IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,
+                                  const float3& gravity, double dt, float errorOutVelocity,
+                                  const std::vector<double>& travelBaseline) {
+    OwnerArrays& ow = s.owners;
+    const size_t n = ow.size();
+    const float h = (float)dt;
+    double maxTravel = 0.0;
+    float maxSpeed = 0.f;
+    IntegrationResult res;
+    size_t faultOwner = n;
+    OwnerFault fault = OwnerFault::NONE;
+
+#pragma omp parallel for schedule(static) reduction(max : maxTravel, maxSpeed) if (n > PARALLEL_MIN_ITEMS)
+    for (size_t o = 0; o < n; o++) {
+        const float3 F = ow.contactForce[o], tau = ow.contactTorque[o];
         const FamilyStepMotion& m = motion[ow.family[o]];
         float3 v = ow.vel[o], w = ow.angVel[o];
         float3 wMid = w;
@@ -113,8 +122,8 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
         updateOwnerCache(s, o);
         if (ow.type[o] != OWNER_ANALYTICAL) {
             const float speed = length(v) + length(w) * ow.extent[o];
-            ow.travel[o] += speed * h;
-            maxTravel = std::max(maxTravel, ow.travel[o]);
+            ow.travel[o] += (double)(speed * h);
+            maxTravel = std::max(maxTravel, ow.travel[o] - travelBaseline[o]);
             maxSpeed = std::max(maxSpeed, speed);
         }
     }
@@ -129,8 +138,8 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
             rate[o - s.numClumps] = std::max(rate[o - s.numClumps], analyticalSurfaceSpeed(s, k, diag));
         }
         for (size_t o = s.numClumps; o < s.numClumps + s.numAnalyticalOwners; o++) {
-            ow.travel[o] += rate[o - s.numClumps] * h;
-            maxTravel = std::max(maxTravel, ow.travel[o]);
+            ow.travel[o] += (double)(rate[o - s.numClumps] * h);
+            maxTravel = std::max(maxTravel, ow.travel[o] - travelBaseline[o]);
             maxSpeed = std::max(maxSpeed, rate[o - s.numClumps]);
         }
     }

@@ -18,7 +18,13 @@ struct IntegrationResult {
     size_t faultOwner = 0;  // lowest owner id with a fault
 };
 
+// Sums each owner's contact forces and torques (in a fixed order) into contactForce/contactTorque.
+void reduceContactForces(SimState& s);
+
+// Advances every owner by dt. `travelBaseline` holds each owner's travel when the contact set in
+// use was detected; the result reports the largest travel since then.
 IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,
-                                  const float3& gravity, double dt, float errorOutVelocity);
+                                  const float3& gravity, double dt, float errorOutVelocity,
+                                  const std::vector<double>& travelBaseline);
 
 }  // namespace deme

@@ -1,6 +1,7 @@
 #include "kinematics/ContactDetection.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "backend/cpu/Parallel.h"
@@ -69,7 +70,10 @@ void BinRegistry::setBox(const BinGrid& g, size_t i, const double3& boxLo, const
 }
 
 void ContactDetector::detect(const SimState& s, const BinGrid& grid, double margin, const uint8_t* familyMask,
-                             DetectedContacts& out) {
+                             const float* familyExtraMargin, DetectedContacts& out, double& binningSeconds,
+                             double& searchSeconds) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto marginOf = [&](bodyID_t owner) { return margin + (double)familyExtraMargin[s.owners.family[owner]]; };
     const size_t nS = s.spheres.size();
     const size_t nA = s.analytical.size();
     const size_t nT = s.triangles.size();
@@ -80,7 +84,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
     m_spheres.resize(nS);
 #pragma omp parallel for schedule(static) if (nS > PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < nS; i++) {
-        const double e = (double)s.spheres.radius[i] + margin;
+        const double e = (double)s.spheres.radius[i] + marginOf(s.spheres.owner[i]);
         const double3 p = k.spherePos[i];
         m_spheres.setBox(grid, i, make_double3(p.x - e, p.y - e, p.z - e), make_double3(p.x + e, p.y + e, p.z + e));
     }
@@ -90,21 +94,23 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
     m_triangles.resize(nT);
     for (size_t t = 0; t < nT; t++) {
         const double3* v = &k.triVert[3 * t];
-        m_triLo[t] = make_double3(std::min({v[0].x, v[1].x, v[2].x}) - margin,
-                                  std::min({v[0].y, v[1].y, v[2].y}) - margin,
-                                  std::min({v[0].z, v[1].z, v[2].z}) - margin);
-        m_triHi[t] = make_double3(std::max({v[0].x, v[1].x, v[2].x}) + margin,
-                                  std::max({v[0].y, v[1].y, v[2].y}) + margin,
-                                  std::max({v[0].z, v[1].z, v[2].z}) + margin);
+        const double em = marginOf(s.triangles.owner[t]);
+        m_triLo[t] = make_double3(std::min({v[0].x, v[1].x, v[2].x}) - em,
+                                  std::min({v[0].y, v[1].y, v[2].y}) - em,
+                                  std::min({v[0].z, v[1].z, v[2].z}) - em);
+        m_triHi[t] = make_double3(std::max({v[0].x, v[1].x, v[2].x}) + em,
+                                  std::max({v[0].y, v[1].y, v[2].y}) + em,
+                                  std::max({v[0].z, v[1].z, v[2].z}) + em);
         m_triangles.setBox(grid, t, m_triLo[t], m_triHi[t]);
     }
     m_triangles.build(grid, nT);
+    const auto t1 = std::chrono::steady_clock::now();
+    binningSeconds += std::chrono::duration<double>(t1 - t0).count();
 
     // 2. Pair search, per sphere A: partners in A's bins, each pair reported only from the bin that
     // holds the lower corner of the two enlarged boxes' intersection, so exactly once.
     const int T = nS > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
     m_threadOut.resize(T);
-    const double twoMargin = 2.0 * margin;
     const bodyID_t triBase = s.triangleIdBase();
 #pragma omp parallel num_threads(T) if (T > 1)
     {
@@ -119,7 +125,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
         for (size_t a = begin; a < end; a++) {
             const double3 pA = k.spherePos[a];
             const double rA = s.spheres.radius[a];
-            const double eA = rA + margin;
+            const double eA = rA + marginOf(s.spheres.owner[a]);
             const double3 loA = make_double3(pA.x - eA, pA.y - eA, pA.z - eA);
             const bodyID_t oA = s.spheres.owner[a];
             const uint8_t* maskRow = familyMask + (size_t)ow.family[oA] * NUM_FAMILIES;
@@ -142,7 +148,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
                             const bodyID_t oB = s.spheres.owner[b];
                             if (oB == oA || !maskRow[ow.family[oB]]) continue;
                             const double3 pB = k.spherePos[b];
-                            const double eB = (double)s.spheres.radius[b] + margin;
+                            const double eB = (double)s.spheres.radius[b] + marginOf(oB);
                             const double reach = eA + eB;
                             const double3 d = pA - pB;
                             if (fabs(d.x) > reach || fabs(d.y) > reach || fabs(d.z) > reach) continue;
@@ -162,7 +168,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
                             const double3* v = &k.triVert[3 * tri];
                             double3 bary;
                             const double3 c = closestPointOnTriangle(pA, v[0], v[1], v[2], bary);
-                            if (length(pA - c) - rA < twoMargin) triPartners.push_back(tri);
+                            if (length(pA - c) < eA + marginOf(s.triangles.owner[tri])) triPartners.push_back(tri);
                         }
                     }
             std::sort(partners.begin(), partners.end());
@@ -179,7 +185,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
                                         ? planeSignedDistance(pA, k.analPos[j], k.analDir[j])
                                         : cylinderSignedDistance(pA, k.analPos[j], k.analDir[j],
                                                                  s.analytical.radius[j], s.analytical.inside[j] != 0);
-                if (dist - rA < twoMargin) emit((bodyID_t)(nS + j), SPHERE_ANALYTICAL);
+                if (dist < eA + marginOf(s.analytical.owner[j])) emit((bodyID_t)(nS + j), SPHERE_ANALYTICAL);
             }
             for (bodyID_t tri : triPartners) emit(triBase + tri, SPHERE_TRIANGLE);
         }
@@ -198,6 +204,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
         std::copy(t.type.begin(), t.type.end(), out.type.begin() + at);
         at += t.size();
     }
+    searchSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 }
 
 }  // namespace deme

@@ -46,8 +46,11 @@ struct BinRegistry {
 class ContactDetector {
   public:
     // familyMask: 256 x 256, nonzero where contacts between two families are resolved.
+    // familyExtraMargin: 256 values added to the margin of every geometry of that family's owners.
+    // Seconds spent binning and searching pairs are added to the two counters.
     void detect(const SimState& s, const BinGrid& grid, double margin, const uint8_t* familyMask,
-                DetectedContacts& out);
+                const float* familyExtraMargin, DetectedContacts& out, double& binningSeconds,
+                double& searchSeconds);
 
   private:
     // Scratch buffers reused between detections.

@@ -17,7 +17,11 @@ struct Settings {
     float maxVelocity = 0.f;        // user's expected largest speed (0: measured only)
     float safetyMultiplier = 1.1f;  // margin = multiplier * vmax * dt * n + adder
     float safetyAdder = 0.f;
-    unsigned int updateFreq = 20;  // steps between contact detections at most
+    unsigned int updateFreq = 20;       // initial (or fixed) n_max: steps one contact set may serve
+    unsigned int maxUpdateFreq = 200;   // cap for the adaptive n_max
+    bool adaptiveUpdateFreq = true;
+    bool asyncDetection = true;         // kinematics on its own thread, beside dynamics
+    float familyExtraMargin[256] = {};  // added to the margin of each family's geometries
     double binSize = 0.0;          // 0: chosen at Initialize
     unsigned int threadsPerBlock = 256;
     unsigned int cpuThreads = 0;  // 0: OpenMP default

@@ -26,8 +26,9 @@ struct OwnerArrays {
     std::vector<float3> contactForce, contactTorque;
     // Extra acceleration added by trackers (AddAcc), applied during the next DoDynamics call.
     std::vector<float3> extraAcc, extraAngAcc;
-    // Path length travelled since the last contact detection (upper bound over all its geometry).
-    std::vector<float> travel;
+    // Path length travelled since the start (an upper bound for every point of its geometry); the
+    // travel since a contact detection is the difference to a snapshot taken then.
+    std::vector<double> travel;
 
     size_t size() const { return voxel.size(); }
 };

@@ -1,11 +1,13 @@
-// The running simulation: owns the flat state and advances it. Until the asynchronous kinematics
-// and dynamics threads exist, contact detection runs synchronously inside the step loop.
+// The running simulation: owns the flat state and advances it step by step (the dynamics side);
+// the contact-set manager supplies valid contact sets, from the kinematics thread or synchronously.
 #pragma once
 
 #include <array>
 #include <memory>
 
 #include "kinematics/ContactDetection.h"
+#include "dynamics/Integration.h"
+#include "runtime/ContactSetManager.h"
 #include "runtime/FamilyRules.h"
 #include "runtime/Settings.h"
 #include "runtime/SimState.h"
@@ -30,7 +32,10 @@ class Simulation {
     const TimingStats& timing() const { return m_timing; }
     size_t numRealContacts() const { return m_realContacts; }
     size_t numSphereSphereContacts() const { return m_realSphereSphere; }
-    double currentMargin() const { return m_margin; }
+    double currentMargin() const { return m_contacts.margin(); }
+    const ContactSetManager& contactSets() const { return m_contacts; }
+    // Lets the kinematics thread finish its order and installs the result.
+    void syncContactDetection();
     const BinGrid& binGrid() const { return m_grid; }
 
     // Host-side changes to the state (tracker setters, family changes) call this so that the next
@@ -46,22 +51,19 @@ class Simulation {
     void log(Verbosity level, const std::string& msg) const;
 
   private:
-    void detectContacts();
-    double chooseMargin() const;
     void clearTrackerLoads();
+    [[noreturn]] void reportFault(const IntegrationResult& ir) const;
 
     SimState m_state;
     TimingStats m_timing;
-    ContactDetector m_detector;
     BinGrid m_grid;
     std::array<FamilyStepMotion, NUM_FAMILIES> m_stepMotion;
     double m_time = 0.0;
-    double m_margin = 0.0;
-    unsigned int m_stepsSinceDetection = 0;
-    bool m_needDetection = true;
+    unsigned long long m_step = 0;
     bool m_initialized = false;
     size_t m_realContacts = 0, m_realSphereSphere = 0;
     float m_lastMaxSpeed = 0.f;
+    ContactSetManager m_contacts;  // last: its worker thread stops before the state goes
 };
 
 }  // namespace deme

@@ -6,15 +6,17 @@
 
 namespace deme {
 
-enum class Phase { DETECTION = 0, HISTORY_MAPPING, FORCE, INTEGRATION, COUNT };
+enum class Phase { BINNING = 0, PAIR_SEARCH, HISTORY_MAPPING, FORCE, REDUCTION, INTEGRATION, EXCHANGE, COUNT };
 
 struct TimingStats {
-    double seconds[(int)Phase::COUNT] = {0.0, 0.0, 0.0, 0.0};
-    unsigned long long steps = 0, detections = 0, earlyDetections = 0;
-    double contactsPerDetection = 0.0;  // running sum, divided by detections when shown
+    // Binning and pair search run on the kinematics thread when detection is asynchronous; the
+    // other phases on the dynamics thread.
+    double seconds[(int)Phase::COUNT] = {};
+    unsigned long long steps = 0;
     static const char* name(Phase p) {
-        static const char* names[] = {"contact detection", "history mapping", "force calculation",
-                                      "reduction + integration"};
+        static const char* names[] = {"binning (kinematics)", "pair search (kinematics)", "history mapping",
+                                      "force calculation",    "force reduction",          "integration",
+                                      "exchange"};
         return names[(int)p];
     }
 };
