@@ -1,11 +1,11 @@
 // MESH-FLOOR benchmark: a bed of spheres resting on a floor meshed as a fine grid of triangles
 // (224 x 224 squares = 100,352 triangles by default), then the very same bed on an analytical floor
 // plane, so the cost of the mesh shows. Prints one JSON line per case.
-//   usage: mesh_floor [squares per side] [sphere layers] [warm-up steps] [timed steps]
+//   usage: mesh_floor [squares per side] [sphere layers] [warm-up steps] [timed steps] [mesh|plane|both]
 //
 // The box is 0.1 x 0.1 m (as CPU-BED), spheres of radius 1 mm (2.2 floor squares across a sphere's
 // diameter), E = 1e8 Pa, nu = 0.3, CoR = 0.5, mu = 0.5, density 2600, dt = 5e-6 s. The spheres start
-// as an HCP lattice whose lowest layer sits one radius above the floor, fall, land and are timed
+// as an HCP lattice whose lowest layer sits half a radius above the floor, fall, land and are timed
 // after the warm-up. The side walls are frictionless so the floor carries the whole weight: the
 // floor force over the weight, averaged over the timed steps, checks the mesh contacts (on a flat
 // tessellated floor every sphere must feel exactly the plane's force).
@@ -33,6 +33,7 @@ struct Options {
     int layers = 4;
     int warm = 4000;
     int steps = 1000;
+    std::string which = "both";
 };
 
 // A BOX x BOX floor in the plane z = 0 of its own frame, centred on the origin: n x n squares, each
@@ -72,7 +73,7 @@ void run(const Options& o, bool meshFloor) {
     const float spacing = 2.01f * RADIUS;
     // HCP layer pitch is spacing * sqrt(2/3); the lattice spans `layers` layers.
     const float layerPitch = spacing * 0.8164966f;
-    const float zLow = 2.f * RADIUS;  // lowest centres: one radius of free fall above the floor
+    const float zLow = 1.5f * RADIUS;  // lowest centres: half a radius of free fall above the floor
     const float height = (o.layers - 1) * layerPitch;
     sim.InstructBoxDomainDimension({-0.01f, BOX + 0.01f}, {-0.01f, BOX + 0.01f}, {-0.01f, zLow + height + 0.02f});
     auto walls = sim.AddExternalObject();
@@ -96,16 +97,25 @@ void run(const Options& o, bool meshFloor) {
     const std::vector<float3> pts =
         HCPSampler(spacing).SampleBox(make_float3(0.5f * BOX, 0.5f * BOX, zLow + 0.5f * height),
                                       make_float3(0.5f * BOX - inset, 0.5f * BOX - inset, 0.5f * height + 1e-6f));
-    const double m = DENSITY * 4.0 / 3.0 * PI * RADIUS * RADIUS * RADIUS;
-    sim.AddClumps(sim.LoadSphereType((float)m, RADIUS, mat), pts);
+    const float mSphere = (float)(DENSITY * 4.0 / 3.0 * PI * RADIUS * RADIUS * RADIUS);
+    sim.AddClumps(sim.LoadSphereType(mSphere, RADIUS, mat), pts);
     sim.SetInitTimeStep(DT);
     sim.SetGravitationalAcceleration(make_float3(0, 0, (float)-G));
     sim.Initialize();
     auto floorTracker = meshFloor ? sim.Track(floorMesh) : sim.Track(floorPlane);
     const double setup = seconds() - t0;
 
+    const double m = DENSITY * 4.0 / 3.0 * PI * RADIUS * RADIUS * RADIUS;
+    const double weight = (double)pts.size() * m * G;
+    // DEME_BENCH_VERBOSE=1: the floor force and contacts every 500 warm-up steps (on stderr).
+    const bool verbose = std::getenv("DEME_BENCH_VERBOSE") != nullptr;
     const double tw = seconds();
-    for (int i = 0; i < o.warm; i++) sim.DoStepDynamics();
+    for (int i = 0; i < o.warm; i++) {
+        sim.DoStepDynamics();
+        if (verbose && (i + 1) % 500 == 0)
+            std::fprintf(stderr, "  warm-up step %d  t = %.4f s  floor/weight %.4f  contacts/sphere %.3f\n", i + 1,
+                         sim.GetSimTime(), -floorTracker->ContactForce().z / weight, sim.GetAvgSphContacts());
+    }
     const double warmWall = seconds() - tw;
 
     double floorSum = 0.0;
@@ -116,7 +126,6 @@ void run(const Options& o, bool meshFloor) {
     }
     const double wall = seconds() - t1;
 
-    const double weight = (double)pts.size() * m * G;
     const double floorForce = floorSum / o.steps;
     JsonLine j;
     j.add("case", meshFloor ? "MESH-FLOOR" : "MESH-FLOOR-ANALYTICAL")
@@ -147,11 +156,15 @@ int main(int argc, char** argv) {
     if (argc > 2) o.layers = std::atoi(argv[2]);
     if (argc > 3) o.warm = std::atoi(argv[3]);
     if (argc > 4) o.steps = std::atoi(argv[4]);
-    if (o.squares < 1 || o.layers < 1 || o.warm < 0 || o.steps < 1) {
-        std::fprintf(stderr, "usage: mesh_floor [squares per side] [sphere layers] [warm-up steps] [timed steps]\n");
+    if (argc > 5) o.which = argv[5];
+    if (o.squares < 1 || o.layers < 1 || o.warm < 0 || o.steps < 1 ||
+        (o.which != "both" && o.which != "mesh" && o.which != "plane")) {
+        std::fprintf(stderr,
+                     "usage: mesh_floor [squares per side] [sphere layers] [warm-up steps] [timed steps] "
+                     "[mesh|plane|both]\n");
         return 2;
     }
-    run(o, true);
-    run(o, false);
+    if (o.which != "plane") run(o, true);
+    if (o.which != "mesh") run(o, false);
     return 0;
 }

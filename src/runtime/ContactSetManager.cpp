@@ -110,8 +110,8 @@ void ContactSetManager::prepareStep(SimState& s, const Settings& settings, const
         if (due()) detectNow(s, settings, families, step, maxSpeed, timing);
         m_stats.dynamicsWaitSeconds += now() - t0;
     }
-    if (!m_orderInFlight) {
-        // kT is idle: give it the current state to work on (paper §2.1).
+    if (!m_orderInFlight && step - m_acsStep >= m_freq.orderAge()) {
+        // kT is idle and the set in use is due for a successor: send the current state.
         PhaseTimer t(timing, Phase::EXCHANGE);
         m_orderBaseline = s.owners.travel;
         m_worker->submit(s, step, m_generation, chooseMargin(settings, maxSpeed), families.contactMask(),

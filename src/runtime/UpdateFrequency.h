@@ -12,7 +12,7 @@ class UpdateFrequency {
   public:
     void configure(unsigned int initial, unsigned int maximum, bool adaptive) {
         m_max = std::max(1u, maximum);
-        m_n = std::min(std::max(1u, initial), m_max);
+        m_floor = m_n = std::min(std::max(1u, initial), m_max);
         m_adaptive = adaptive;
         m_latency = -1.0;
     }
@@ -20,21 +20,29 @@ class UpdateFrequency {
     bool adaptive() const { return m_adaptive; }
 
     // One detection was ordered `latencySteps` steps before its result reached the dynamics side.
-    // With a new order sent as soon as the previous result arrives, a contact set is used from about
-    // one latency after its snapshot until the next one arrives, about two latencies after it: n_max
-    // covers that with 25 % headroom (and at least 2 steps). The latency is smoothed, so that one
-    // slow detection does not swing the margin.
+    // Orders go out just in time (orderAge()), so a set serves n_max steps counted from its snapshot,
+    // and its successor must be ready by then: n_max needs the latency plus headroom. On the CPU the
+    // kinematics thread shares the cores with the dynamics team, so detecting more often than the
+    // user's n_max would only slow the dynamics down: that value stays the floor, and n_max rises
+    // above it only when kinematics cannot keep up. The latency is smoothed, so one slow detection
+    // does not swing the margin.
     void observeLatency(unsigned int latencySteps) {
         const double l = (double)latencySteps;
         m_latency = m_latency < 0.0 ? l : 0.8 * m_latency + 0.2 * l;
         if (!m_adaptive) return;
-        const double target = std::ceil(2.5 * m_latency) + 2.0;
-        m_n = (unsigned int)std::min<double>(std::max(target, 1.0), (double)m_max);
+        const double target = std::ceil(1.5 * m_latency - 1e-6) + 2.0;
+        m_n = (unsigned int)std::min<double>(std::max(target, (double)m_floor), (double)m_max);
+    }
+    // Age (steps since its snapshot) at which the current set's successor should be ordered.
+    unsigned int orderAge() const {
+        if (m_latency < 0.0) return 0;
+        const double lead = std::ceil(1.25 * m_latency - 1e-6) + 1.0;
+        return (unsigned int)std::max(0.0, (double)m_n - lead);
     }
     double smoothedLatency() const { return m_latency; }
 
   private:
-    unsigned int m_n = 20, m_max = 1000;
+    unsigned int m_n = 20, m_max = 1000, m_floor = 1;
     bool m_adaptive = true;
     double m_latency = -1.0;
 };
