@@ -6,7 +6,7 @@
 //   usage: DEMdemo_Mixer [output_dir] [--quick] [--scale N | --size r] [--time T]
 //     --scale N  grains N times smaller (about N^3 times more of them, time step N times smaller)
 //     --size r   clump scale r in metres (component sphere radius 0.8 r); default 0.02
-//     --time T   simulated seconds (default 1.5; 0.3 with --quick)
+//     --time T   simulated seconds (default 1.0; 0.3 with --quick)
 #include <deme/deme.h>
 
 #include <chrono>
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
     // Clump scale: the paper's listing uses 0.005 in a 1 m world (tens of millions of spheres on GPUs);
     // 0.02 gives ~1,700 clumps here, --quick 0.04 (~200 clumps).
     if (granular_rad <= 0.0) granular_rad = (quick ? 0.04 : 0.02) / scale;
-    if (sim_end <= 0.0) sim_end = quick ? 0.3 : 1.5;
+    if (sim_end <= 0.0) sim_end = quick ? 0.3 : 1.0;
 
     DEMSolver DEMSim;
     DEMSim.SetVerbosity("INFO");

@@ -65,10 +65,12 @@ void DEMTracker::SetOriQ(const float4& q, size_t offset) {
 void DEMTracker::AddAcc(const float3& acc, size_t offset) {
     requireFinite3("DEMTracker::AddAcc", "acceleration", acc);
     m_sim->state().owners.extraAcc[internalID(offset)] += acc;
+    m_sim->state().hasTrackerLoads = true;
 }
 void DEMTracker::AddAngAcc(const float3& angAcc, size_t offset) {
     requireFinite3("DEMTracker::AddAngAcc", "angular acceleration", angAcc);
     m_sim->state().owners.extraAngAcc[internalID(offset)] += angAcc;
+    m_sim->state().hasTrackerLoads = true;
 }
 
 }  // namespace deme

@@ -87,9 +87,10 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
         if (ow.dynamic[o]) {
             const float mass = s.massProps.mass[ow.inertia[o]];
             const float3 moi = s.massProps.moi[ow.inertia[o]];
-            const float3 acc = F / mass + gravity + ow.extraAcc[o];
+            const bool loads = s.hasTrackerLoads;
+            const float3 acc = F / mass + gravity + (loads ? ow.extraAcc[o] : make_float3(0.f));
             v = v + h * acc;
-            const float3 torqueLocal = rotateToLocal(q, tau) + ow.extraAngAcc[o] * moi;
+            const float3 torqueLocal = rotateToLocal(q, tau) + (loads ? ow.extraAngAcc[o] * moi : make_float3(0.f));
             wMid = advanceAngularVelocity(w, torqueLocal, moi, h);
         }
         // Prescribed components replace the integrated ones (kinematic owners have nothing else).

@@ -16,7 +16,9 @@ inline void updateOwnerCache(SimState& s, size_t o) {
     k.ownerAngVelGlobal[o] = rotateToGlobal(q, ow.angVel[o]);
     for (uint32_t i = s.ownerSphereStart[o]; i < s.ownerSphereStart[o + 1]; i++) {
         const float3 rel = s.spheres.relPos[i];
-        const double3 arm = rotateToGlobal(q, to_double3(rel));
+        // Most clumps are single spheres at their centre: no rotation needed.
+        const bool centred = rel.x == 0.f && rel.y == 0.f && rel.z == 0.f;
+        const double3 arm = centred ? make_double3(0.0, 0.0, 0.0) : rotateToGlobal(q, to_double3(rel));
         k.spherePos[i] = p + arm;
         k.sphereArm[i] = to_float3(arm);
     }

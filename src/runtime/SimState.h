@@ -129,6 +129,7 @@ struct SimState {
     unsigned int numWildcards = 0;
     size_t numClumps = 0;  // owners [0, numClumps) are clumps; analytical owners, then meshes follow
     size_t numAnalyticalOwners = 0;
+    bool hasTrackerLoads = false;  // some owner has extraAcc/extraAngAcc for the coming call
     // First geometry id of each kind in the unified id space of contacts.
     bodyID_t analyticalIdBase() const { return (bodyID_t)spheres.size(); }
     bodyID_t triangleIdBase() const { return (bodyID_t)(spheres.size() + analytical.size()); }

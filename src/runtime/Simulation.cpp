@@ -101,8 +101,10 @@ void Simulation::reportFault(const IntegrationResult& ir) const {
 }
 
 void Simulation::clearTrackerLoads() {
+    if (!m_state.hasTrackerLoads) return;
     std::fill(m_state.owners.extraAcc.begin(), m_state.owners.extraAcc.end(), make_float3(0.f));
     std::fill(m_state.owners.extraAngAcc.begin(), m_state.owners.extraAngAcc.end(), make_float3(0.f));
+    m_state.hasTrackerLoads = false;
 }
 
 void Simulation::invalidateContacts() {
