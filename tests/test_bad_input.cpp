@@ -4,6 +4,8 @@
 #include <deme/deme.h>
 #include <gtest/gtest.h>
 
+#include "ScratchDirTest.h"
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -65,26 +67,8 @@ struct Scene1 {
     }
 };
 
-// Per-test scratch directory for CSV files, removed afterwards.
-class BadInputFiles : public ::testing::Test {
+class BadInputFiles : public deme_test::ScratchDirTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir = fs::temp_directory_path() /
-              ("deme_bad_input_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + "_" +
-               info->name());
-        fs::create_directories(dir);
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-    }
-    std::string write(const std::string& name, const std::string& text) {
-        const std::string p = (dir / name).string();
-        std::ofstream(p, std::ios::binary) << text;
-        return p;
-    }
-    fs::path dir;
 };
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include <deme/Error.h>
 #include <gtest/gtest.h>
 
+#include "ScratchDirTest.h"
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -13,25 +15,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Per-test scratch directory, removed afterwards.
-class ClumpCsv : public ::testing::Test {
+class ClumpCsv : public deme_test::ScratchDirTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir = fs::temp_directory_path() /
-              ("deme_clump_csv_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + "_" +
-               info->name());
-        fs::create_directories(dir);
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-    }
-    std::string write(const std::string& name, const std::string& text) {
-        const std::string p = (dir / name).string();
-        std::ofstream(p, std::ios::binary) << text;
-        return p;
-    }
     // The reader must throw deme::Error naming the call, the file and the line.
     void expectError(const std::string& path, size_t line, const std::string& fragment) {
         try {
@@ -44,7 +29,6 @@ class ClumpCsv : public ::testing::Test {
             EXPECT_NE(w.find(fragment), std::string::npos) << w;
         }
     }
-    fs::path dir;
 };
 
 }  // namespace
