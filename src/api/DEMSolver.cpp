@@ -432,7 +432,10 @@ void DEMSolver::DisableAdaptiveUpdateFreq() {
 unsigned int DEMSolver::GetUpdateFreq() const {
     return m_sim->initialized() ? m_sim->contactSets().nMax() : m_sim->settings.updateFreq;
 }
-void DEMSolver::SetSynchronousContactDetection(bool sync) { m_sim->settings.asyncDetection = !sync; }
+void DEMSolver::SetSynchronousContactDetection(bool sync) {
+    m_sim->settings.detectionMode = sync ? Settings::DetectionMode::SYNC : Settings::DetectionMode::ASYNC;
+    if (m_sim->initialized()) m_sim->applyDetectionMode();
+}
 void DEMSolver::SetFamilyExtraMargin(unsigned int family, float margin) {
     const char* call = "SetFamilyExtraMargin";
     const family_t f = requireFamily(call, family);

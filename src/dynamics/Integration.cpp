@@ -120,7 +120,8 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
                 fault = f;
             }
         }
-        updateOwnerCache(s, o);
+        // An owner that cannot have moved (kinematic and at rest, e.g. a static mesh) keeps its cache.
+        if (ow.dynamic[o] || dot(v, v) > 0.f || dot(w, w) > 0.f) updateOwnerCache(s, o);
         if (ow.type[o] != OWNER_ANALYTICAL) {
             const float speed = length(v) + length(w) * ow.extent[o];
             ow.travel[o] += (double)(speed * h);

@@ -20,7 +20,10 @@ struct Settings {
     unsigned int updateFreq = 20;       // initial (or fixed) n_max: steps one contact set may serve
     unsigned int maxUpdateFreq = 200;   // cap for the adaptive n_max
     bool adaptiveUpdateFreq = true;
-    bool asyncDetection = true;         // kinematics on its own thread, beside dynamics
+    // Contact detection on a kinematics thread beside the dynamics (async) or on the dynamics thread
+    // (sync). AUTO picks async where the CPU has cores to spare for it (docs/threads.md).
+    enum class DetectionMode { AUTO, SYNC, ASYNC } detectionMode = DetectionMode::AUTO;
+    bool asyncDetection = false;  // the mode in effect
     float familyExtraMargin[256] = {};  // added to the margin of each family's geometries
     double binSize = 0.0;          // 0: chosen at Initialize
     unsigned int threadsPerBlock = 256;

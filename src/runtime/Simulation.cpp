@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <iostream>
 
@@ -30,13 +31,27 @@ void Simulation::start(SimState&& state) {
     m_state = std::move(state);
     refreshKinematicCache(m_state);
     m_grid = makeBinGrid(m_state, settings.binSize);
+    applyDetectionMode();
     m_contacts.start(m_state, settings, m_grid);
     m_initialized = true;
     log(Verbosity::INFO, "initialized: " + std::to_string(m_state.numClumps) + " clumps, " +
                              std::to_string(m_state.spheres.size()) + " spheres, " +
                              std::to_string(m_state.analytical.size()) + " analytical components; bin size " +
                              std::to_string(m_grid.size) + " (" + std::to_string(m_grid.numBins()) + " bins), " +
-                             std::to_string(cpuThreadCount()) + " CPU threads");
+                             std::to_string(cpuThreadCount()) + " CPU threads for dynamics, contact detection " +
+                             (settings.asyncDetection ? "on its own thread" : "on the dynamics thread"));
+}
+
+void Simulation::applyDetectionMode() {
+    // Measured (BENCHMARKS.md): on 2 cores the kinematics thread takes more from the dynamics team
+    // than it saves; with 8 or more, giving it one core hides detection.
+    const int cores = cpuCoreCount();
+    const Settings::DetectionMode mode = settings.detectionMode;
+    settings.asyncDetection = mode == Settings::DetectionMode::ASYNC ||
+                              (mode == Settings::DetectionMode::AUTO && cores >= ASYNC_MIN_CORES);
+    // The kinematics thread gets a core of its own unless the user chose the team size.
+    if (settings.asyncDetection && settings.cpuThreads == 0 && !std::getenv("OMP_NUM_THREADS"))
+        setCpuThreadCount(std::max(1, cores - 1));
 }
 
 void Simulation::advance(unsigned long long n) {

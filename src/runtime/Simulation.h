@@ -34,6 +34,9 @@ class Simulation {
     size_t numSphereSphereContacts() const { return m_realSphereSphere; }
     double currentMargin() const { return m_contacts.margin(); }
     const ContactSetManager& contactSets() const { return m_contacts; }
+    // Resolves settings.detectionMode into settings.asyncDetection and sizes the dynamics thread
+    // team accordingly.
+    void applyDetectionMode();
     // Lets the kinematics thread finish its order and installs the result.
     void syncContactDetection();
     const BinGrid& binGrid() const { return m_grid; }

@@ -20,6 +20,26 @@ inline int cpuThreadCount() {
 #endif
 }
 
+// Cores the OpenMP runtime sees (OMP_NUM_THREADS does not change it).
+inline int cpuCoreCount() {
+#ifdef _OPENMP
+    return omp_get_num_procs();
+#else
+    return 1;
+#endif
+}
+
+inline void setCpuThreadCount(int n) {
+#ifdef _OPENMP
+    omp_set_num_threads(n);
+#else
+    (void)n;
+#endif
+}
+
+// Fewest cores for which contact detection gets a thread of its own by default.
+constexpr int ASYNC_MIN_CORES = 8;
+
 inline int cpuThreadIndex() {
 #ifdef _OPENMP
     return omp_get_thread_num();
