@@ -119,7 +119,7 @@ TEST(Async, InclineAgreesWithSynchronous) {
     EXPECT_EQ(endState(false), sync);
 }
 
-// The n_max controller: converges to 1.5 x latency + 2 (never below the user's floor, never above
+// The n_max controller: converges to 2.25 x latency + 2 (never below the user's floor, never above
 // the cap), and orders a successor early enough to arrive before the set in use runs out.
 TEST(Async, UpdateFrequencyAdaptsToLatency) {
     UpdateFrequency f;
@@ -127,8 +127,8 @@ TEST(Async, UpdateFrequencyAdaptsToLatency) {
     EXPECT_EQ(f.orderAge(), 0u);  // no latency measured yet: order at once
     for (int i = 0; i < 60; i++) f.observeLatency(12);
     EXPECT_NEAR(f.smoothedLatency(), 12.0, 1e-3);
-    EXPECT_EQ(f.nMax(), 20u);  // ceil(1.5 x 12) + 2
-    EXPECT_EQ(f.orderAge(), 20u - 16u);  // lead ceil(1.25 x 12) + 1 = 16 steps
+    EXPECT_EQ(f.nMax(), 29u);            // ceil(2.25 x 12) + 2
+    EXPECT_EQ(f.orderAge(), 29u - 16u);  // lead ceil(1.25 x 12) + 1 = 16 steps
     for (int i = 0; i < 60; i++) f.observeLatency(1);
     EXPECT_EQ(f.nMax(), 5u);  // the floor
     for (int i = 0; i < 60; i++) f.observeLatency(500);

@@ -92,7 +92,7 @@ void ContactSetManager::prepareStep(SimState& s, const Settings& settings, const
     }
     if (!m_worker) {
         PhaseTimer t(timing, Phase::EXCHANGE);
-        m_worker.reset(new KinematicsWorker(s, m_grid));
+        m_worker.reset(new KinematicsWorker(s, m_grid, settings.kinematicsThreads));
     }
     if (m_needDetection) detectNow(s, settings, families, step, maxSpeed, timing);
     if (m_orderInFlight) {

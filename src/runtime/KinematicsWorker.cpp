@@ -6,7 +6,7 @@
 
 namespace deme {
 
-KinematicsWorker::KinematicsWorker(const SimState& s, const BinGrid& grid) : m_grid(grid) {
+KinematicsWorker::KinematicsWorker(const SimState& s, const BinGrid& grid, int threads) : m_grid(grid) {
     // What detection reads and never changes during a run.
     m_work.frame = s.frame;
     m_work.domainSize = s.domainSize;
@@ -14,7 +14,7 @@ KinematicsWorker::KinematicsWorker(const SimState& s, const BinGrid& grid) : m_g
     m_work.analytical = s.analytical;
     m_work.triangles.owner = s.triangles.owner;
     m_work.owners.family = s.owners.family;
-    m_thread = std::thread([this] { run(); });
+    m_thread = std::thread([this, threads] { run(threads); });
 }
 
 KinematicsWorker::~KinematicsWorker() {
@@ -80,11 +80,9 @@ void KinematicsWorker::waitAndTake(DetectionResult& out) {
     m_resultReady = false;
 }
 
-void KinematicsWorker::run() {
-#ifdef _OPENMP
-    // Detection loops on this thread run serially: the cores belong to the dynamics thread's team.
-    omp_set_num_threads(1);
-#endif
+void KinematicsWorker::run(int threads) {
+    // This thread's own OpenMP team, sized so that it and the dynamics team share the cores.
+    setCpuThreadCount(threads);
     for (;;) {
         {
             std::unique_lock<std::mutex> lock(m_mutex);

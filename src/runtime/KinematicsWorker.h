@@ -26,8 +26,9 @@ struct DetectionResult {
 
 class KinematicsWorker {
   public:
-    // Copies the static geometry of `s` (radii, owners, analytical shapes) and starts the thread.
-    KinematicsWorker(const SimState& s, const BinGrid& grid);
+    // Copies the static geometry of `s` (radii, owners, analytical shapes) and starts the thread,
+    // whose detection loops use `threads` OpenMP threads.
+    KinematicsWorker(const SimState& s, const BinGrid& grid, int threads);
     ~KinematicsWorker();
     KinematicsWorker(const KinematicsWorker&) = delete;
     KinematicsWorker& operator=(const KinematicsWorker&) = delete;
@@ -43,7 +44,7 @@ class KinematicsWorker {
     void waitAndTake(DetectionResult& out);
 
   private:
-    void run();
+    void run(int threads);
     void rethrowFailure();
 
     std::mutex m_mutex;

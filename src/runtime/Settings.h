@@ -24,6 +24,7 @@ struct Settings {
     // (sync). AUTO picks async where the CPU has cores to spare for it (docs/threads.md).
     enum class DetectionMode { AUTO, SYNC, ASYNC } detectionMode = DetectionMode::AUTO;
     bool asyncDetection = false;  // the mode in effect
+    int kinematicsThreads = 1;    // OpenMP threads of the kinematics thread's loops
     float familyExtraMargin[256] = {};  // added to the margin of each family's geometries
     double binSize = 0.0;          // 0: chosen at Initialize
     unsigned int threadsPerBlock = 256;

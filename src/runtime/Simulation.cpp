@@ -49,9 +49,11 @@ void Simulation::applyDetectionMode() {
     const Settings::DetectionMode mode = settings.detectionMode;
     settings.asyncDetection = mode == Settings::DetectionMode::ASYNC ||
                               (mode == Settings::DetectionMode::AUTO && cores >= ASYNC_MIN_CORES);
-    // The kinematics thread gets a core of its own unless the user chose the team size.
+    // Detection gets a quarter of the cores (at least one), dynamics the rest, unless the user chose
+    // the team size.
+    settings.kinematicsThreads = std::max(1, cores / 4);
     if (settings.asyncDetection && settings.cpuThreads == 0 && !std::getenv("OMP_NUM_THREADS"))
-        setCpuThreadCount(std::max(1, cores - 1));
+        setCpuThreadCount(std::max(1, cores - settings.kinematicsThreads));
 }
 
 void Simulation::advance(unsigned long long n) {

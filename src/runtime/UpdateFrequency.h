@@ -20,8 +20,9 @@ class UpdateFrequency {
     bool adaptive() const { return m_adaptive; }
 
     // One detection was ordered `latencySteps` steps before its result reached the dynamics side.
-    // Orders go out just in time (orderAge()), so a set serves n_max steps counted from its snapshot,
-    // and its successor must be ready by then: n_max needs the latency plus headroom. On the CPU the
+    // A set arrives about one latency L after its snapshot, and its successor cannot be ordered
+    // before that, so it arrives about 2L after the set's snapshot at the earliest: n_max needs 2L
+    // plus headroom. Orders go out just in time (orderAge()) when n_max is larger than that. On the CPU the
     // kinematics thread shares the cores with the dynamics team, so detecting more often than the
     // user's n_max would only slow the dynamics down: that value stays the floor, and n_max rises
     // above it only when kinematics cannot keep up. The latency is smoothed, so one slow detection
@@ -30,7 +31,7 @@ class UpdateFrequency {
         const double l = (double)latencySteps;
         m_latency = m_latency < 0.0 ? l : 0.8 * m_latency + 0.2 * l;
         if (!m_adaptive) return;
-        const double target = std::ceil(1.5 * m_latency - 1e-6) + 2.0;
+        const double target = std::ceil(2.25 * m_latency - 1e-6) + 2.0;
         m_n = (unsigned int)std::min<double>(std::max(target, (double)m_floor), (double)m_max);
     }
     // Age (steps since its snapshot) at which the current set's successor should be ordered.
