@@ -120,6 +120,9 @@ class DEMSolver {
     // true: detect contacts on the dynamics thread every n_max steps (no overlap; for debugging and
     // bit-for-bit tests). false (default): the kinematics thread detects beside the dynamics.
     void SetSynchronousContactDetection(bool sync);
+    // Whether detection runs on its own thread; by default the engine decides at Initialize():
+    // asynchronous with 8 or more cores, synchronous below (docs/threads.md).
+    bool UsesAsyncContactDetection() const;
     // Extra margin for the geometries of a family's owners: pairs within reach enter the contact set.
     void SetFamilyExtraMargin(unsigned int family, float margin);
     void SetInitBinSize(double size);

@@ -436,6 +436,8 @@ void DEMSolver::SetSynchronousContactDetection(bool sync) {
     m_sim->settings.detectionMode = sync ? Settings::DetectionMode::SYNC : Settings::DetectionMode::ASYNC;
     if (m_sim->initialized()) m_sim->applyDetectionMode();
 }
+bool DEMSolver::UsesAsyncContactDetection() const { return m_sim->settings.asyncDetection; }
+
 void DEMSolver::SetFamilyExtraMargin(unsigned int family, float margin) {
     const char* call = "SetFamilyExtraMargin";
     const family_t f = requireFamily(call, family);
