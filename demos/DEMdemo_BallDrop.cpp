@@ -15,17 +15,6 @@
 using namespace deme;
 namespace fs = std::filesystem;
 
-namespace {
-
-// Rayleigh time of a sphere of radius r: the time a Rayleigh surface wave takes to cross it. Explicit
-// DEM steps are chosen as a fraction of it.
-double RayleighTime(double r, double density, double E, double nu) {
-    const double G = E / (2.0 * (1.0 + nu));
-    return PI * r * std::sqrt(density / G) / (0.1631 * nu + 0.8766);
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
     fs::path out_dir = "DemoOutput_BallDrop";
     bool quick = false;

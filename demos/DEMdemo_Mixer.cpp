@@ -25,11 +25,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double RayleighTime(double r, double density, double E, double nu) {
-    const double G = E / (2.0 * (1.0 + nu));
-    return PI * r * std::sqrt(density / G) / (0.1631 * nu + 0.8766);
-}
-
 [[noreturn]] void Usage(const char* prog) {
     std::fprintf(stderr, "usage: %s [output_dir] [--quick] [--scale N | --size r] [--time T]\n", prog);
     std::exit(2);

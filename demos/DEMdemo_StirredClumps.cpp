@@ -16,11 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double RayleighTime(double r, double density, double E, double nu) {
-    const double G = E / (2.0 * (1.0 + nu));
-    return PI * r * std::sqrt(density / G) / (0.1631 * nu + 0.8766);
-}
-
 // Uniformly distributed orientation (Shoemake's method) from raw std::mt19937 output, whose
 // sequence the standard fixes: std:: distributions differ between library implementations.
 float4 RandomOrientation(std::mt19937& rng) {

@@ -10,5 +10,6 @@
 #include "Mesh.h"
 #include "Samplers.h"
 #include "Tracker.h"
+#include "Utils.h"
 #include "VariableTypes.h"
 #include "VectorTypes.h"
