@@ -3,6 +3,7 @@
 # OpenMP loops run on one thread there (OMP_NUM_THREADS=1): libgomp is not instrumented, and the
 # threads under test are the kinematics worker and the dynamics thread.
 # Inputs: -DDEME_SOURCE_DIR, -DWORK_DIR, -DGENERATOR, -DMAKE_PROGRAM, -DCXX_COMPILER
+file(MAKE_DIRECTORY ${WORK_DIR})
 set(build ${WORK_DIR}/build-tsan)
 execute_process(
   COMMAND ${CMAKE_COMMAND} -S ${DEME_SOURCE_DIR} -B ${build} -G ${GENERATOR} -DCMAKE_MAKE_PROGRAM=${MAKE_PROGRAM}
