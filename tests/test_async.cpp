@@ -185,3 +185,21 @@ TEST(Async, SmallShakenBoxThreadsAgree) {
     ASSERT_GT(ref.size(), 20u);
     EXPECT_EQ(runSmall(true), ref);
 }
+
+// Synchronous mode: n_max balances the detection cost D/n against false positives growing with n;
+// with D = 54 ms, F = 6.7 ms per step and 6.6 % false positives at n = 20 (the CPU-BED figures),
+// the optimum is sqrt(D n / (F/2 phi)) = 70, reached in at most a doubling per detection.
+TEST(Async, SyncUpdateFrequencyBalancesDetectionAndFalsePositives) {
+    UpdateFrequency f;
+    f.configure(20, 200, true);
+    f.observeSyncCost(0.054, 0.0067, 0.066);
+    EXPECT_EQ(f.nMax(), 40u);  // capped at a doubling
+    f.observeSyncCost(0.054, 0.0067, 0.066 * 40 / 20);
+    EXPECT_EQ(f.nMax(), 70u);
+    f.observeSyncCost(0.054, 0.0067, 0.066 * 70 / 20);
+    EXPECT_EQ(f.nMax(), 70u);  // stays at the optimum
+    UpdateFrequency fixed;
+    fixed.configure(20, 200, false);
+    fixed.observeSyncCost(0.054, 0.0067, 0.066);
+    EXPECT_EQ(fixed.nMax(), 20u);
+}

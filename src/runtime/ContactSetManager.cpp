@@ -20,7 +20,7 @@ ContactSetManager::~ContactSetManager() = default;
 void ContactSetManager::start(const SimState& s, const Settings& settings, const BinGrid& grid) {
     m_grid = grid;
     m_freq.configure(settings.updateFreq, std::max(settings.maxUpdateFreq, settings.updateFreq),
-                     settings.adaptiveUpdateFreq && settings.asyncDetection);
+                     settings.adaptiveUpdateFreq);
     m_baseline.assign(s.owners.size(), 0.0);
     m_needDetection = true;
 }
@@ -44,6 +44,15 @@ void ContactSetManager::install(SimState& s, DetectedContacts& pairs, TimingStat
 
 void ContactSetManager::detectNow(SimState& s, const Settings& settings, const FamilyRules& families,
                                   unsigned long long step, float maxSpeed, TimingStats& timing) {
+    const double t0 = now();
+    if (!settings.asyncDetection && step > m_acsStep) {
+        // The force pass's cost and false positives since the last detection, for n_max.
+        const double steps = (double)(m_stats.steps - m_costMark.steps);
+        const double force = (timing.seconds[(int)Phase::FORCE] - m_costMark.forceSeconds) / steps;
+        const double pairs = m_stats.contactSetSizeSum - m_costMark.pairs;
+        const double fp = pairs > 0.0 ? 1.0 - (m_stats.realContactSum - m_costMark.real) / pairs : 0.0;
+        m_freq.observeSyncCost(m_costMark.detectSeconds, force, fp);
+    }
     m_margin = chooseMargin(settings, maxSpeed);
     DetectedContacts pairs;
     m_detector.detect(s, m_grid, m_margin, families.contactMask(), settings.familyExtraMargin, pairs,
@@ -54,6 +63,8 @@ void ContactSetManager::detectNow(SimState& s, const Settings& settings, const F
     m_expired = false;
     m_needDetection = false;
     m_stats.syncDetections++;
+    m_costMark = CostMark{m_stats.steps, timing.seconds[(int)Phase::FORCE], m_stats.contactSetSizeSum,
+                          m_stats.realContactSum, now() - t0};
 }
 
 void ContactSetManager::considerResult(SimState& s, DetectionResult& r, unsigned long long step, TimingStats& timing) {

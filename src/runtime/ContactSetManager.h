@@ -60,6 +60,11 @@ class ContactSetManager {
     CollaborationStats m_stats;
     std::vector<double> m_baseline, m_orderBaseline;  // owners' travel at the set's / the order's snapshot
     DetectionResult m_result;
+    // Counters at the last synchronous detection, and what it cost (for the sync n_max).
+    struct CostMark {
+        unsigned long long steps = 0;
+        double forceSeconds = 0.0, pairs = 0.0, real = 0.0, detectSeconds = 0.0;
+    } m_costMark;
     double m_margin = 0.0;
     unsigned long long m_acsStep = 0, m_generation = 0;
     bool m_orderInFlight = false, m_expired = false, m_needDetection = true;

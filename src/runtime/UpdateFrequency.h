@@ -34,6 +34,21 @@ class UpdateFrequency {
         const double target = std::ceil(2.25 * m_latency - 1e-6) + 2.0;
         m_n = (unsigned int)std::min<double>(std::max(target, (double)m_floor), (double)m_max);
     }
+    // Synchronous detection: one detection cost `detectSeconds`; since the previous one, a step's
+    // force pass took `forceSecondsPerStep` on average with a share `falsePositives` of the set not
+    // in contact. Detection costs D/n per step; false positives grow with the margin, i.e. with n,
+    // and cost about half a real contact each: per step ~ F/2 * phi(n) with phi(n) = phi * n / n_now.
+    // The n minimising the sum is sqrt(D n_now / (F/2 phi)); n_max moves towards it by at most a
+    // factor 2 per detection.
+    void observeSyncCost(double detectSeconds, double forceSecondsPerStep, double falsePositives) {
+        if (!m_adaptive || !(forceSecondsPerStep > 0.0) || !(detectSeconds > 0.0)) return;
+        const double phi = std::max(falsePositives, 1e-3);
+        const double n = (double)m_n;
+        double target = std::sqrt(detectSeconds * n / (0.5 * forceSecondsPerStep * phi));
+        target = std::min(std::max(target, 0.5 * n), 2.0 * n);
+        m_n = (unsigned int)std::min(std::max(std::round(target), 1.0), (double)m_max);
+    }
+
     // Age (steps since its snapshot) at which the current set's successor should be ordered.
     unsigned int orderAge() const {
         if (m_latency < 0.0) return 0;
