@@ -16,8 +16,8 @@ constexpr double R = 0.005, DENSITY = 2600, G = 9.81;
 
 // About 1000 jittered spheres above the floor z = -0.05 inside |x|, |y| < 0.05.
 std::vector<float3> bedPoints() {
-    std::vector<float3> pts = GridSampler(2.2f * (float)R).SampleBox(make_float3(0, 0, 0.f),
-                                                                      make_float3(0.043f, 0.043f, 0.04f));
+    std::vector<float3> pts =
+        GridSampler(2.2f * (float)R).SampleBox(make_float3(0, 0, 0.f), make_float3(0.043f, 0.043f, 0.04f));
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> j(-0.05f * (float)R, 0.05f * (float)R);
     for (auto& p : pts) p = p + make_float3(j(rng), j(rng), j(rng));
@@ -36,8 +36,8 @@ double floorLoadRatio(bool meshBox) {
     sim.InstructBoxDomainDimension(0.2f, 0.2f, 0.3f);
     std::shared_ptr<DEMTracker> floorTracker, wallsTracker;
     if (meshBox) {
-        auto box = sim.AddWavefrontMeshObject(boxMesh(make_float3(-0.05f, -0.05f, -0.05f),
-                                                      make_float3(0.05f, 0.05f, 0.1f), wall));
+        auto box = sim.AddWavefrontMeshObject(
+            boxMesh(make_float3(-0.05f, -0.05f, -0.05f), make_float3(0.05f, 0.05f, 0.1f), wall));
         floorTracker = sim.Track(box);  // the box carries the load through its floor
     } else {
         auto walls = sim.AddExternalObject();
@@ -107,7 +107,7 @@ TEST(MeshBodies, FreeCubeSettlesOnBed) {
         floorLoad += -tf->ContactForce().z;
     }
     const double weight = cubeMass * G;
-    EXPECT_LT(tc->Pos().z, 0.05f);  // it fell onto the bed
+    EXPECT_LT(tc->Pos().z, 0.05f);   // it fell onto the bed
     EXPECT_GT(tc->Pos().z, -0.03f);  // and did not fall through it
     EXPECT_LT(length(tc->Vel()), 0.01f);
     EXPECT_NEAR(load / 50, weight, 0.02 * weight);
@@ -126,8 +126,8 @@ TEST(MeshBodies, TorqueOnDrivenBladeOpposesRotation) {
     auto drum = sim.AddExternalObject();
     drum->AddCylinder(make_float3(0), make_float3(0, 0, 1), 0.06f, mat, 0);
     sim.AddBCPlane(make_float3(0, 0, -0.05f), make_float3(0, 0, 1), mat);
-    auto blade = sim.AddWavefrontMeshObject(boxMesh(make_float3(-0.045f, -0.002f, -0.045f),
-                                                    make_float3(0.045f, 0.002f, 0.0f), mat));
+    auto blade = sim.AddWavefrontMeshObject(
+        boxMesh(make_float3(-0.045f, -0.002f, -0.045f), make_float3(0.045f, 0.002f, 0.0f), mat));
     blade->SetFamily(10);
     sim.SetFamilyPrescribedAngVel(10, "0", "0", "5");
     std::vector<float3> pts;
@@ -144,7 +144,7 @@ TEST(MeshBodies, TorqueOnDrivenBladeOpposesRotation) {
         sim.DoDynamics(0.002);
         torque += tb->ContactTorque().z;
         const float3 viaAcc = tb->ContactAngAccLocal() * tb->MOI();  // the paper's listing
-        const float3 local = tb->ContactTorque();  // rotation about z: local z = global z
+        const float3 local = tb->ContactTorque();                    // rotation about z: local z = global z
         EXPECT_NEAR(viaAcc.z, local.z, 1e-4 * std::fabs(local.z) + 1e-9);
     }
     EXPECT_LT(torque / 100, -1e-4);

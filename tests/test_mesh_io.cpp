@@ -76,10 +76,10 @@ TEST_F(MeshIO, SharedCubeAndSphere) {
 TEST_F(MeshIO, PolygonsAreFanTriangulated) {
     const ObjMesh m = readObj(write("poly.obj",
                                     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0\n"
-                                    "f 1 2 3 4\n"        // quad -> 2
-                                    "f 1 2 3 5 4\n"      // pentagon -> 3
-                                    "f 4 3 2 1\n"),      // quad -> 2
-                            "test");
+                                    "f 1 2 3 4\n"    // quad -> 2
+                                    "f 1 2 3 5 4\n"  // pentagon -> 3
+                                    "f 4 3 2 1\n"),  // quad -> 2
+                              "test");
     ASSERT_EQ(m.faces.size(), 7u);
     // Fan around the first vertex: (v0, vk, vk+1).
     const int expect[7][3] = {{0, 1, 2}, {0, 2, 3}, {0, 1, 2}, {0, 2, 4}, {0, 4, 3}, {3, 2, 1}, {3, 1, 0}};
@@ -101,8 +101,8 @@ TEST_F(MeshIO, IndexFormsAndNegativeIndicesResolve) {
                                     "f 1//1 2//1 3//1\n"
                                     "f 1/1/1 2/2/1 3/3/1\n"
                                     "v +2 -0 3.5e0  # trailing comment\n"  // vertex 4
-                                    "f -4 -3/1 -1//1\n"                     // -> 1 2 4
-                                    "f -1/-1/-1 1 -2\n"                     // -> 4 1 3
+                                    "f -4 -3/1 -1//1\n"                    // -> 1 2 4
+                                    "f -1/-1/-1 1 -2\n"                    // -> 4 1 3
                                     "l 1 2\np 3\n"),
                               "test");
     ASSERT_EQ(m.vertices.size(), 4u);
@@ -151,7 +151,7 @@ TEST_F(MeshIO, ErrorsNameCallFileAndLine) {
     expectError("v 0 0 0\nv 1 abc 0\n", 2, "abc");
     expectError("v 0 0 0\nv 1 0 nan\n", 2, "finite");
     expectError("v 0 0 0\nv 1 0 1e99\n", 2, "finite");  // overflows float
-    expectError("v 0 0 0\nv 1,5 0 0\n", 2, "1,5");     // decimal comma is not a number
+    expectError("v 0 0 0\nv 1,5 0 0\n", 2, "1,5");      // decimal comma is not a number
     expectError("v 0 0 0\r\nv 1 0\r\n", 2, "coordinates");
     expectError(tri + "f 0 1 2\n", 4, "index 0");
     expectError(tri + "f 1 2 3\nf 1 2 4\n# end\n", 5, "out of range");  // reported at the face, after reading all

@@ -59,7 +59,7 @@ class DEMSolver {
     // ---- Meshes ----
     // Loads a Wavefront OBJ file as one rigid mesh owner with one material.
     std::shared_ptr<DEMMeshConnected> AddWavefrontMeshObject(const std::string& objFile,
-                                                            const std::shared_ptr<DEMMaterial>& mat);
+                                                             const std::shared_ptr<DEMMaterial>& mat);
     // Adds a mesh built in code (its material must be set).
     std::shared_ptr<DEMMeshConnected> AddWavefrontMeshObject(const DEMMeshConnected& mesh);
     void SetMeshOutputFormat(const std::string& format);  // "VTK"

@@ -95,11 +95,9 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
     for (size_t t = 0; t < nT; t++) {
         const double3* v = &k.triVert[3 * t];
         const double em = marginOf(s.triangles.owner[t]);
-        m_triLo[t] = make_double3(std::min({v[0].x, v[1].x, v[2].x}) - em,
-                                  std::min({v[0].y, v[1].y, v[2].y}) - em,
+        m_triLo[t] = make_double3(std::min({v[0].x, v[1].x, v[2].x}) - em, std::min({v[0].y, v[1].y, v[2].y}) - em,
                                   std::min({v[0].z, v[1].z, v[2].z}) - em);
-        m_triHi[t] = make_double3(std::max({v[0].x, v[1].x, v[2].x}) + em,
-                                  std::max({v[0].y, v[1].y, v[2].y}) + em,
+        m_triHi[t] = make_double3(std::max({v[0].x, v[1].x, v[2].x}) + em, std::max({v[0].y, v[1].y, v[2].y}) + em,
                                   std::max({v[0].z, v[1].z, v[2].z}) + em);
         m_triangles.setBox(grid, t, m_triLo[t], m_triHi[t]);
     }
@@ -183,8 +181,8 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
                 if (!maskRow[ow.family[s.analytical.owner[j]]]) continue;
                 const double dist = s.analytical.type[j] == ANAL_PLANE
                                         ? planeSignedDistance(pA, k.analPos[j], k.analDir[j])
-                                        : cylinderSignedDistance(pA, k.analPos[j], k.analDir[j],
-                                                                 s.analytical.radius[j], s.analytical.inside[j] != 0);
+                                        : cylinderSignedDistance(pA, k.analPos[j], k.analDir[j], s.analytical.radius[j],
+                                                                 s.analytical.inside[j] != 0);
                 if (dist < eA + marginOf(s.analytical.owner[j])) emit((bodyID_t)(nS + j), SPHERE_ANALYTICAL);
             }
             for (bodyID_t tri : triPartners) emit(triBase + tri, SPHERE_TRIANGLE);

@@ -49,8 +49,7 @@ class ContactDetector {
     // familyExtraMargin: 256 values added to the margin of every geometry of that family's owners.
     // Seconds spent binning and searching pairs are added to the two counters.
     void detect(const SimState& s, const BinGrid& grid, double margin, const uint8_t* familyMask,
-                const float* familyExtraMargin, DetectedContacts& out, double& binningSeconds,
-                double& searchSeconds);
+                const float* familyExtraMargin, DetectedContacts& out, double& binningSeconds, double& searchSeconds);
 
   private:
     // Scratch buffers reused between detections.

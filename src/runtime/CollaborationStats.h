@@ -11,10 +11,10 @@ struct CollaborationStats {
     unsigned long long syncDetections = 0;    // detections run on the dynamics thread
     unsigned long long discardedResults = 0;  // results too old to use on arrival
     double dynamicsWaitSeconds = 0.0;
-    double dynamicsSeconds = 0.0;             // wall time inside the step loop
-    double contactSetSizeSum = 0.0;           // per step: pairs in the set
-    double realContactSum = 0.0;              // per step: pairs in contact
-    double latencyStepsSum = 0.0;             // per result: steps between order and arrival
+    double dynamicsSeconds = 0.0;    // wall time inside the step loop
+    double contactSetSizeSum = 0.0;  // per step: pairs in the set
+    double realContactSum = 0.0;     // per step: pairs in contact
+    double latencyStepsSum = 0.0;    // per result: steps between order and arrival
 };
 
 }  // namespace deme

@@ -17,16 +17,16 @@ struct Settings {
     float maxVelocity = 0.f;        // user's expected largest speed (0: measured only)
     float safetyMultiplier = 1.1f;  // margin = multiplier * vmax * dt * n + adder
     float safetyAdder = 0.f;
-    unsigned int updateFreq = 20;       // initial (or fixed) n_max: steps one contact set may serve
-    unsigned int maxUpdateFreq = 200;   // cap for the adaptive n_max
+    unsigned int updateFreq = 20;      // initial (or fixed) n_max: steps one contact set may serve
+    unsigned int maxUpdateFreq = 200;  // cap for the adaptive n_max
     bool adaptiveUpdateFreq = true;
     // Contact detection on a kinematics thread beside the dynamics (async) or on the dynamics thread
     // (sync). AUTO picks async where the CPU has cores to spare for it (docs/threads.md).
     enum class DetectionMode { AUTO, SYNC, ASYNC } detectionMode = DetectionMode::AUTO;
-    bool asyncDetection = false;  // the mode in effect
-    int kinematicsThreads = 1;    // OpenMP threads of the kinematics thread's loops
+    bool asyncDetection = false;        // the mode in effect
+    int kinematicsThreads = 1;          // OpenMP threads of the kinematics thread's loops
     float familyExtraMargin[256] = {};  // added to the margin of each family's geometries
-    double binSize = 0.0;          // 0: chosen at Initialize
+    double binSize = 0.0;               // 0: chosen at Initialize
     unsigned int threadsPerBlock = 256;
     unsigned int cpuThreads = 0;  // 0: OpenMP default
     Verbosity verbosity = Verbosity::INFO;

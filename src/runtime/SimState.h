@@ -61,9 +61,9 @@ struct AnalyticalArrays {
 // vertex, the triangles that use it (the topology the smooth-surface contact rule needs).
 struct TriangleArrays {
     std::vector<bodyID_t> owner;
-    std::vector<float3> v0, v1, v2;      // owner frame
+    std::vector<float3> v0, v1, v2;  // owner frame
     std::vector<materialID_t> material;
-    std::vector<uint32_t> vert;          // 3 welded vertex ids per triangle
+    std::vector<uint32_t> vert;  // 3 welded vertex ids per triangle
     std::vector<uint32_t> vertTriStart, vertTris;
     size_t size() const { return owner.size(); }
 };

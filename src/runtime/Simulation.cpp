@@ -47,8 +47,8 @@ void Simulation::applyDetectionMode() {
     // than it saves; with 8 or more, giving it one core hides detection.
     const int cores = cpuCoreCount();
     const Settings::DetectionMode mode = settings.detectionMode;
-    settings.asyncDetection = mode == Settings::DetectionMode::ASYNC ||
-                              (mode == Settings::DetectionMode::AUTO && cores >= ASYNC_MIN_CORES);
+    settings.asyncDetection =
+        mode == Settings::DetectionMode::ASYNC || (mode == Settings::DetectionMode::AUTO && cores >= ASYNC_MIN_CORES);
     // Detection gets a quarter of the cores (at least one), dynamics the rest, unless the user chose
     // the team size.
     settings.kinematicsThreads = std::max(1, cores / 4);
@@ -89,10 +89,9 @@ void Simulation::advance(unsigned long long n) {
         if (ir.fault != OwnerFault::NONE) reportFault(ir);
         m_contacts.afterStep(ir.maxTravel);
         if (settings.verbosity >= Verbosity::STEP_METRIC && m_timing.steps % 1000 == 0)
-            log(Verbosity::STEP_METRIC, "t = " + std::to_string(m_time) + " s, contacts " +
-                                            std::to_string(m_realContacts) + ", max speed " +
-                                            std::to_string(m_lastMaxSpeed) + " m/s, n_max " +
-                                            std::to_string(m_contacts.nMax()));
+            log(Verbosity::STEP_METRIC,
+                "t = " + std::to_string(m_time) + " s, contacts " + std::to_string(m_realContacts) + ", max speed " +
+                    std::to_string(m_lastMaxSpeed) + " m/s, n_max " + std::to_string(m_contacts.nMax()));
     }
     collab.dynamicsSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     clearTrackerLoads();
@@ -103,9 +102,9 @@ void Simulation::syncContactDetection() {
 }
 
 void Simulation::reportFault(const IntegrationResult& ir) const {
-    const std::string what = ir.fault == OwnerFault::TOO_FAST ? "moves faster than the error-out velocity (" +
-                                                                    std::to_string(settings.errorOutVelocity) +
-                                                                    " m/s, see SetErrorOutVelocity)"
+    const std::string what = ir.fault == OwnerFault::TOO_FAST
+                                 ? "moves faster than the error-out velocity (" +
+                                       std::to_string(settings.errorOutVelocity) + " m/s, see SetErrorOutVelocity)"
                              : ir.fault == OwnerFault::NOT_FINITE ? "has a non-finite velocity or orientation"
                                                                   : "left the simulation domain";
     const double3 p = ownerPosition(m_state, (bodyID_t)ir.faultOwner);

@@ -40,9 +40,9 @@ std::string collaborationReport(const Simulation& sim) {
        << "  average steps per update " << (c.acsUpdates ? steps / (double)c.acsUpdates : 0.0) << ", n_max now "
        << m.nMax() << (m.frequency().adaptive() ? " (adaptive)" : " (fixed)") << ", margin " << std::scientific
        << m.margin() << std::fixed << " m\n"
-       << "  dynamics waited " << c.dynamicsWaits << " times, " << c.dynamicsWaitSeconds << " s = "
-       << std::setprecision(2) << (c.dynamicsSeconds > 0 ? 100.0 * c.dynamicsWaitSeconds / c.dynamicsSeconds : 0.0)
-       << " % of the step loop\n"
+       << "  dynamics waited " << c.dynamicsWaits << " times, " << c.dynamicsWaitSeconds
+       << " s = " << std::setprecision(2)
+       << (c.dynamicsSeconds > 0 ? 100.0 * c.dynamicsWaitSeconds / c.dynamicsSeconds : 0.0) << " % of the step loop\n"
        << "  kinematics latency " << std::setprecision(1) << c.latencyStepsSum / received << " steps on average\n"
        << "  contact set: " << std::setprecision(0) << c.contactSetSizeSum / steps << " pairs on average, "
        << std::setprecision(1)

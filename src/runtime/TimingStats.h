@@ -14,8 +14,12 @@ struct TimingStats {
     double seconds[(int)Phase::COUNT] = {};
     unsigned long long steps = 0;
     static const char* name(Phase p) {
-        static const char* names[] = {"binning (kinematics)", "pair search (kinematics)", "history mapping",
-                                      "force calculation",    "force reduction",          "integration",
+        static const char* names[] = {"binning (kinematics)",
+                                      "pair search (kinematics)",
+                                      "history mapping",
+                                      "force calculation",
+                                      "force reduction",
+                                      "integration",
                                       "exchange"};
         return names[(int)p];
     }
