@@ -16,9 +16,19 @@ ForcePassResult computeContactForces(SimState& s, double time, double dt) {
     size_t real = 0, realSS = 0;
 #pragma omp parallel for schedule(static) reduction(+ : real, realSS) if (n > PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < n; i++) {
+        float* wc = c.wildcards.data() + i * W;
+        if (c.type[i] == SPHERE_SPHERE) {
+            // Most pairs in the set that are apart are sphere pairs: tell them cheaply.
+            const double3 d = s.cache.spherePos[c.geomA[i]] - s.cache.spherePos[c.geomB[i]];
+            const double reach = (double)s.spheres.radius[c.geomA[i]] + (double)s.spheres.radius[c.geomB[i]];
+            if (!(dot(d, d) < reach * reach)) {
+                for (unsigned int w = 0; w < W; w++) wc[w] = 0.f;
+                c.force[i] = c.torqueA[i] = c.torqueB[i] = make_float3(0.f);
+                continue;
+            }
+        }
         ContactInputs in;
         gatherContactInputs(s, i, (float)time, (float)dt, in);
-        float* wc = c.wildcards.data() + i * W;
         const bool counts = c.type[i] != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
         if (!(in.overlapDepth > 0.0) || !counts) {
             // Apart: no force, and the contact's history ends (a later touch starts fresh).
