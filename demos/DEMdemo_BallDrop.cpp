@@ -3,6 +3,8 @@
 //   usage: DEMdemo_BallDrop [output_dir] [--quick]
 #include <deme/deme.h>
 
+#include "DemoArgs.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,14 +18,9 @@ using namespace deme;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-    fs::path out_dir = "DemoOutput_BallDrop";
-    bool quick = false;
-    for (int i = 1; i < argc; i++) {
-        if (std::strcmp(argv[i], "--quick") == 0)
-            quick = true;
-        else
-            out_dir = argv[i];
-    }
+    const DemoArgs args = parseDemoArgs(argc, argv, "DemoOutput_BallDrop");
+    const fs::path out_dir = args.outDir;
+    const bool quick = args.quick;
 
     DEMSolver DEMSim;
     DEMSim.SetVerbosity("INFO");

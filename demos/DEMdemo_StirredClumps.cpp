@@ -3,6 +3,8 @@
 //   usage: DEMdemo_StirredClumps [output_dir] [--quick]
 #include <deme/deme.h>
 
+#include "DemoArgs.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -29,14 +31,9 @@ float4 RandomOrientation(std::mt19937& rng) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    fs::path out_dir = "DemoOutput_StirredClumps";
-    bool quick = false;
-    for (int i = 1; i < argc; i++) {
-        if (std::strcmp(argv[i], "--quick") == 0)
-            quick = true;
-        else
-            out_dir = argv[i];
-    }
+    const DemoArgs args = parseDemoArgs(argc, argv, "DemoOutput_StirredClumps");
+    const fs::path out_dir = args.outDir;
+    const bool quick = args.quick;
 
     DEMSolver DEMSim;
     DEMSim.SetVerbosity("INFO");
