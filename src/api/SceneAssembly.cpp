@@ -39,6 +39,19 @@ std::vector<float> pairTable(const Scene& scene, const std::string& name, double
     return t;
 }
 
+// The derived pair tables of MaterialTables, from the per-material and pair values.
+void mixPairTables(MaterialTables& mt) {
+    const size_t n = mt.count;
+    mt.E_eff.assign(n * n, 0.f);
+    mt.G_eff.assign(n * n, 0.f);
+    mt.beta_CoR.assign(n * n, 0.f);
+    for (size_t a = 0; a < n; a++)
+        for (size_t b = 0; b < n; b++) {
+            matProxy2ContactParam(mt.E_eff[a * n + b], mt.G_eff[a * n + b], mt.E[a], mt.nu[a], mt.E[b], mt.nu[b]);
+            mt.beta_CoR[a * n + b] = dampingBetaFromCoR(mt.CoR[a * n + b]);
+        }
+}
+
 DomainFrame makeFrame(const float3& lo, const float3& size) {
     DomainFrame f;
     f.origin = to_double3(lo);
@@ -171,6 +184,7 @@ SimState assembleScene(const Scene& scene) {
     mt.CoR = pairTable(scene, "CoR", 0.0);
     mt.mu = pairTable(scene, "mu", 0.0);
     mt.Crr = pairTable(scene, "Crr", 0.0);
+    mixPairTables(mt);
 
     // Mass properties: one entry per template in use, then one per external object.
     std::map<const DEMClumpTemplate*, inertiaID_t> templateIndex;

@@ -36,13 +36,14 @@ inline double3 ownerPosition(const SimState& s, bodyID_t o) {
     return decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], s.frame);
 }
 
-DEME_HD_INLINE void gatherContactInputs(const SimState& s, size_t c, float time, float ts, ContactInputs& in) {
+// `type` is the contact's type; callers that pass a constant get a path without the other branches.
+DEME_HD_INLINE void gatherContactInputsOfType(const SimState& s, size_t c, uint8_t type, float time, float ts,
+                                              ContactInputs& in) {
     const OwnerArrays& ow = s.owners;
     const KinematicCache& k = s.cache;
     const bodyID_t a = s.contacts.geomA[c];
     const bodyID_t b = s.contacts.geomB[c];
     const bodyID_t oA = s.spheres.owner[a];
-    const uint8_t type = s.contacts.type[c];
     const bodyID_t oB = geometryOwner(s, type, b);
 
     in.bodyAPos = k.spherePos[a];
@@ -105,6 +106,10 @@ DEME_HD_INLINE void gatherContactInputs(const SimState& s, size_t c, float time,
     in.BOwner = oB;
     in.AGeo = a;
     in.BGeo = b;
+}
+
+DEME_HD_INLINE void gatherContactInputs(const SimState& s, size_t c, float time, float ts, ContactInputs& in) {
+    gatherContactInputsOfType(s, c, s.contacts.type[c], time, ts, in);
 }
 
 }  // namespace deme

@@ -6,45 +6,68 @@
 
 namespace deme {
 
+namespace {
+
+// One contact of the set: its inputs, the model, and the stored force and torques. Instantiated
+// separately for sphere-sphere contacts (most of any granular scene) so that the compiler drops the
+// other geometry branches from that path.
+template <bool SphereSphere>
+DEME_HD_INLINE bool processContact(SimState& s, size_t i, float time, float dt, const DefaultModelMaterials& mat) {
+    ContactArrays& c = s.contacts;
+    // The built-in model's wildcard count is a constant, so its history loops unroll.
+    constexpr unsigned int W = DEFAULT_MODEL_NUM_WILDCARDS;
+    float* wc = c.wildcards.data() + i * W;
+    bool touching;
+    ContactInputs in;
+    if (SphereSphere) {
+        // Most pairs in the set that are apart are sphere pairs: tell them cheaply.
+        const double3 d = s.cache.spherePos[c.geomA[i]] - s.cache.spherePos[c.geomB[i]];
+        const double reach = (double)s.spheres.radius[c.geomA[i]] + (double)s.spheres.radius[c.geomB[i]];
+        touching = dot(d, d) < reach * reach;
+        if (touching) gatherContactInputsOfType(s, i, SPHERE_SPHERE, time, dt, in);
+    } else {
+        gatherContactInputsOfType(s, i, c.type[i], time, dt, in);
+        const bool counts = c.type[i] != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
+        touching = in.overlapDepth > 0.0 && counts;
+    }
+    if (!touching) {
+        // Apart: no force, and the contact's history ends (a later touch starts fresh).
+        for (unsigned int w = 0; w < W; w++) wc[w] = 0.f;
+        c.force[i] = c.torqueA[i] = c.torqueB[i] = make_float3(0.f);
+        return false;
+    }
+    float3 force = make_float3(0.f), torque_only_force = make_float3(0.f);
+    defaultForceModel(in, mat, wc, force, torque_only_force);
+    const float3 total = force + torque_only_force;
+    c.force[i] = force;
+    c.torqueA[i] = cross(in.armA, total);
+    c.torqueB[i] = cross(in.armB, -total);
+    return true;
+}
+
+}  // namespace
+
 ForcePassResult computeContactForces(SimState& s, double time, double dt) {
     ContactArrays& c = s.contacts;
     const size_t n = c.size();
-    const unsigned int W = s.numWildcards;
     const MaterialTables& mt = s.materials;
-    const DefaultModelMaterials mat{mt.E.data(), mt.nu.data(), PairTable{mt.CoR.data(), mt.count},
-                                    PairTable{mt.mu.data(), mt.count}, PairTable{mt.Crr.data(), mt.count}};
+    const unsigned int nm = mt.count;
+    const DefaultModelMaterials mat{PairTable{mt.mu.data(), nm}, PairTable{mt.Crr.data(), nm},
+                                    PairTable{mt.E_eff.data(), nm}, PairTable{mt.G_eff.data(), nm},
+                                    PairTable{mt.beta_CoR.data(), nm}};
     size_t real = 0, realSS = 0;
-#pragma omp parallel for schedule(static) reduction(+ : real, realSS) if (n > PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < n; i++) {
-        float* wc = c.wildcards.data() + i * W;
-        if (c.type[i] == SPHERE_SPHERE) {
-            // Most pairs in the set that are apart are sphere pairs: tell them cheaply.
-            const double3 d = s.cache.spherePos[c.geomA[i]] - s.cache.spherePos[c.geomB[i]];
-            const double reach = (double)s.spheres.radius[c.geomA[i]] + (double)s.spheres.radius[c.geomB[i]];
-            if (!(dot(d, d) < reach * reach)) {
-                for (unsigned int w = 0; w < W; w++) wc[w] = 0.f;
-                c.force[i] = c.torqueA[i] = c.torqueB[i] = make_float3(0.f);
-                continue;
-            }
-        }
-        ContactInputs in;
-        gatherContactInputs(s, i, (float)time, (float)dt, in);
-        const bool counts = c.type[i] != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
-        if (!(in.overlapDepth > 0.0) || !counts) {
-            // Apart: no force, and the contact's history ends (a later touch starts fresh).
-            for (unsigned int w = 0; w < W; w++) wc[w] = 0.f;
-            c.force[i] = c.torqueA[i] = c.torqueB[i] = make_float3(0.f);
-            continue;
-        }
-        real++;
-        if (c.type[i] == SPHERE_SPHERE) realSS++;
-        float3 force = make_float3(0.f), torque_only_force = make_float3(0.f);
-        defaultForceModel(in, mat, wc, force, torque_only_force);
-        const float3 total = force + torque_only_force;
-        c.force[i] = force;
-        c.torqueA[i] = cross(in.armA, total);
-        c.torqueB[i] = cross(in.armB, -total);
+#pragma omp parallel if (n > PARALLEL_MIN_ITEMS)
+    {
+        // Sphere pairs first, as one vectorisable sweep (masked lanes for other types) ...
+#pragma omp for simd schedule(static) reduction(+ : realSS) nowait
+        for (size_t i = 0; i < n; i++)
+            if (c.type[i] == SPHERE_SPHERE) realSS += processContact<true>(s, i, (float)time, (float)dt, mat);
+        // ... then the rest, with the same static split so each thread revisits its own range.
+#pragma omp for schedule(static) reduction(+ : real)
+        for (size_t i = 0; i < n; i++)
+            if (c.type[i] != SPHERE_SPHERE) real += processContact<false>(s, i, (float)time, (float)dt, mat);
     }
+    real += realSS;
     return ForcePassResult{real, realSS};
 }
 

@@ -88,7 +88,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
             const float mass = s.massProps.mass[ow.inertia[o]];
             const float3 moi = s.massProps.moi[ow.inertia[o]];
             const bool loads = s.hasTrackerLoads;
-            const float3 acc = F / mass + gravity + (loads ? ow.extraAcc[o] : make_float3(0.f));
+            const float3 acc = F * (1.f / mass) + gravity + (loads ? ow.extraAcc[o] : make_float3(0.f));
             v = v + h * acc;
             const float3 torqueLocal = rotateToLocal(q, tau) + (loads ? ow.extraAngAcc[o] * moi : make_float3(0.f));
             wMid = advanceAngularVelocity(w, torqueLocal, moi, h);

@@ -24,7 +24,7 @@ DEME_HD inline ContactPoint sphereSphereContact(const double3& posA, double rA, 
     const double dist = length(d);
     c.overlap = rA + rB - dist;
     // Coincident centres have no defined normal; any unit vector keeps the force finite.
-    const double3 n = dist > 0.0 ? d / dist : make_double3(0.0, 0.0, 1.0);
+    const double3 n = dist > 0.0 ? d * (1.0 / dist) : make_double3(0.0, 0.0, 1.0);
     c.B2A = to_float3(n);
     c.point = posB + n * (rB - 0.5 * c.overlap);
     return c;

@@ -8,11 +8,10 @@
 
 namespace deme {
 
-// Material tables the default model reads: per material E and nu; per pair CoR, mu and Crr.
+// Material tables the default model reads: per pair mu and Crr and the derived E_eff, G_eff and
+// beta_CoR (see MaterialTables).
 struct DefaultModelMaterials {
-    const float* E;
-    const float* nu;
-    PairTable CoR, mu, Crr;
+    PairTable mu, Crr, E_eff, G_eff, beta_CoR;
 };
 
 // Number and order of the default model's per-contact wildcards.
@@ -29,9 +28,7 @@ DEME_HD_INLINE void defaultForceModel(const ContactInputs& in, const DefaultMode
     const float ARadius = in.ARadius, BRadius = in.BRadius;
     const materialID_t bodyAMatType = in.bodyAMatType, bodyBMatType = in.bodyBMatType;
     const float3 ALinVel = in.ALinVel, BLinVel = in.BLinVel;
-    const float* E = mat.E;
-    const float* nu = mat.nu;
-    const PairTable CoR = mat.CoR, mu = mat.mu, Crr = mat.Crr;
+    const PairTable mu = mat.mu, Crr = mat.Crr, E_eff = mat.E_eff, G_eff = mat.G_eff, beta_CoR = mat.beta_CoR;
     float& delta_tan_x = wildcards[0];
     float& delta_tan_y = wildcards[1];
     float& delta_tan_z = wildcards[2];

@@ -107,6 +107,9 @@ struct MaterialTables {
     unsigned int count = 0;
     std::vector<float> E, nu;         // per material
     std::vector<float> CoR, mu, Crr;  // per pair, count x count
+    // Derived once per pair (MaterialMixing.h) so that force models need not mix per contact:
+    // effective Young's and shear moduli, and the damping term of CoR.
+    std::vector<float> E_eff, G_eff, beta_CoR;
 };
 
 struct SimState {

@@ -3,13 +3,15 @@
 // This file is a model *body*: it is compiled inside a function that defines the Table 3 variables
 // (plus rotVelCPA/rotVelCPB, the global velocity of the contact point carried by each owner's spin,
 // i.e. rotateToGlobal(AOriQ, cross(ARotVel, locCPA)) computed more cheaply),
-// the material arrays E, nu (per material) and CoR, mu, Crr (per material pair), the contact
+// the material arrays E, nu (per material) and CoR, mu, Crr (per material pair), the derived pair
+// tables E_eff, G_eff and beta_CoR (matProxy2ContactParam and dampingBetaFromCoR of those, mixed once
+// per material pair rather than per contact: a logarithm and five divisions saved), the contact
 // wildcards delta_tan_x/y/z and delta_time, and the outputs force and torque_only_force.
 
 // Effective material parameters of this pair.
-float E_cnt, G_cnt;
-matProxy2ContactParam(E_cnt, G_cnt, E[bodyAMatType], nu[bodyAMatType], E[bodyBMatType], nu[bodyBMatType]);
-const float CoR_cnt = CoR[bodyAMatType][bodyBMatType];
+const float E_cnt = E_eff[bodyAMatType][bodyBMatType];
+const float G_cnt = G_eff[bodyAMatType][bodyBMatType];
+const float beta = beta_CoR[bodyAMatType][bodyBMatType];  // ln(CoR) / sqrt(ln^2(CoR) + pi^2) < 0
 const float mu_cnt = mu[bodyAMatType][bodyBMatType];
 const float Crr_cnt = Crr[bodyAMatType][bodyBMatType];
 
@@ -27,9 +29,6 @@ delta_time += ts;
 const float mass_eff = (AOwnerMass * BOwnerMass) / (AOwnerMass + BOwnerMass);
 const float R_eff = (ARadius * BRadius) / (ARadius + BRadius);
 const float sqrt_Rd = sqrtf(R_eff * (float)overlapDepth);
-// ln(CoR) < 0, so beta < 0; CoR = 0 is capped to keep the logarithm finite.
-const float logCoR = logf(CoR_cnt < 1e-12f ? 1e-12f : CoR_cnt);
-const float beta = logCoR / sqrtf(logCoR * logCoR + (float)deme::PI * (float)deme::PI);
 
 // Normal force: Hertz spring k_n * delta (k_n = 4/3 E* sqrt(R delta)) and viscous damping.
 const float Sn = 2.f * E_cnt * sqrt_Rd;
