@@ -102,6 +102,12 @@ struct KinematicCache {
     std::vector<double3> triVert;    // 3 global vertices per triangle
 };
 
+// Per-owner results of the integration sweep that later sweeps of the same step read.
+struct IntegrationScratch {
+    std::vector<uint8_t> flags;       // OwnerStepFlag bits
+    std::vector<float3> midAngVel;    // midpoint angular velocity, kept only for large rotations
+};
+
 // Material property tables for the force model.
 struct MaterialTables {
     unsigned int count = 0;
@@ -122,6 +128,7 @@ struct SimState {
     TriangleArrays triangles;
     ContactArrays contacts;
     KinematicCache cache;
+    IntegrationScratch integrationScratch;
     std::vector<uint32_t> ownerSphereStart;  // spheres of owner o: [start[o], start[o+1])
     std::vector<uint32_t> ownerTriStart;     // triangles of owner o: [start[o], start[o+1])
     // Owners and spheres are stored in a space-filling-curve order for memory locality; users see
