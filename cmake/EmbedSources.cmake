@@ -111,7 +111,10 @@ function(deme_embed_sources target)
     ${inc}/deme/VectorTypes.h
     ${inc}/deme/VariableTypes.h
     ${src}/runtime/SimState.h
+    ${src}/runtime/StateView.h
+    ${src}/runtime/FamilyStepMotion.h
     ${src}/dynamics/ContactInputsGather.h
+    ${src}/dynamics/OwnerStep.h
     ${src}/dynamics/KinematicCache.h)
 
   # Include paths are relative to include/ or src/, the roots the library itself compiles with, so

@@ -26,6 +26,7 @@
 #include "jit/HostCompiler.h"
 #include "jit/KernelCache.h"
 #include "physics/Quaternion.h"
+#include "runtime/SimState.h"
 
 using namespace deme;
 using namespace deme::jit;
@@ -338,6 +339,7 @@ TEST_F(JitHostCompiler, ContactInputsGatherCompilesFromTheEmbeddedTree) {
     const char* source = R"(
 #include "dynamics/ContactInputsGather.h"
 #include "dynamics/KinematicCache.h"
+#include "runtime/SimState.h"
 extern "C" size_t sizeOfContactInputs() { return sizeof(deme::ContactInputs); }
 extern "C" size_t sizeOfSimState() { return sizeof(deme::SimState); }
 extern "C" void gather(const deme::SimState* s, size_t c, float time, float ts, deme::ContactInputs* in) {

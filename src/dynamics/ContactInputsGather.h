@@ -1,28 +1,31 @@
 // Fills the force model's inputs (paper Table 3) for one contact of the active-contact set, from the
 // state and its kinematic cache. Always inlined into the force loop, so that whatever a model does
-// not use is never computed.
+// not use is never computed. Templates over the state type: SimState on the CPU, a StateView of
+// device memory on the GPU (same member names).
 #pragma once
 
 #include "physics/ContactGeometry.h"
 #include "physics/ContactInputs.h"
 #include "physics/RigidBody.h"
-#include "runtime/SimState.h"
 
 namespace deme {
 
-inline bodyID_t geometryOwner(const SimState& s, uint8_t type, bodyID_t b) {
+template <class S>
+DEME_HD_INLINE bodyID_t geometryOwner(const S& s, uint8_t type, bodyID_t b) {
     return type == SPHERE_SPHERE       ? s.spheres.owner[b]
            : type == SPHERE_ANALYTICAL ? s.analytical.owner[b - s.analyticalIdBase()]
                                        : s.triangles.owner[b - s.triangleIdBase()];
 }
 
-inline bodyID_t contactOwnerB(const SimState& s, size_t c) {
+template <class S>
+DEME_HD_INLINE bodyID_t contactOwnerB(const S& s, size_t c) {
     return geometryOwner(s, s.contacts.type[c], s.contacts.geomB[c]);
 }
 
 // Sphere-triangle geometry: closest point on the triangle, its barycentric coordinates, and the
 // contact it makes with sphere a.
-DEME_HD_INLINE ContactPoint sphereTriangleGeometry(const SimState& s, bodyID_t a, size_t tri, double3& onTri,
+template <class S>
+DEME_HD_INLINE ContactPoint sphereTriangleGeometry(const S& s, bodyID_t a, size_t tri, double3& onTri,
                                                    double3& bary) {
     const double3* v = &s.cache.triVert[3 * tri];
     const double3 x = s.cache.spherePos[a];
@@ -31,16 +34,18 @@ DEME_HD_INLINE ContactPoint sphereTriangleGeometry(const SimState& s, bodyID_t a
     return sphereTriangleContact(x, s.spheres.radius[a], onTri, nrm / length(nrm));
 }
 
-inline double3 ownerPosition(const SimState& s, bodyID_t o) {
-    const OwnerArrays& ow = s.owners;
+template <class S>
+DEME_HD_INLINE double3 ownerPosition(const S& s, bodyID_t o) {
+    const auto& ow = s.owners;
     return decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], s.frame);
 }
 
 // `type` is the contact's type; callers that pass a constant get a path without the other branches.
-DEME_HD_INLINE void gatherContactInputsOfType(const SimState& s, size_t c, uint8_t type, float time, float ts,
+template <class S>
+DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type, float time, float ts,
                                               ContactInputs& in) {
-    const OwnerArrays& ow = s.owners;
-    const KinematicCache& k = s.cache;
+    const auto& ow = s.owners;
+    const auto& k = s.cache;
     const bodyID_t a = s.contacts.geomA[c];
     const bodyID_t b = s.contacts.geomB[c];
     const bodyID_t oA = s.spheres.owner[a];
@@ -108,7 +113,8 @@ DEME_HD_INLINE void gatherContactInputsOfType(const SimState& s, size_t c, uint8
     in.BGeo = b;
 }
 
-DEME_HD_INLINE void gatherContactInputs(const SimState& s, size_t c, float time, float ts, ContactInputs& in) {
+template <class S>
+DEME_HD_INLINE void gatherContactInputs(const S& s, size_t c, float time, float ts, ContactInputs& in) {
     gatherContactInputsOfType(s, c, s.contacts.type[c], time, ts, in);
 }
 

@@ -4,12 +4,11 @@
 
 #include <array>
 
+#include "dynamics/OwnerStep.h"
 #include "runtime/FamilyRules.h"
 #include "runtime/SimState.h"
 
 namespace deme {
-
-enum class OwnerFault : uint8_t { NONE = 0, TOO_FAST, NOT_FINITE, LEFT_DOMAIN };
 
 struct IntegrationResult {
     float maxTravel = 0.f;        // largest travel since the last detection, over all owners

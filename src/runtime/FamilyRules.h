@@ -1,6 +1,8 @@
 // Per-family rules: fixed, prescribed velocities (expressions of time) and the contact mask.
 #pragma once
 
+#include "runtime/FamilyStepMotion.h"
+
 #include <array>
 #include <vector>
 
@@ -22,11 +24,6 @@ struct FamilyMotion {
 };
 
 // What the integrator needs of a family in one step: the expressions evaluated at that step.
-struct FamilyStepMotion {
-    uint8_t fixed = 0;
-    uint8_t linMask = 0, angMask = 0;  // bit i: component i prescribed
-    float3 lin = make_float3(0.f), ang = make_float3(0.f);
-};
 
 class FamilyRules {
   public:
