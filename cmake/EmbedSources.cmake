@@ -115,6 +115,7 @@ function(deme_embed_sources target)
     ${src}/runtime/FamilyStepMotion.h
     ${src}/dynamics/ContactInputsGather.h
     ${src}/dynamics/OwnerStep.h
+    ${src}/dynamics/MeshContactRule.h
     ${src}/dynamics/KinematicCache.h)
 
   # Include paths are relative to include/ or src/, the roots the library itself compiles with, so
