@@ -10,22 +10,6 @@
 
 namespace deme {
 
-namespace {
-
-// Upper bound on how fast any point of an analytical component moves, relative to points of the
-// domain: translation, the turning of its normal/axis over the domain's extent, and the swing of its
-// reference point about the owner centre.
-inline float analyticalSurfaceSpeed(const SimState& s, size_t k, double domainDiagonal) {
-    const bodyID_t o = s.analytical.owner[k];
-    const float4 q = s.owners.oriQ[o];
-    const float3 wG = rotateToGlobal(q, s.owners.angVel[o]);
-    const float3 dir = rotateToGlobal(q, s.analytical.relDir[k]);
-    const float3 arm = rotateToGlobal(q, s.analytical.relPos[k]);
-    return length(s.owners.vel[o]) + length(cross(wG, dir)) * (float)domainDiagonal + length(cross(wG, arm));
-}
-
-}  // namespace
-
 void reduceContactForces(SimState& s) {
     OwnerArrays& ow = s.owners;
     const ContactArrays& c = s.contacts;

@@ -1,17 +1,12 @@
 #include "dynamics/KinematicCache.h"
 
 #include "backend/cpu/Parallel.h"
+#include "dynamics/OwnerStep.h"
 
 namespace deme {
 
 void updateAnalyticalCache(SimState& s) {
-    KinematicCache& k = s.cache;
-    for (size_t c = 0; c < s.analytical.size(); c++) {
-        const bodyID_t o = s.analytical.owner[c];
-        const float4 q = s.owners.oriQ[o];
-        k.analPos[c] = localPointToGlobal(k.ownerPos[o], q, s.analytical.relPos[c]);
-        k.analDir[c] = to_double3(rotateToGlobal(q, s.analytical.relDir[c]));
-    }
+    for (size_t c = 0; c < s.analytical.size(); c++) placeAnalytical(s, c);
 }
 
 void refreshKinematicCache(SimState& s) {

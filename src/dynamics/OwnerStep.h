@@ -170,4 +170,26 @@ DEME_HD_INLINE void placeTriangle(S& s, size_t t) {
     k.triVert[3 * t + 2] = localPointToGlobal(k.ownerPos[o], q, s.triangles.v2[t]);
 }
 
+// Upper bound on how fast any point of an analytical component moves, relative to points of the
+// domain: translation, the turning of its normal/axis over the domain's extent, and the swing of its
+// reference point about the owner centre.
+template <class S>
+DEME_HD_INLINE float analyticalSurfaceSpeed(const S& s, size_t k, double domainDiagonal) {
+    const bodyID_t o = s.analytical.owner[k];
+    const float4 q = s.owners.oriQ[o];
+    const float3 wG = rotateToGlobal(q, s.owners.angVel[o]);
+    const float3 dir = rotateToGlobal(q, s.analytical.relDir[k]);
+    const float3 arm = rotateToGlobal(q, s.analytical.relPos[k]);
+    return length(s.owners.vel[o]) + length(cross(wG, dir)) * (float)domainDiagonal + length(cross(wG, arm));
+}
+
+// Analytical component k's cached reference point and normal/axis from its owner's pose.
+template <class S>
+DEME_HD_INLINE void placeAnalytical(S& s, size_t k) {
+    const bodyID_t o = s.analytical.owner[k];
+    const float4 q = s.owners.oriQ[o];
+    s.cache.analPos[k] = localPointToGlobal(s.cache.ownerPos[o], q, s.analytical.relPos[k]);
+    s.cache.analDir[k] = to_double3(rotateToGlobal(q, s.analytical.relDir[k]));
+}
+
 }  // namespace deme
