@@ -25,6 +25,10 @@ class Simulation;
 class DEMSolver {
   public:
     DEMSolver();
+    // The paper's forms: run on the first nGPUs GPUs, or on the GPUs with these ids (the backend is
+    // still chosen as SetBackend says; with no usable GPU, "auto" runs on the CPU and says so).
+    explicit DEMSolver(unsigned int nGPUs);
+    explicit DEMSolver(const std::vector<int>& deviceIds);
     ~DEMSolver();
     DEMSolver(const DEMSolver&) = delete;
     DEMSolver& operator=(const DEMSolver&) = delete;
@@ -130,6 +134,11 @@ class DEMSolver {
     void SetForceCalcThreadsPerBlock(unsigned int n);
     // CPU threads for the parallel loops (default: OpenMP's default).
     void SetCPUThreads(unsigned int n);
+    // "cpu", "cuda" or "auto" (default: $DEME_BACKEND, else "auto": CUDA where a usable GPU and
+    // driver are present, else the CPU, said at INFO verbosity). See docs/cuda-backend.md.
+    void SetBackend(const std::string& backend);
+    // The backend in effect after Initialize: "cpu" or "cuda".
+    std::string GetBackend() const;
 
     void Initialize();
     void DoDynamics(double duration);
@@ -152,6 +161,9 @@ class DEMSolver {
     void WriteClumpFile(const std::string& path) const;
     void WriteContactFile(const std::string& path) const;
     void ShowTimingStats() const;
+    // Bytes of GPU memory the engine holds now (0 on the CPU backend), and a report of it.
+    size_t GetDeviceMemUsage() const;
+    void ShowMemStats() const;
     // How the kinematics and dynamics sides worked together: waits, contact-set updates, n_max,
     // false-positive share of the contact set.
     void ShowThreadCollaborationStats() const;

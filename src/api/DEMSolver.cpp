@@ -14,12 +14,24 @@
 #include "io/ClumpCsvReader.h"
 #include "io/ObjReader.h"
 #include "io/OutputWriters.h"
+#include "backend/cuda/DeviceBuffer.h"
+#include "runtime/BackendSelection.h"
 #include "runtime/Simulation.h"
 #include "runtime/StatsReport.h"
 
 namespace deme {
 
 DEMSolver::DEMSolver() : m_scene(new Scene()), m_sim(new Simulation()) {}
+DEMSolver::DEMSolver(unsigned int nGPUs) : DEMSolver() {
+    if (nGPUs == 0) throwError("DEMSolver", "the number of GPUs must be at least 1");
+    for (unsigned int i = 0; i < nGPUs; i++) m_sim->settings.deviceIds.push_back((int)i);
+}
+DEMSolver::DEMSolver(const std::vector<int>& deviceIds) : DEMSolver() {
+    if (deviceIds.empty()) throwError("DEMSolver", "the list of GPU ids is empty");
+    for (int id : deviceIds)
+        if (id < 0) throwError("DEMSolver", "GPU id " + std::to_string(id) + " is negative");
+    m_sim->settings.deviceIds = deviceIds;
+}
 DEMSolver::~DEMSolver() = default;
 
 void DEMSolver::requireNotInitialized(const char* call) const {
@@ -129,7 +141,7 @@ void DEMSolver::DisableAdaptiveUpdateFreq() {
     m_sim->settings.adaptiveUpdateFreq = false;
 }
 unsigned int DEMSolver::GetUpdateFreq() const {
-    return m_sim->initialized() ? m_sim->contactSets().nMax() : m_sim->settings.updateFreq;
+    return m_sim->initialized() ? m_sim->updateFreq() : m_sim->settings.updateFreq;
 }
 void DEMSolver::SetSynchronousContactDetection(bool sync) {
     m_sim->settings.detectionMode = sync ? Settings::DetectionMode::SYNC : Settings::DetectionMode::ASYNC;
@@ -245,6 +257,29 @@ void DEMSolver::WriteContactFile(const std::string& path) const {
 }
 
 void DEMSolver::ShowTimingStats() const { std::cout << timingReport(*m_sim) << std::endl; }
+
+void DEMSolver::SetBackend(const std::string& backend) {
+    requireNotInitialized("SetBackend");
+    parseBackendRequest("SetBackend", backend);  // validates
+    m_sim->settings.backend = backend;
+}
+
+std::string DEMSolver::GetBackend() const {
+    requireInitialized("GetBackend");
+    return m_sim->settings.onGpu ? "cuda" : "cpu";
+}
+
+size_t DEMSolver::GetDeviceMemUsage() const { return m_sim->settings.onGpu ? cuda::deviceBytesAllocated() : 0; }
+
+void DEMSolver::ShowMemStats() const {
+    std::cout << "[deme] memory: " << (m_sim->settings.onGpu ? "GPU " : "CPU backend, GPU ")
+              << (double)cuda::deviceBytesAllocated() / (1 << 20) << " MiB held now, "
+              << (double)cuda::deviceBytesAllocatedPeak() / (1 << 20) << " MiB at most";
+    if (m_sim->initialized() && m_sim->settings.onGpu && m_sim->state().spheres.size())
+        std::cout << " (" << (double)cuda::deviceBytesAllocated() / (double)m_sim->state().spheres.size()
+                  << " bytes per sphere)";
+    std::cout << std::endl;
+}
 
 void DEMSolver::ShowThreadCollaborationStats() const { std::cout << collaborationReport(*m_sim) << std::endl; }
 

@@ -69,7 +69,7 @@ void DEMSolver::EnableContactBetweenFamilies(unsigned int a, unsigned int b) {
 void DEMSolver::ChangeFamily(unsigned int from, unsigned int to) {
     const family_t f = requireFamily("ChangeFamily", from), t = requireFamily("ChangeFamily", to);
     if (m_sim->initialized()) {
-        for (auto& fam : m_sim->state().owners.family)
+        for (auto& fam : m_sim->editState().owners.family)
             if (fam == f) fam = t;
         m_sim->invalidateContacts();
         return;

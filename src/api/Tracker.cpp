@@ -50,27 +50,27 @@ void DEMTracker::SetPos(const float3& pos, size_t offset) {
 }
 void DEMTracker::SetVel(const float3& vel, size_t offset) {
     requireFinite3("DEMTracker::SetVel", "velocity", vel);
-    m_sim->state().owners.vel[internalID(offset)] = vel;
+    m_sim->editState().owners.vel[internalID(offset)] = vel;
     m_sim->invalidateContacts();
 }
 void DEMTracker::SetAngVel(const float3& w, size_t offset) {
     requireFinite3("DEMTracker::SetAngVel", "angular velocity", w);
-    m_sim->state().owners.angVel[internalID(offset)] = w;
+    m_sim->editState().owners.angVel[internalID(offset)] = w;
     m_sim->invalidateContacts();
 }
 void DEMTracker::SetOriQ(const float4& q, size_t offset) {
-    m_sim->state().owners.oriQ[internalID(offset)] = requireQuaternion("DEMTracker::SetOriQ", q);
+    m_sim->editState().owners.oriQ[internalID(offset)] = requireQuaternion("DEMTracker::SetOriQ", q);
     m_sim->invalidateContacts();
 }
 void DEMTracker::AddAcc(const float3& acc, size_t offset) {
     requireFinite3("DEMTracker::AddAcc", "acceleration", acc);
-    m_sim->state().owners.extraAcc[internalID(offset)] += acc;
-    m_sim->state().hasTrackerLoads = true;
+    m_sim->trackerLoadState().owners.extraAcc[internalID(offset)] += acc;
+    m_sim->trackerLoadState().hasTrackerLoads = true;
 }
 void DEMTracker::AddAngAcc(const float3& angAcc, size_t offset) {
     requireFinite3("DEMTracker::AddAngAcc", "angular acceleration", angAcc);
-    m_sim->state().owners.extraAngAcc[internalID(offset)] += angAcc;
-    m_sim->state().hasTrackerLoads = true;
+    m_sim->trackerLoadState().owners.extraAngAcc[internalID(offset)] += angAcc;
+    m_sim->trackerLoadState().hasTrackerLoads = true;
 }
 
 }  // namespace deme

@@ -29,6 +29,11 @@ struct Settings {
     double binSize = 0.0;               // 0: chosen at Initialize
     unsigned int threadsPerBlock = 256;
     unsigned int cpuThreads = 0;  // 0: OpenMP default
+    // Where the step loop runs: "cpu", "cuda" or "auto" (CUDA where a usable GPU is present); the
+    // DEME_BACKEND environment variable, if set, is the default. deviceIds: the GPUs to use.
+    std::string backend;
+    std::vector<int> deviceIds;
+    bool onGpu = false;  // the backend in effect
     Verbosity verbosity = Verbosity::INFO;
     // Sphere file columns beyond X,Y,Z,r.
     bool outAbsv = false, outVel = false, outAngVel = false, outFamily = false, outOwner = false, outMat = false,

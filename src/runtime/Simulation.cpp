@@ -15,6 +15,11 @@
 #include "dynamics/KinematicCache.h"
 #include "dynamics/MeshContacts.h"
 #include "kinematics/HistoryMapping.h"
+#include "runtime/BackendSelection.h"
+#ifdef DEME_HAS_CUDA
+#include "backend/cuda/DeviceSimulation.h"
+#include "backend/cuda/kernels/KernelArgs.h"
+#endif
 
 namespace deme {
 
@@ -27,12 +32,16 @@ void Simulation::log(Verbosity level, const std::string& msg) const {
        << msg << std::endl;
 }
 
+Simulation::Simulation() = default;
+Simulation::~Simulation() = default;
+
 void Simulation::start(SimState&& state) {
     m_state = std::move(state);
     refreshKinematicCache(m_state);
     m_grid = makeBinGrid(m_state, settings.binSize);
     applyDetectionMode();
     m_contacts.start(m_state, settings, m_grid);
+    startDevice();
     m_initialized = true;
     log(Verbosity::INFO, "initialized: " + std::to_string(m_state.numClumps) + " clumps, " +
                              std::to_string(m_state.spheres.size()) + " spheres, " +
@@ -56,7 +65,85 @@ void Simulation::applyDetectionMode() {
         setCpuThreadCount(std::max(1, cores - settings.kinematicsThreads));
 }
 
+void Simulation::startDevice() {
+    const BackendRequest request = settings.backend.empty() ? backendRequestFromEnvironment()
+                                                            : parseBackendRequest("Initialize", settings.backend);
+    const BackendChoice choice =
+        resolveBackend("Initialize", request, [this](Verbosity v, const std::string& msg) { log(v, msg); });
+    settings.onGpu = choice.kind == BackendKind::Cuda;
+    if (!settings.onGpu) return;
+#ifdef DEME_HAS_CUDA
+    const int device = settings.deviceIds.empty() ? choice.deviceId : settings.deviceIds.front();
+    const auto t0 = std::chrono::steady_clock::now();
+    m_device.reset(new cuda::DeviceSimulation(device, settings));
+    log(Verbosity::INFO, "GPU kernels for " + m_device->deviceName() + (m_device->kernelsFromCache() ? " loaded from the cache" : " compiled") +
+                             " in " + std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) + " s");
+    m_deviceStale = true;
+#endif
+}
+
+const SimState& Simulation::state() const {
+#ifdef DEME_HAS_CUDA
+    if (m_hostStale && m_device) {
+        m_device->download(m_state);
+        m_hostStale = false;
+    }
+#endif
+    return m_state;
+}
+
+SimState& Simulation::editState() {
+    state();
+    m_deviceStale = true;
+    return m_state;
+}
+
+void Simulation::advanceOnDevice(unsigned long long n) {
+#ifdef DEME_HAS_CUDA
+    CollaborationStats& collab = m_contacts.stats();
+    const auto t0 = std::chrono::steady_clock::now();
+    if (m_deviceStale) {
+        m_device->upload(m_state, m_grid, settings, families);
+        m_deviceStale = false;
+    }
+    const bool loads = m_state.hasTrackerLoads;
+    if (loads) m_device->uploadTrackerLoads(m_state);
+    cuda::DeviceStepTotals totals;
+    const cuda::DeviceFault fault =
+        m_device->advance(n, settings, families, m_time, m_step, m_timing, collab, totals);
+    m_hostStale = true;
+    m_realContacts = totals.realContacts;
+    m_realSphereSphere = totals.realSphereSphere;
+    m_lastMaxSpeed = totals.maxSpeed;
+    collab.dynamicsSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (loads) {
+        clearTrackerLoads();
+        m_device->uploadTrackerLoads(m_state);
+    }
+    if (fault.kernelError) {
+        state();
+        throwError("DoDynamics", "simulation stopped at t = " + std::to_string(m_time) + " s: sphere " +
+                                     std::to_string(m_state.sphereInternalToUser[fault.kernelErrorItem]) +
+                                     " touches more triangles than the GPU's mesh contact rule can sort (" +
+                                     std::to_string(MAX_MESH_CANDIDATES) + ")");
+    }
+    if (fault.any) {
+        state();
+        IntegrationResult ir;
+        ir.fault = faultFromFlags(fault.flags);
+        ir.faultOwner = fault.owner;
+        reportFault(ir);
+    }
+#else
+    (void)n;
+#endif
+}
+
 void Simulation::advance(unsigned long long n) {
+    if (m_device) {
+        advanceOnDevice(n);
+        return;
+    }
     CollaborationStats& collab = m_contacts.stats();
     const auto t0 = std::chrono::steady_clock::now();
     for (unsigned long long k = 0; k < n; k++) {
@@ -124,14 +211,28 @@ void Simulation::clearTrackerLoads() {
 }
 
 void Simulation::invalidateContacts() {
-    if (m_initialized) refreshKinematicCache(m_state);
+    if (m_initialized) refreshKinematicCache(editState());
     m_contacts.invalidate();
 }
 
-double3 Simulation::ownerPos(size_t owner) const { return ownerPosition(m_state, (bodyID_t)owner); }
+double Simulation::currentMargin() const {
+#ifdef DEME_HAS_CUDA
+    if (m_device) return m_device->margin();
+#endif
+    return m_contacts.margin();
+}
+
+unsigned int Simulation::updateFreq() const {
+#ifdef DEME_HAS_CUDA
+    if (m_device) return m_device->nMax();
+#endif
+    return m_contacts.nMax();
+}
+
+double3 Simulation::ownerPos(size_t owner) const { return ownerPosition(state(), (bodyID_t)owner); }
 
 void Simulation::setOwnerPos(size_t owner, const double3& p, const char* call) {
-    OwnerArrays& ow = m_state.owners;
+    OwnerArrays& ow = editState().owners;
     if (!encodePosition(p, m_state.frame, ow.voxel[owner], ow.subX[owner], ow.subY[owner], ow.subZ[owner]))
         throwError(call, "position (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
                              ") is outside the simulation domain");

@@ -15,8 +15,14 @@
 
 namespace deme {
 
+namespace cuda {
+class DeviceSimulation;
+}
+
 class Simulation {
   public:
+    Simulation();
+    ~Simulation();
     Settings settings;
     FamilyRules families;
 
@@ -27,12 +33,23 @@ class Simulation {
     void advance(unsigned long long n);
 
     double time() const { return m_time; }
-    SimState& state() { return m_state; }
-    const SimState& state() const { return m_state; }
+    // The state for reading; on the GPU backend it is brought back from the device first if the
+    // device has moved on.
+    const SimState& state() const;
+    // The state for editing (tracker setters, family changes): the device copy is replaced by it
+    // before the next step.
+    SimState& editState();
+    // The state for adding tracker loads (AddAcc): they go to the device with the next call by
+    // themselves, without replacing its state.
+    SimState& trackerLoadState() {
+        state();
+        return m_state;
+    }
     const TimingStats& timing() const { return m_timing; }
     size_t numRealContacts() const { return m_realContacts; }
     size_t numSphereSphereContacts() const { return m_realSphereSphere; }
-    double currentMargin() const { return m_contacts.margin(); }
+    double currentMargin() const;
+    unsigned int updateFreq() const;  // the n_max in use
     const ContactSetManager& contactSets() const { return m_contacts; }
     // Resolves settings.detectionMode into settings.asyncDetection and sizes the dynamics thread
     // team accordingly.
@@ -55,9 +72,16 @@ class Simulation {
 
   private:
     void clearTrackerLoads();
+    void startDevice();
+    void advanceOnDevice(unsigned long long n);
     [[noreturn]] void reportFault(const IntegrationResult& ir) const;
 
-    SimState m_state;
+    mutable SimState m_state;
+    // GPU backend: the device step loop; whether the device's copy is behind the host's (needs an
+    // upload) or the host's behind the device's (needs a download).
+    std::unique_ptr<cuda::DeviceSimulation> m_device;
+    bool m_deviceStale = true;
+    mutable bool m_hostStale = false;
     TimingStats m_timing;
     BinGrid m_grid;
     std::array<FamilyStepMotion, NUM_FAMILIES> m_stepMotion;

@@ -34,12 +34,13 @@ std::string collaborationReport(const Simulation& sim) {
     const double steps = (double)std::max<unsigned long long>(c.steps, 1);
     const double received = (double)(c.ordersSent > 0 ? c.ordersSent : 1);
     os << "Kinematics/dynamics collaboration over " << c.steps << " steps ("
-       << (sim.settings.asyncDetection ? "asynchronous" : "synchronous") << " detection):\n"
+       << (sim.settings.onGpu ? "on the GPU, synchronous" : sim.settings.asyncDetection ? "asynchronous" : "synchronous")
+       << " detection):\n"
        << "  contact-set updates " << c.acsUpdates << " (" << c.syncDetections << " detected on the dynamics thread, "
        << c.ordersSent << " ordered from the kinematics thread, " << c.discardedResults << " discarded as stale)\n"
        << "  average steps per update " << (c.acsUpdates ? steps / (double)c.acsUpdates : 0.0) << ", n_max now "
-       << m.nMax() << (m.frequency().adaptive() ? " (adaptive)" : " (fixed)") << ", margin " << std::scientific
-       << m.margin() << std::fixed << " m\n"
+       << sim.updateFreq() << (m.frequency().adaptive() ? " (adaptive)" : " (fixed)") << ", margin "
+       << std::scientific << sim.currentMargin() << std::fixed << " m\n"
        << "  dynamics waited " << c.dynamicsWaits << " times, " << c.dynamicsWaitSeconds
        << " s = " << std::setprecision(2)
        << (c.dynamicsSeconds > 0 ? 100.0 * c.dynamicsWaitSeconds / c.dynamicsSeconds : 0.0) << " % of the step loop\n"

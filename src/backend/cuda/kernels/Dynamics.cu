@@ -26,6 +26,22 @@ __device__ inline void raiseError(StepReduction* red, unsigned int flag, unsigne
 
 }  // namespace
 
+extern "C" __global__ void deme_reset_reduction(StepReduction* red) {
+    if (globalIndex() != 0) return;
+    red->maxTravelBits = 0ull;
+    red->maxSpeedBits = 0u;
+    red->firstFault = 0xFFFFFFFFu;
+    red->anyLargeRotation = 0u;
+    red->errorFlags = 0u;
+    red->errorItem = 0u;
+    red->realContacts = red->realSphereSphere = 0ull;
+}
+
+extern "C" __global__ void deme_copy_doubles(double* dst, const double* src, unsigned int n) {
+    const size_t i = globalIndex();
+    if (i < n) dst[i] = src[i];
+}
+
 extern "C" __global__ void deme_clear_owner_loads(StateView s) {
     const size_t o = globalIndex();
     if (o >= s.numOwners) return;

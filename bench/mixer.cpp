@@ -1,0 +1,95 @@
+// MIXER-BENCH (../shared/bench/README.md): the paper's mixer scaling test at a fixed size.
+//   mixer <internal_mixer.obj> <r> [spheres|clumps] [warm steps] [timed steps]
+// Prints one JSON line: sphere-steps/s over the timed steps, contacts per sphere, n_max, dynamics
+// wait share, device bytes per sphere, and how long Initialize() took (run twice for cold and warm:
+// the second run finds the kernels in the cache).
+#include <deme/deme.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "BenchUtil.h"
+
+using namespace deme;
+
+int main(int argc, char** argv) {
+    if (argc < 3) {
+        std::fprintf(stderr, "usage: %s <internal_mixer.obj> <r> [spheres|clumps] [warm] [steps]\n", argv[0]);
+        return 2;
+    }
+    const std::string obj = argv[1];
+    const double r = std::atof(argv[2]);
+    const bool clumps = argc > 3 && std::string(argv[3]) == "clumps";
+    const unsigned long warm = argc > 4 ? std::strtoul(argv[4], nullptr, 10) : 2000;
+    const unsigned long steps = argc > 5 ? std::strtoul(argv[5], nullptr, 10) : 2000;
+    const double dt = 5e-7, density = 2600.0;
+
+    DEMSolver sim;
+    sim.SetVerbosity("WARNING");
+    auto mat = sim.LoadMaterial({{"E", 1e9}, {"nu", 0.3}, {"CoR", 0.2}, {"mu", 0.5}, {"Crr", 0.0}});
+    sim.InstructBoxDomainDimension(1, 1, 1);
+    sim.InstructBoxDomainBoundingBC("all", mat);
+    auto drum = sim.AddExternalObject();
+    drum->AddCylinder(make_float3(0), make_float3(0, 0, 1), 0.5f, mat, 0);
+
+    // The mixer: scaled by (0.5, 0.5, 1/3), centred at z = -0.5 + 1/6, turning at 2 pi rad/s. Its arms
+    // reach past the cylinder and the box: meshes are not bounded by the domain.
+    auto mixer = sim.AddWavefrontMeshObject(obj, mat);
+    mixer->Scale(make_float3(0.5f, 0.5f, 1.f / 3.f));
+    mixer->SetFamily(10);
+    mixer->SetInitPos(make_float3(0, 0, -0.5f + 1.f / 6.f));
+    sim.SetFamilyPrescribedAngVel(10, "0", "0", "2*pi");
+
+    std::shared_ptr<DEMClumpTemplate> grain;
+    float spacing;
+    if (clumps) {
+        const double r3 = r * r * r, r5 = r3 * r * r;
+        grain = sim.LoadClumpType((float)(density * 5.5886717 * r3),
+                                  make_float3(2.928f, 2.6029f, 3.9908f) * (float)(density * r5),
+                                  std::vector<float>(3, 0.8f * (float)r),
+                                  {make_float3(0.5f, 0.341729f, 0.f) * (float)r, make_float3(0.f, -0.658271f, 0.f) * (float)r,
+                                   make_float3(-0.5f, 0.341729f, 0.f) * (float)r},
+                                  mat);
+        spacing = 3.f * (float)r;
+    } else {
+        grain = sim.LoadSphereType((float)(density * 4.0 / 3.0 * PI * r * r * r), (float)r, mat);
+        spacing = 2.002f * (float)r;
+    }
+    HCPSampler sampler(spacing);
+    const auto xyz = sampler.SampleCylinderZ(make_float3(0, 0, -0.5f + 1.f / 3.f + 1.f / 6.f), 0.5f - 2.f * (float)r,
+                                             1.f / 6.f);
+    sim.AddClumps(grain, xyz);
+    sim.SetInitTimeStep(dt);
+    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    sim.SetCDUpdateFreq(20);
+    sim.SetMaxVelocity(5.f);  // the blade tips move at about 4.7 m/s
+
+    const double t0 = deme_bench::seconds();
+    sim.Initialize();
+    const double initSeconds = deme_bench::seconds() - t0;
+    for (unsigned long k = 0; k < warm; k++) sim.DoStepDynamics();
+    const double t1 = deme_bench::seconds();
+    sim.DoDynamics((double)steps * dt);
+    const double wall = deme_bench::seconds() - t1;
+    const double spheres = (double)sim.GetNumSpheres();
+
+    deme_bench::JsonLine j;
+    j.add("case", "MIXER-BENCH")
+        .add("size_r", r)
+        .add("grains", clumps ? "3-sphere clumps" : "spheres")
+        .add("backend", sim.GetBackend())
+        .add("clumps", (double)sim.GetNumClumps())
+        .add("spheres", spheres)
+        .add("contacts_per_sphere", sim.GetAvgSphContacts())
+        .add("steps", (double)steps)
+        .add("wall_s", wall)
+        .add("sphere_steps_per_s", spheres * (double)steps / wall)
+        .add("update_freq", (double)sim.GetUpdateFreq())
+        .add("device_bytes_per_sphere", (double)sim.GetDeviceMemUsage() / spheres)
+        .add("peak_host_mem_mib", deme_bench::peakMemoryMiB())
+        .add("initialize_s", initSeconds);
+    std::printf("%s\n", j.str().c_str());
+    return 0;
+}

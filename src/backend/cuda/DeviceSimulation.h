@@ -1,0 +1,68 @@
+// The step loop on one GPU: the state lives in device memory while DoDynamics runs; contact
+// detection, history mapping, the force pass and integration all run as kernels compiled at run time
+// by NVRTC from the same per-item code the CPU sweeps use (see docs/cuda-backend.md).
+//
+// The host SimState stays the record between calls: upload() copies it to the device after
+// Initialize and after host-side edits, download() copies the evolved state back when the host needs
+// it. Detection here is synchronous with the step loop (every n_max steps, or sooner if an owner
+// travelled its margin), with the CPU's adaptive n_max.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "kinematics/ContactDetection.h"
+#include "runtime/CollaborationStats.h"
+#include "runtime/FamilyRules.h"
+#include "runtime/Settings.h"
+#include "runtime/SimState.h"
+#include "runtime/TimingStats.h"
+#include "runtime/UpdateFrequency.h"
+
+namespace deme::cuda {
+
+// What a device step loop found wrong (the host turns it into deme::Error).
+struct DeviceFault {
+    bool any = false;
+    unsigned int owner = 0;  // internal id
+    uint8_t flags = 0;       // OwnerStepFlag bits
+    unsigned int kernelError = 0, kernelErrorItem = 0;
+};
+
+struct DeviceStepTotals {
+    size_t realContacts = 0, realSphereSphere = 0;
+    float maxSpeed = 0.f;
+};
+
+class DeviceSimulation {
+  public:
+    // Compiles (or loads from the cache) the kernels for GPU `device`.
+    DeviceSimulation(int device, const Settings& settings);
+    ~DeviceSimulation();
+    DeviceSimulation(const DeviceSimulation&) = delete;
+    DeviceSimulation& operator=(const DeviceSimulation&) = delete;
+
+    // Copies the whole host state (and its contact set) to the device; the next step re-detects.
+    void upload(const SimState& s, const BinGrid& grid, const Settings& settings, const FamilyRules& families);
+    // Advances n steps of settings.dt. Stops at the first step with a fault and reports it.
+    DeviceFault advance(unsigned long long n, const Settings& settings, FamilyRules& families, double& time,
+                        unsigned long long& step, TimingStats& timing, CollaborationStats& collab,
+                        DeviceStepTotals& totals);
+    // Copies the evolved state and contact set back into `s` (the layout upload() took).
+    void download(SimState& s) const;
+    // Tracker loads (AddAcc) for the coming call, or zeros.
+    void uploadTrackerLoads(const SimState& s);
+
+    unsigned int nMax() const;
+    double margin() const;
+    double kernelCompileSeconds() const;
+    bool kernelsFromCache() const;
+    size_t numContacts() const;
+    std::string deviceName() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> m;
+};
+
+}  // namespace deme::cuda
