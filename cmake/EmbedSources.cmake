@@ -104,9 +104,13 @@ function(deme_embed_sources target)
   # everything those include (the script above checks that nothing is missing).
   file(GLOB physics_headers CONFIGURE_DEPENDS ${src}/physics/*.h)
   file(GLOB physics_models CONFIGURE_DEPENDS ${src}/physics/models/*.inl)
+  # GPU kernels compiled by NVRTC at run time (embedded even without the CUDA backend, so that the
+  # embedded set, and with it the cache keys, is one per source tree).
+  file(GLOB cuda_kernels CONFIGURE_DEPENDS ${src}/backend/cuda/kernels/*.cuh ${src}/backend/cuda/kernels/*.cu)
   set(files
     ${physics_headers}
     ${physics_models}
+    ${cuda_kernels}
     ${inc}/deme/HostDevice.h
     ${inc}/deme/VectorTypes.h
     ${inc}/deme/VariableTypes.h

@@ -2,8 +2,7 @@
 // and rebuild to trade range or precision for memory.
 #pragma once
 
-#include <stdint.h>
-
+#include "HostDevice.h"  // the fixed-width integers, also under NVRTC
 #include "VectorTypes.h"
 
 namespace deme {

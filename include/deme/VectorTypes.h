@@ -1,9 +1,16 @@
 // Small POD vector types used by the public API and by the single-source physics headers.
 // No STL and no exceptions here: NVRTC compiles this file as it is.
+//
+// These are deme's own types, not CUDA's float3/float4 (which nvcc and NVRTC declare in the global
+// namespace): inside namespace deme the names below hide CUDA's, and their layout is the same in
+// host and device code (CUDA's float4 is 16-byte aligned, this one is not), so arrays built on the
+// host are read unchanged on the device. Device code outside namespace deme names them deme::float3
+// etc.; a `using namespace deme;` at global scope would make the unqualified names ambiguous there.
 #pragma once
 
 #include "HostDevice.h"
 
+// NVRTC has no <cmath>; it predefines sqrt, sqrtf and the other math functions itself.
 #if !defined(__CUDACC_RTC__)
 #include <cmath>
 #endif

@@ -1,0 +1,130 @@
+// GPU memory owned like a std::vector: plain cudaMalloc (never managed memory, which can hang a GPU
+// when oversubscribed), grown geometrically, freed with its owner. Structure-of-arrays state is sized
+// once and grows when contacts grow (ARCHITECTURE.md invariant 2), so a grown buffer keeps its
+// capacity: growing again to the same size costs nothing.
+//
+// Free of CUDA's headers (see CudaTypes.h); in a build without CUDA every allocation throws
+// deme::Error saying so. Not thread-safe: one owner (thread) per buffer.
+#pragma once
+
+#include <deme/Error.h>
+
+#include <cstddef>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "backend/cuda/CudaTypes.h"
+
+namespace deme::cuda {
+
+// Bytes of GPU memory held by all device buffers of this process now, and at most so far (what
+// GetDeviceMemUsage reports).
+size_t deviceBytesAllocated();
+size_t deviceBytesAllocatedPeak();
+
+// Untyped storage behind DeviceBuffer<T>.
+class RawDeviceBuffer {
+  public:
+    RawDeviceBuffer() = default;
+    ~RawDeviceBuffer();
+    RawDeviceBuffer(RawDeviceBuffer&& other) noexcept;
+    RawDeviceBuffer& operator=(RawDeviceBuffer&& other) noexcept;
+    RawDeviceBuffer(const RawDeviceBuffer&) = delete;
+    RawDeviceBuffer& operator=(const RawDeviceBuffer&) = delete;
+
+    void* data() const { return data_; }
+    size_t capacityBytes() const { return capacity_; }
+
+    // Makes room for at least `bytes`: when more is needed, allocates max(bytes, 1.5 x capacity) and
+    // copies the first `keepBytes` of the old contents across on `stream` (0: nothing to keep, e.g.
+    // scratch space). Never shrinks.
+    void reserve(size_t bytes, size_t keepBytes, Stream stream);
+    // Frees everything.
+    void release();
+    // Exactly `bytes` of capacity, keeping the first min(bytes, keepBytes) bytes.
+    void reallocateExactly(size_t bytes, size_t keepBytes, Stream stream);
+
+    void uploadAsync(size_t offsetBytes, const void* host, size_t bytes, Stream stream);
+    void downloadAsync(size_t offsetBytes, void* host, size_t bytes, Stream stream) const;
+    void zeroAsync(size_t offsetBytes, size_t bytes, Stream stream);
+
+  private:
+    void* data_ = nullptr;
+    size_t capacity_ = 0;
+};
+
+// Waits until everything queued on `stream` has finished; throws deme::Error if any of it failed.
+void synchronize(Stream stream);
+
+template <class T>
+class DeviceBuffer {
+    static_assert(std::is_trivially_copyable_v<T>, "device buffers hold plain data, copied by its bytes");
+
+  public:
+    DeviceBuffer() = default;
+    explicit DeviceBuffer(size_t count, Stream stream = nullptr) { resize(count, stream); }
+
+    T* data() { return static_cast<T*>(raw_.data()); }
+    const T* data() const { return static_cast<const T*>(raw_.data()); }
+    size_t size() const { return size_; }
+    size_t capacity() const { return raw_.capacityBytes() / sizeof(T); }
+    size_t bytes() const { return size_ * sizeof(T); }
+    bool empty() const { return size_ == 0; }
+
+    // Sets the size; the first min(old, new) elements keep their values, new ones are uninitialised.
+    // Growth beyond the capacity reallocates to 1.5x (or what is needed); shrinking keeps the memory.
+    void resize(size_t count, Stream stream = nullptr) {
+        raw_.reserve(count * sizeof(T), bytes(), stream);
+        size_ = count;
+    }
+    // Room for `count` elements without changing the size.
+    void reserve(size_t count, Stream stream = nullptr) { raw_.reserve(count * sizeof(T), bytes(), stream); }
+    // Gives back the memory beyond the size (the only way a buffer shrinks).
+    void shrinkToFit(Stream stream = nullptr) { raw_.reallocateExactly(bytes(), bytes(), stream); }
+    // Size 0 and no memory.
+    void release() {
+        raw_.release();
+        size_ = 0;
+    }
+
+    // Copies between host and device on `stream`; the host memory must stay valid (and, for a true
+    // overlap with other work, be pinned) until the stream reaches the copy.
+    void uploadAsync(const T* host, size_t count, Stream stream, size_t offset = 0) {
+        checkRange(offset, count);
+        raw_.uploadAsync(offset * sizeof(T), host, count * sizeof(T), stream);
+    }
+    void downloadAsync(T* host, size_t count, Stream stream, size_t offset = 0) const {
+        checkRange(offset, count);
+        raw_.downloadAsync(offset * sizeof(T), host, count * sizeof(T), stream);
+    }
+    void zeroAsync(Stream stream) { raw_.zeroAsync(0, bytes(), stream); }
+
+    // Whole-buffer copies that wait for the stream: for set-up, tests and output, not the step loop.
+    void upload(const std::vector<T>& host, Stream stream = nullptr) {
+        resize(host.size(), stream);
+        uploadAsync(host.data(), host.size(), stream);
+        synchronize(stream);
+    }
+    std::vector<T> download(Stream stream = nullptr) const {
+        std::vector<T> host(size_);
+        downloadAsync(host.data(), size_, stream);
+        synchronize(stream);
+        return host;
+    }
+
+  private:
+    void checkRange(size_t offset, size_t count) const;
+
+    RawDeviceBuffer raw_;
+    size_t size_ = 0;
+};
+
+template <class T>
+void DeviceBuffer<T>::checkRange(size_t offset, size_t count) const {
+    if (offset > size_ || count > size_ - offset)
+        throwError("DeviceBuffer", "a copy of " + std::to_string(count) + " elements at " + std::to_string(offset) +
+                                       " reaches beyond the buffer's " + std::to_string(size_));
+}
+
+}  // namespace deme::cuda

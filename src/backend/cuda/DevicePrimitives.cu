@@ -1,0 +1,109 @@
+// CUB instantiations for DevicePrimitives.h. Every new function here adds to the nvcc time of every
+// build (a radix sort is the slow one), so add only what the engine calls.
+#include "backend/cuda/DevicePrimitives.h"
+
+#include <deme/Error.h>
+
+#include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_reduce.cuh>
+#include <cub/device/device_scan.cuh>
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+#include "backend/cuda/CudaCheck.h"
+
+namespace deme::cuda {
+
+namespace {
+
+// CUB counts items in 32 bits here: one instantiation per operation, and the engine's arrays
+// (contacts, geometries) stay below 2^32 entries.
+uint32_t itemCount(const char* call, size_t n) {
+    if (n > std::numeric_limits<uint32_t>::max())
+        throwError(call, std::to_string(n) + " items is more than the 2^32 - 1 the device primitives handle");
+    return (uint32_t)n;
+}
+
+// CUB's two-phase protocol: ask for the scratch size (null scratch), grow the kept scratch, run.
+template <class Run>
+void withScratch(RawDeviceBuffer& scratch, const char* call, Stream stream, Run run) {
+    size_t bytes = 0;
+    DEME_CUDA_CHECK(call, run(nullptr, bytes));
+    scratch.reserve(std::max<size_t>(bytes, 1), 0, stream);  // a null scratch would mean "ask" again
+    DEME_CUDA_CHECK(call, run(scratch.data(), bytes));
+}
+
+cudaStream_t toCuda(Stream s) { return static_cast<cudaStream_t>(s); }
+
+template <class Key>
+void sortPairsImpl(RawDeviceBuffer& scratch, const Key* keysIn, Key* keysOut, const uint32_t* valuesIn,
+                   uint32_t* valuesOut, size_t n, Stream stream, int beginBit, int endBit) {
+    const char* call = "DevicePrimitives::sortPairs";
+    const uint32_t count = itemCount(call, n);
+    if (count == 0) return;
+    if (beginBit < 0 || endBit > (int)(8 * sizeof(Key)) || beginBit >= endBit)
+        throwError(call, "bit range [" + std::to_string(beginBit) + ", " + std::to_string(endBit) +
+                             ") does not fit a " + std::to_string(8 * sizeof(Key)) + "-bit key");
+    withScratch(scratch, call, stream, [&](void* temp, size_t& bytes) {
+        return cub::DeviceRadixSort::SortPairs(temp, bytes, keysIn, keysOut, valuesIn, valuesOut, count, beginBit,
+                                               endBit, toCuda(stream));
+    });
+}
+
+template <class T>
+void exclusiveSumImpl(RawDeviceBuffer& scratch, const T* in, T* out, size_t n, Stream stream) {
+    const char* call = "DevicePrimitives::exclusiveSum";
+    const uint32_t count = itemCount(call, n);
+    if (count == 0) return;
+    withScratch(scratch, call, stream, [&](void* temp, size_t& bytes) {
+        return cub::DeviceScan::ExclusiveSum(temp, bytes, in, out, count, toCuda(stream));
+    });
+}
+
+}  // namespace
+
+void DevicePrimitives::sortPairs(const uint64_t* keysIn, uint64_t* keysOut, const uint32_t* valuesIn,
+                                 uint32_t* valuesOut, size_t n, Stream stream, int beginBit, int endBit) {
+    sortPairsImpl(scratch_, keysIn, keysOut, valuesIn, valuesOut, n, stream, beginBit, endBit);
+}
+
+void DevicePrimitives::sortPairs(const uint32_t* keysIn, uint32_t* keysOut, const uint32_t* valuesIn,
+                                 uint32_t* valuesOut, size_t n, Stream stream, int beginBit, int endBit) {
+    sortPairsImpl(scratch_, keysIn, keysOut, valuesIn, valuesOut, n, stream, beginBit, endBit);
+}
+
+void DevicePrimitives::exclusiveSum(const uint32_t* in, uint32_t* out, size_t n, Stream stream) {
+    exclusiveSumImpl(scratch_, in, out, n, stream);
+}
+
+void DevicePrimitives::exclusiveSum(const uint64_t* in, uint64_t* out, size_t n, Stream stream) {
+    exclusiveSumImpl(scratch_, in, out, n, stream);
+}
+
+void DevicePrimitives::reduceMax(const float* in, float* out, size_t n, Stream stream) {
+    const char* call = "DevicePrimitives::reduceMax";
+    const uint32_t count = itemCount(call, n);
+    withScratch(scratch_, call, stream, [&](void* temp, size_t& bytes) {
+        return cub::DeviceReduce::Max(temp, bytes, in, out, count, toCuda(stream));
+    });
+}
+
+void DevicePrimitives::reduceMax(const double* in, double* out, size_t n, Stream stream) {
+    const char* call = "DevicePrimitives::reduceMax";
+    const uint32_t count = itemCount(call, n);
+    withScratch(scratch_, call, stream, [&](void* temp, size_t& bytes) {
+        return cub::DeviceReduce::Max(temp, bytes, in, out, count, toCuda(stream));
+    });
+}
+
+void DevicePrimitives::reduceMin(const uint32_t* in, uint32_t* out, size_t n, Stream stream) {
+    const char* call = "DevicePrimitives::reduceMin";
+    const uint32_t count = itemCount(call, n);
+    withScratch(scratch_, call, stream, [&](void* temp, size_t& bytes) {
+        return cub::DeviceReduce::Min(temp, bytes, in, out, count, toCuda(stream));
+    });
+}
+
+}  // namespace deme::cuda

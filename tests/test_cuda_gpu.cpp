@@ -1,0 +1,271 @@
+// Tests of the CUDA backend that need a GPU: device buffers, the CUB primitives and launching an
+// NVRTC-compiled kernel. Each is skipped where usableDevices() is empty (CI: no GPU, no driver), and
+// runs on a GPU machine.
+#include <gtest/gtest.h>
+
+#include <deme/Error.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "ScratchDirTest.h"
+#include "backend/cuda/CudaModule.h"
+#include "backend/cuda/Device.h"
+#include "backend/cuda/DeviceBuffer.h"
+#include "backend/cuda/DevicePrimitives.h"
+#include "backend/cuda/NvrtcCompiler.h"
+#include "jit/EmbeddedSources.h"
+#include "physics/ContactGeometry.h"
+#include "physics/Quaternion.h"
+
+using namespace deme;
+using namespace deme::cuda;
+
+#define SKIP_WITHOUT_GPU()                                                                        \
+    do {                                                                                          \
+        if (usableDevices().empty()) GTEST_SKIP() << "no usable GPU: " << queryDevices().whyNone; \
+    } while (0)
+
+// ---- DeviceBuffer
+
+TEST(CudaDeviceBuffer, UploadsAndDownloads) {
+    SKIP_WITHOUT_GPU();
+    std::vector<int> host(1000);
+    std::iota(host.begin(), host.end(), -500);
+    DeviceBuffer<int> buf;
+    buf.upload(host);
+    EXPECT_EQ(buf.size(), host.size());
+    EXPECT_EQ(buf.download(), host);
+    // Part of it, at an offset.
+    std::vector<int> part(10, 0);
+    buf.downloadAsync(part.data(), 10, nullptr, 990);
+    synchronize(nullptr);
+    EXPECT_EQ(part, std::vector<int>(host.end() - 10, host.end()));
+    EXPECT_THROW(buf.downloadAsync(part.data(), 10, nullptr, 995), deme::Error);
+    buf.zeroAsync(nullptr);
+    EXPECT_EQ(buf.download(), std::vector<int>(1000, 0));
+}
+
+TEST(CudaDeviceBuffer, GrowsGeometricallyKeepsContentsAndNeverShrinksUnlessAsked) {
+    SKIP_WITHOUT_GPU();
+    DeviceBuffer<uint32_t> buf;
+    std::vector<uint32_t> host(100);
+    std::iota(host.begin(), host.end(), 7u);
+    buf.upload(host);
+    const size_t capacity100 = buf.capacity();
+    EXPECT_GE(capacity100, 100u);
+
+    buf.resize(101);  // just past the capacity: grows by half, not by one
+    EXPECT_GE(buf.capacity(), capacity100 + capacity100 / 2);
+    std::vector<uint32_t> grown = buf.download();
+    EXPECT_TRUE(std::equal(host.begin(), host.end(), grown.begin()));
+
+    const size_t big = buf.capacity();
+    buf.resize(10);
+    EXPECT_EQ(buf.size(), 10u);
+    EXPECT_EQ(buf.capacity(), big);  // shrinking keeps the memory
+    buf.resize(100);
+    EXPECT_EQ(buf.capacity(), big);  // and growing back within it costs nothing
+    buf.resize(10);
+    buf.shrinkToFit();
+    EXPECT_EQ(buf.capacity(), 10u);
+    EXPECT_EQ(buf.download(), std::vector<uint32_t>(host.begin(), host.begin() + 10));
+}
+
+TEST(CudaDeviceBuffer, CountsTheBytesItHolds) {
+    SKIP_WITHOUT_GPU();
+    const size_t before = deviceBytesAllocated();
+    {
+        DeviceBuffer<double> a(1000);
+        EXPECT_EQ(deviceBytesAllocated(), before + a.capacity() * sizeof(double));
+        DeviceBuffer<double> b = std::move(a);  // moving hands the memory over, no new allocation
+        EXPECT_EQ(deviceBytesAllocated(), before + b.capacity() * sizeof(double));
+        EXPECT_EQ(a.capacity(), 0u);
+        EXPECT_GE(deviceBytesAllocatedPeak(), deviceBytesAllocated());
+    }
+    EXPECT_EQ(deviceBytesAllocated(), before);
+}
+
+TEST(CudaDeviceBuffer, OutOfMemoryIsAnError) {
+    SKIP_WITHOUT_GPU();
+    const size_t tooMuch = usableDevices().front().totalMemoryBytes * 4;
+    const size_t before = deviceBytesAllocated();
+    try {
+        DeviceBuffer<char> huge(tooMuch);
+        ADD_FAILURE() << "allocated " << tooMuch << " bytes";
+    } catch (const deme::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("out of GPU memory"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(deviceBytesAllocated(), before);
+    DeviceBuffer<char> fine(16);  // the failure left the runtime usable
+    EXPECT_EQ(fine.size(), 16u);
+}
+
+// ---- DevicePrimitives, each against the obvious host computation
+
+namespace {
+
+template <class T>
+std::vector<T> randomValues(size_t n, uint64_t seed, T hi = std::numeric_limits<T>::max()) {
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<T> dist(0, hi);
+    std::vector<T> v(n);
+    for (T& x : v) x = dist(rng);
+    return v;
+}
+
+template <class Key>
+void checkSortPairs(size_t n, Key keyMax, int endBit) {
+    const std::vector<Key> keys = randomValues<Key>(n, 1, keyMax);  // many equal keys: checks stability
+    std::vector<uint32_t> values(n);
+    std::iota(values.begin(), values.end(), 0u);
+    DeviceBuffer<Key> keysIn, keysOut(n);
+    DeviceBuffer<uint32_t> valuesIn, valuesOut(n);
+    keysIn.upload(keys);
+    valuesIn.upload(values);
+    DevicePrimitives prim;
+    prim.sortPairs(keysIn.data(), keysOut.data(), valuesIn.data(), valuesOut.data(), n, nullptr, 0, endBit);
+
+    std::vector<uint32_t> order(n);
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
+    std::vector<Key> sortedKeys(n);
+    for (size_t i = 0; i < n; i++) sortedKeys[i] = keys[order[i]];
+    EXPECT_EQ(keysOut.download(), sortedKeys);
+    EXPECT_EQ(valuesOut.download(), order);
+}
+
+}  // namespace
+
+TEST(CudaPrimitives, SortsPairsWith64BitKeys) {
+    SKIP_WITHOUT_GPU();
+    checkSortPairs<uint64_t>(100000, (uint64_t(1) << 63) - 1, 63);
+    checkSortPairs<uint64_t>(5000, 1000, 64);
+}
+
+TEST(CudaPrimitives, SortsPairsWith32BitKeys) {
+    SKIP_WITHOUT_GPU();
+    checkSortPairs<uint32_t>(100000, 0xffffffffu, 32);
+    checkSortPairs<uint32_t>(3, 2, 32);
+    DevicePrimitives prim;
+    EXPECT_NO_THROW(prim.sortPairs((uint32_t*)nullptr, nullptr, nullptr, nullptr, 0, nullptr));  // nothing to do
+    DeviceBuffer<uint32_t> k(4), v(4);
+    EXPECT_THROW(prim.sortPairs(k.data(), k.data(), v.data(), v.data(), 4, nullptr, 0, 33), deme::Error);
+}
+
+TEST(CudaPrimitives, ExclusiveSums) {
+    SKIP_WITHOUT_GPU();
+    DevicePrimitives prim;
+    const std::vector<uint32_t> in32 = randomValues<uint32_t>(123457, 2, 50);
+    std::vector<uint32_t> expected32(in32.size());
+    std::exclusive_scan(in32.begin(), in32.end(), expected32.begin(), 0u);
+    DeviceBuffer<uint32_t> a, b(in32.size());
+    a.upload(in32);
+    prim.exclusiveSum(a.data(), b.data(), in32.size(), nullptr);
+    EXPECT_EQ(b.download(), expected32);
+    prim.exclusiveSum(a.data(), a.data(), in32.size(), nullptr);  // in place
+    EXPECT_EQ(a.download(), expected32);
+
+    const std::vector<uint64_t> in64 = randomValues<uint64_t>(70000, 3, uint64_t(1) << 40);
+    std::vector<uint64_t> expected64(in64.size());
+    std::exclusive_scan(in64.begin(), in64.end(), expected64.begin(), uint64_t(0));
+    DeviceBuffer<uint64_t> c, d(in64.size());
+    c.upload(in64);
+    prim.exclusiveSum(c.data(), d.data(), in64.size(), nullptr);
+    EXPECT_EQ(d.download(), expected64);
+}
+
+TEST(CudaPrimitives, Reductions) {
+    SKIP_WITHOUT_GPU();
+    DevicePrimitives prim;
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> dist(-1e3, 1e3);
+    std::vector<float> f(99999);
+    std::vector<double> g(77777);
+    for (float& x : f) x = (float)dist(rng);
+    for (double& x : g) x = dist(rng);
+    const std::vector<uint32_t> u = randomValues<uint32_t>(55555, 5, 0xfffffff0u);
+
+    DeviceBuffer<float> df, fmax(1);
+    DeviceBuffer<double> dg, gmax(1);
+    DeviceBuffer<uint32_t> du, umin(1);
+    df.upload(f);
+    dg.upload(g);
+    du.upload(u);
+    prim.reduceMax(df.data(), fmax.data(), f.size(), nullptr);
+    prim.reduceMax(dg.data(), gmax.data(), g.size(), nullptr);
+    prim.reduceMin(du.data(), umin.data(), u.size(), nullptr);
+    EXPECT_EQ(fmax.download()[0], *std::max_element(f.begin(), f.end()));
+    EXPECT_EQ(gmax.download()[0], *std::max_element(g.begin(), g.end()));
+    EXPECT_EQ(umin.download()[0], *std::min_element(u.begin(), u.end()));
+
+    prim.reduceMax(df.data(), fmax.data(), 0, nullptr);  // empty: the lowest float
+    EXPECT_EQ(fmax.download()[0], std::numeric_limits<float>::lowest());
+    EXPECT_GT(prim.scratchBytes(), 0u);
+}
+
+// ---- an NVRTC-compiled kernel, loaded and launched
+
+class CudaModuleLaunch : public deme_test::ScratchDirTest {};
+
+TEST_F(CudaModuleLaunch, RunsTheExampleKernelLikeTheHost) {
+    SKIP_WITHOUT_GPU();
+    jit::KernelCache cache(dir.string());
+    std::string source;
+    for (const jit::EmbeddedFile& f : jit::embeddedSources())
+        if (std::string(f.path) == "backend/cuda/kernels/Example.cu") source.assign(f.text, f.size);
+    ASSERT_FALSE(source.empty());
+    // Both image kinds: CUBIN for this GPU (the default), and PTX that the driver compiles.
+    const CudaCompileResult cubin = compileCudaSource("test", "backend/cuda/kernels/Example.cu", source, {}, cache);
+    CudaCompileOptions ptxOptions;
+    ptxOptions.architecture =
+        "compute_" + std::to_string(usableDevices().front().major * 10 + usableDevices().front().minor);
+    const CudaCompileResult ptx =
+        compileCudaSource("test", "backend/cuda/kernels/Example.cu", source, ptxOptions, cache);
+
+    const unsigned int n = 1000;
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<double3> pos(n + 1);
+    std::vector<float> radius(n + 1);
+    std::vector<float4> ori(n + 1);
+    for (unsigned int i = 0; i <= n; i++) {
+        pos[i] = make_double3(0.01 * u(rng), 0.01 * u(rng), 0.01 * u(rng));
+        radius[i] = (float)(0.005 + 0.002 * u(rng));
+        ori[i] = quatNormalize(make_float4((float)u(rng), (float)u(rng), (float)u(rng), (float)u(rng)));
+    }
+    DeviceBuffer<double3> dPos;
+    DeviceBuffer<float> dRadius;
+    DeviceBuffer<float4> dOri;
+    DeviceBuffer<double> dOverlap(n);
+    DeviceBuffer<float3> dNormal(n);
+    dPos.upload(pos);
+    dRadius.upload(radius);
+    dOri.upload(ori);
+
+    for (const CudaCompileResult* image : {&cubin, &ptx}) {
+        SCOPED_TRACE(image->architecture);
+        CudaModule module("test", image->image);
+        const CudaKernel k = module.kernel("exampleSpherePairOverlap");
+        dOverlap.zeroAsync(nullptr);
+        launch(k, Dim3(blocksFor(n, 128)), Dim3(128), 0, nullptr, dPos.data(), dRadius.data(), dOri.data(),
+               dOverlap.data(), dNormal.data(), n);
+        const std::vector<double> overlap = dOverlap.download();
+        const std::vector<float3> normal = dNormal.download();
+        for (unsigned int i = 0; i < n; i++) {
+            const ContactPoint c = sphereSphereContact(pos[i], radius[i], pos[i + 1], radius[i + 1]);
+            const float3 local = rotateToLocal(ori[i], c.B2A);
+            ASSERT_NEAR(overlap[i], c.overlap, 1e-15) << i;  // double, correctly rounded on both
+            ASSERT_NEAR(normal[i].x, local.x, 1e-6f) << i;   // float: the GPU may fuse multiply-adds
+            ASSERT_NEAR(normal[i].y, local.y, 1e-6f) << i;
+            ASSERT_NEAR(normal[i].z, local.z, 1e-6f) << i;
+        }
+        EXPECT_THROW(module.kernel("noSuchKernel"), deme::Error);
+    }
+}
