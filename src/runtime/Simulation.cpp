@@ -18,7 +18,7 @@
 #include "runtime/BackendSelection.h"
 #ifdef DEME_HAS_CUDA
 #include "backend/cuda/DeviceSimulation.h"
-#include "backend/cuda/kernels/KernelArgs.h"
+#include "backend/cuda/kernels/KernelArgs.cuh"
 #endif
 
 namespace deme {

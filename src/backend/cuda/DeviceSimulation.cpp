@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <map>
 
 #include <deme/Error.h>
 
@@ -11,7 +12,7 @@
 #include "backend/cuda/DeviceBuffer.h"
 #include "backend/cuda/DevicePrimitives.h"
 #include "backend/cuda/NvrtcCompiler.h"
-#include "backend/cuda/kernels/KernelArgs.h"
+#include "backend/cuda/kernels/KernelArgs.cuh"
 #include "dynamics/OwnerStep.h"
 #include "jit/EmbeddedSources.h"
 #include "physics/DefaultForceModel.h"

@@ -4,7 +4,7 @@
 // holding the lower corner of the two boxes' intersection, so exactly once. Output per sphere is in
 // the CPU's order (sphere partners by id, analytical components, triangles by id), so the set is
 // sorted by (A, B) and contact history maps by binary search. Compiled at run time by NVRTC.
-#include "backend/cuda/kernels/KernelArgs.h"
+#include "backend/cuda/kernels/KernelArgs.cuh"
 #include "physics/ContactGeometry.h"
 #include "runtime/StateView.h"
 

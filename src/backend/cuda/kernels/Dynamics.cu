@@ -1,7 +1,7 @@
 // The dynamics side on the GPU: mesh contact rule, force pass with load accumulation, integration
 // and pose caches. Compiled at run time by NVRTC together with the physics headers; every per-item
 // function here is the one the CPU sweeps call.
-#include "backend/cuda/kernels/KernelArgs.h"
+#include "backend/cuda/kernels/KernelArgs.cuh"
 #include "dynamics/ContactInputsGather.h"
 #include "dynamics/MeshContactRule.h"
 #include "dynamics/OwnerStep.h"
