@@ -87,6 +87,7 @@ TEST(CudaDeviceBuffer, CountsTheBytesItHolds) {
         DeviceBuffer<double> b = std::move(a);  // moving hands the memory over, no new allocation
         EXPECT_EQ(deviceBytesAllocated(), before + b.capacity() * sizeof(double));
         EXPECT_EQ(a.capacity(), 0u);
+        EXPECT_EQ(a.size(), 0u);
         EXPECT_GE(deviceBytesAllocatedPeak(), deviceBytesAllocated());
     }
     EXPECT_EQ(deviceBytesAllocated(), before);

@@ -185,6 +185,18 @@ extern "C" __global__ void physicsSmoke(double* out, deme::float4* q, deme::floa
     EXPECT_NE(r.image.find(".entry physicsSmoke"), std::string::npos);
 }
 
+// Quoted includes resolve as in the library's own build: next to the including file (here the
+// program itself, named as if it lived in physics/), then at the include root.
+TEST_F(CudaNvrtc, QuotedIncludesResolveNextToTheIncluderFirst) {
+    const std::string source =
+        "#include \"Quaternion.h\"\n"
+        "#include \"deme/VariableTypes.h\"\n"
+        "extern \"C\" __global__ void relative(deme::float4* q) { q[0] = deme::quatNormalize(q[0]); }\n";
+    EXPECT_NO_THROW(compile("physics/relative_include_test.cu", source, "compute_90"));
+    const std::string msg = errorMessage([&] { compile("elsewhere/relative_include_test.cu", source, "compute_90"); });
+    EXPECT_NE(msg.find("Quaternion.h"), std::string::npos) << msg;
+}
+
 TEST_F(CudaNvrtc, ErrorsPointIntoTheMarkedSnippet) {
     const std::string source =
         "#include \"physics/Quaternion.h\"\n"

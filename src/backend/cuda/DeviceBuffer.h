@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "backend/cuda/CudaTypes.h"
@@ -64,6 +65,16 @@ class DeviceBuffer {
   public:
     DeviceBuffer() = default;
     explicit DeviceBuffer(size_t count, Stream stream = nullptr) { resize(count, stream); }
+    // Moving hands the memory over and leaves the source empty.
+    DeviceBuffer(DeviceBuffer&& other) noexcept : raw_(std::move(other.raw_)), size_(other.size_) { other.size_ = 0; }
+    DeviceBuffer& operator=(DeviceBuffer&& other) noexcept {
+        if (this != &other) {
+            raw_ = std::move(other.raw_);
+            size_ = other.size_;
+            other.size_ = 0;
+        }
+        return *this;
+    }
 
     T* data() { return static_cast<T*>(raw_.data()); }
     const T* data() const { return static_cast<const T*>(raw_.data()); }
