@@ -27,6 +27,7 @@ struct Scenario {
 // A bed of ~600 spheres in a box; returns all clump states after the run.
 std::vector<float> run(const Scenario& sc, Mode mode, unsigned int freq = 20, int calls = 1) {
     DEMSolver sim;
+    sim.SetBackend("cpu");  // the CPU threads are under test, bit for bit
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.4, 0.5, 0.01));
     sim.InstructBoxDomainDimension(0.2f, 0.2f, 0.4f);
@@ -99,6 +100,7 @@ TEST(Async, ManyShortCallsEqualOneLongCall) {
 TEST(Async, InclineAgreesWithSynchronous) {
     auto endState = [](bool sync) {
         DEMSolver sim;
+        sim.SetBackend("cpu");  // the CPU threads are under test, bit for bit
         sim.SetVerbosity("QUIET");
         auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.25, 0.05));
         sim.InstructBoxDomainDimension(80, 4, 4);
@@ -143,6 +145,7 @@ TEST(Async, UpdateFrequencyAdaptsToLatency) {
 TEST(Async, WorkerShutsDownAfterErrors) {
     for (int i = 0; i < 20; i++) {
         DEMSolver sim;
+        sim.SetBackend("cpu");  // the CPU threads are under test, bit for bit
         sim.SetVerbosity("QUIET");
         auto mat = sim.LoadMaterial(material(1e9, 0.3, 0.5, 0.3));
         sim.InstructBoxDomainDimension(1, 1, 1);
@@ -160,6 +163,7 @@ TEST(Async, WorkerShutsDownAfterErrors) {
 TEST(Async, SmallShakenBoxThreadsAgree) {
     auto runSmall = [](bool async) {
         DEMSolver sim;
+        sim.SetBackend("cpu");  // the CPU threads are under test, bit for bit
         sim.SetVerbosity("QUIET");
         auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.4, 0.5));
         sim.InstructBoxDomainDimension(0.1f, 0.1f, 0.1f);

@@ -59,23 +59,27 @@ DEME_HD_INLINE bool isLocalMinimum(const S& s, const double3& x, const MeshCandi
 
 // Decides which contacts of one sphere count (see MeshContacts.h) and hands history over. The
 // sphere's triangle contacts are the n contacts from `first` on (contacts are sorted by sphere, and a
-// sphere's triangle contacts come last); `cand` has room for n.
+// sphere's triangle contacts come last). Only overlapping contacts can count; those are sorted in
+// `cand`, which has room for `capacity`. Returns false (changing nothing) if they do not fit.
 template <class S>
-DEME_HD_INLINE void resolveSphereMeshContacts(S& s, size_t first, size_t n, MeshCandidate* cand) {
+DEME_HD_INLINE bool resolveSphereMeshContacts(S& s, size_t first, size_t n, MeshCandidate* cand, size_t capacity) {
     auto& c = s.contacts;
     const bodyID_t a = c.geomA[first];
     const double3 x = s.cache.spherePos[a];
     const double r = s.spheres.radius[a];
     const bodyID_t triBase = s.triangleIdBase();
+    size_t m = 0;
     for (size_t k = 0; k < n; k++) {
         const uint32_t i = (uint32_t)(first + k);
         const uint32_t t = c.geomB[i] - triBase;
         double3 onTri, bary;
         const ContactPoint cp = sphereTriangleGeometry(s, a, t, onTri, bary);
+        if (!(cp.overlap > 0.0)) continue;
+        if (m == capacity) return false;
         MeshCandidate cd{i, t, s.triangles.owner[t], r - cp.overlap, onTri, false};
-        cd.counts = cp.overlap > 0.0 && isLocalMinimum(s, x, cd, bary, 1e-6 * r);
+        cd.counts = isLocalMinimum(s, x, cd, bary, 1e-6 * r);
         // Insertion in order: nearest first, ties by triangle id (a sphere has few candidates).
-        size_t at = k;
+        size_t at = m++;
         while (at > 0 && (cd.dist < cand[at - 1].dist || (cd.dist == cand[at - 1].dist && cd.tri < cand[at - 1].tri))) {
             cand[at] = cand[at - 1];
             at--;
@@ -85,7 +89,7 @@ DEME_HD_INLINE void resolveSphereMeshContacts(S& s, size_t first, size_t n, Mesh
     // A point already taken by a nearer or equal contact of the same mesh (a seam, a vertex, a
     // ridge) is not counted twice.
     const double tolSame = 1e-6 * r;
-    for (size_t k = 0; k < n; k++) {
+    for (size_t k = 0; k < m; k++) {
         if (!cand[k].counts) continue;
         for (size_t j = 0; j < k; j++)
             if (cand[j].counts && cand[j].mesh == cand[k].mesh && length(cand[j].point - cand[k].point) <= tolSame) {
@@ -93,23 +97,37 @@ DEME_HD_INLINE void resolveSphereMeshContacts(S& s, size_t first, size_t n, Mesh
                 break;
             }
     }
-    for (size_t k = 0; k < n; k++)
-        c.meshState[cand[k].contact] = (uint8_t)(((c.meshState[cand[k].contact] & 1u) << 1) | (cand[k].counts ? 1u : 0u));
-    // Hand-over: a contact that starts counting takes the history of one of the same mesh that
-    // stopped counting in this step, so friction carries across edges.
+    // Bit 1: counted in the previous step; bit 0: counts now (only candidates can).
+    for (size_t k = 0; k < n; k++) c.meshState[first + k] = (uint8_t)((c.meshState[first + k] & 1u) << 1);
+    for (size_t k = 0; k < m; k++)
+        if (cand[k].counts) c.meshState[cand[k].contact] |= 1u;
+    // Hand-over: a contact that starts counting takes the history of the nearest contact of the
+    // same mesh that stopped counting in this step, so friction carries across edges.
     const unsigned int W = s.numWildcards;
-    for (size_t k = 0; k < n; k++) {
+    for (size_t k = 0; k < m; k++) {
         const MeshCandidate& start = cand[k];
         if (c.meshState[start.contact] != 1u) continue;
+        size_t best = n;
+        double bestDist = 0.0;
+        uint32_t bestTri = 0;
         for (size_t j = 0; j < n; j++) {
-            const MeshCandidate& stop = cand[j];
-            if (c.meshState[stop.contact] == 2u && stop.mesh == start.mesh) {
-                for (unsigned int w = 0; w < W; w++)
-                    c.wildcards[(size_t)start.contact * W + w] = c.wildcards[(size_t)stop.contact * W + w];
-                break;
+            const uint32_t i = (uint32_t)(first + j);
+            if (c.meshState[i] != 2u) continue;
+            const uint32_t t = c.geomB[i] - triBase;
+            if (s.triangles.owner[t] != start.mesh) continue;
+            double3 onTri, bary;
+            const double dist = r - sphereTriangleGeometry(s, a, t, onTri, bary).overlap;
+            if (best == n || dist < bestDist || (dist == bestDist && t < bestTri)) {
+                best = j;
+                bestDist = dist;
+                bestTri = t;
             }
         }
+        if (best == n) continue;
+        for (unsigned int w = 0; w < W; w++)
+            c.wildcards[(size_t)start.contact * W + w] = c.wildcards[(first + best) * W + w];
     }
+    return true;
 }
 
 }  // namespace deme

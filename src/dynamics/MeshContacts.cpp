@@ -19,7 +19,7 @@ void resolveMeshContacts(SimState& s) {
         std::vector<MeshCandidate> cand(largest);
 #pragma omp for schedule(static)
         for (size_t g = 0; g < nGroups; g++)
-            resolveSphereMeshContacts(s, c.meshContacts[groups[g]], groups[g + 1] - groups[g], cand.data());
+            resolveSphereMeshContacts(s, c.meshContacts[groups[g]], groups[g + 1] - groups[g], cand.data(), largest);
     }
 }
 

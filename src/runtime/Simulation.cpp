@@ -124,7 +124,7 @@ void Simulation::advanceOnDevice(unsigned long long n) {
         state();
         throwError("DoDynamics", "simulation stopped at t = " + std::to_string(m_time) + " s: sphere " +
                                      std::to_string(m_state.sphereInternalToUser[fault.kernelErrorItem]) +
-                                     " touches more triangles than the GPU's mesh contact rule can sort (" +
+                                     " overlaps more triangles than the GPU's mesh contact rule can sort (" +
                                      std::to_string(MAX_MESH_CANDIDATES) + ")");
     }
     if (fault.any) {

@@ -58,12 +58,9 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, StepReduction
     if (i > 0 && c.type[i - 1] == SPHERE_TRIANGLE && c.geomA[i - 1] == c.geomA[i]) return;
     size_t n = 1;
     while (i + n < s.numContacts && c.type[i + n] == SPHERE_TRIANGLE && c.geomA[i + n] == c.geomA[i]) n++;
-    if (n > MAX_MESH_CANDIDATES) {
-        raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, c.geomA[i]);
-        return;
-    }
     MeshCandidate cand[MAX_MESH_CANDIDATES];
-    resolveSphereMeshContacts(s, i, n, cand);
+    if (!resolveSphereMeshContacts(s, i, n, cand, MAX_MESH_CANDIDATES))
+        raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, c.geomA[i]);
 }
 
 // Force pass: each contact's force and torques (as on the CPU), added to both owners' loads. Loads

@@ -23,7 +23,8 @@ enum KernelError : unsigned int {
     KERNEL_ERROR_MESH_CANDIDATES = 1,  // a sphere touches more triangles than a kernel can sort
 };
 
-// Most sphere-triangle contacts one sphere may have (the smooth-surface rule sorts them locally).
+// Most overlapping sphere-triangle contacts one sphere may have (the smooth-surface rule sorts them
+// in a local array).
 constexpr unsigned int MAX_MESH_CANDIDATES = 64;
 // Non-clump owners (walls, meshes) whose contact loads a block sums in shared memory before adding
 // them to device memory: all contacts of a floor land on one owner, and per-contact atomics on one

@@ -1,0 +1,112 @@
+// The same scenes on the CPU and on the GPU (CUDA backend): results agree within physics-level
+// tolerances (the GPU sums contact forces in a different order, so trajectories are not bit-equal).
+// Skipped where no usable GPU is present (CI); tests/gpu/run.sh runs them on a GPU machine.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "TestHelpers.h"
+#include "backend/cuda/Device.h"
+
+using namespace deme;
+using namespace deme_test;
+
+namespace {
+
+bool gpuPresent() { return cuda::cudaBackendBuilt() && !cuda::usableDevices().empty(); }
+
+struct BedResult {
+    double floorForce = 0.0, weight = 0.0, meanHeight = 0.0;
+    size_t contacts = 0, spheres = 0;
+};
+
+// About 9,700 spheres settle in a box with frictionless side walls; the floor carries the weight.
+BedResult settleBed(const std::string& backend) {
+    const double r = 0.0025, density = 2600;
+    DEMSolver sim;
+    sim.SetVerbosity("QUIET");
+    sim.SetBackend(backend);
+    auto grain = sim.LoadMaterial(material(1e7, 0.3, 0.3, 0.5));
+    auto side = sim.LoadMaterial(material(1e7, 0.3, 0.3, 0.0));
+    sim.SetMaterialPropertyPair("mu", grain, side, 0.0);
+    sim.InstructBoxDomainDimension(0.12f, 0.12f, 0.4f);
+    auto walls = sim.AddExternalObject();
+    walls->AddPlane(make_float3(-0.06f, 0, 0), make_float3(1, 0, 0), side);
+    walls->AddPlane(make_float3(0.06f, 0, 0), make_float3(-1, 0, 0), side);
+    walls->AddPlane(make_float3(0, -0.06f, 0), make_float3(0, 1, 0), side);
+    walls->AddPlane(make_float3(0, 0.06f, 0), make_float3(0, -1, 0), side);
+    auto floorObj = sim.AddBCPlane(make_float3(0, 0, -0.15f), make_float3(0, 0, 1), grain);
+    auto tmpl = sim.LoadSphereType((float)sphereMass(r, density), (float)r, grain);
+    std::vector<float3> pts =
+        GridSampler(2.2f * (float)r).SampleBox(make_float3(0, 0, -0.07f), make_float3(0.055f, 0.055f, 0.06f));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> jitter(-0.05f * (float)r, 0.05f * (float)r);
+    for (auto& p : pts) p = p + make_float3(jitter(rng), jitter(rng), jitter(rng));
+    auto batch = sim.AddClumps(tmpl, pts);
+    sim.SetInitTimeStep(2e-5);
+    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    sim.SetSynchronousContactDetection(true);
+    sim.Initialize();
+    auto floorTracker = sim.Track(floorObj);
+    auto grains = sim.Track(batch);
+    sim.DoDynamics(0.3);
+    BedResult res;
+    const int n = 25;
+    for (int i = 0; i < n; i++) {
+        sim.DoDynamics(0.002);
+        res.floorForce += -floorTracker->ContactForce().z / n;
+    }
+    res.spheres = pts.size();
+    res.weight = pts.size() * sphereMass(r, density) * 9.81;
+    for (size_t i = 0; i < pts.size(); i++) res.meanHeight += grains->Pos(i).z / (double)pts.size();
+    res.contacts = sim.GetNumContacts();
+    return res;
+}
+
+}  // namespace
+
+TEST(GpuParity, SettledBedAgreesWithTheCpu) {
+    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    const BedResult cpu = settleBed("cpu"), gpu = settleBed("cuda");
+    ASSERT_GE(cpu.spheres, 9500u);  // about 9,700
+    // Floor force equals the weight (frictionless walls) to 1 % on both.
+    EXPECT_NEAR(cpu.floorForce, cpu.weight, 0.01 * cpu.weight);
+    EXPECT_NEAR(gpu.floorForce, gpu.weight, 0.01 * gpu.weight);
+    // Same packing: mean height within a tenth of a radius, contact count within 3 % (the settled
+    // packing depends on the order of summation, through chaotic collisions, only in detail).
+    EXPECT_NEAR(gpu.meanHeight, cpu.meanHeight, 0.1 * 0.0025);
+    EXPECT_NEAR((double)gpu.contacts, (double)cpu.contacts, 0.03 * (double)cpu.contacts);
+}
+
+// A sphere rolling without slip up an incline decelerates at (5/7) g sin(alpha) (solid sphere,
+// I = 2/5 m r^2): both backends give that velocity after 0.5 s to 0.5 %, and each other's to 1e-4.
+TEST(GpuParity, RollingSphereOnIncline) {
+    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    auto run = [](const std::string& backend) {
+        const double r = 0.2, m = 5.0, g = 9.81, a = 10.0 * deme::PI / 180.0;
+        DEMSolver sim;
+        sim.SetVerbosity("QUIET");
+        sim.SetBackend(backend);
+        auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.25));
+        sim.InstructBoxDomainDimension(80, 4, 4);
+        sim.AddBCPlane(make_float3(0, 0, 0), make_float3(0, 0, 1), mat);
+        auto tmpl = sim.LoadSphereType((float)m, (float)r, mat);
+        const double Estar = effectiveModulus(1e7, 0.3);
+        const double overlap = std::pow(m * g * std::cos(a) / (4.0 / 3.0 * Estar * std::sqrt(r)), 2.0 / 3.0);
+        auto ball = sim.AddClumps(tmpl, {make_float3(30.f, 0, (float)(r - overlap))});
+        ball->SetVel(make_float3(2.0f, 0, 0));
+        ball->SetAngVel(make_float3(0, (float)(2.0 / r), 0));  // rolling up the slope from the start
+        sim.SetInitTimeStep(1e-4);
+        sim.SetGravitationalAcceleration(make_float3((float)(-g * std::sin(a)), 0, (float)(-g * std::cos(a))));
+        sim.Initialize();
+        auto tr = sim.Track(ball);
+        sim.DoDynamics(0.5);
+        return (double)tr->Vel().x;
+    };
+    const double expected = 2.0 - 5.0 / 7.0 * 9.81 * std::sin(10.0 * deme::PI / 180.0) * 0.5;
+    const double vCpu = run("cpu"), vGpu = run("cuda");
+    EXPECT_NEAR(vCpu, expected, 0.005 * expected);
+    EXPECT_NEAR(vGpu, expected, 0.005 * expected);
+    EXPECT_NEAR(vGpu, vCpu, 1e-4 * std::fabs(vCpu));
+}
