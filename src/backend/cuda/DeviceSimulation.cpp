@@ -129,7 +129,7 @@ struct DeviceSimulation::Impl {
     UpdateFrequency freq;
     double marginNow = 0.0;
     unsigned long long acsStep = 0;
-    bool needDetection = true, expired = false;
+    bool needDetection = true, expired = false, freqConfigured = false;
     float lastMaxSpeed = 0.f;
     std::array<FamilyStepMotion, NUM_FAMILIES> stepMotion;
     // Counters at the last detection, and what it cost (for the adaptive n_max).
@@ -392,9 +392,11 @@ void DeviceSimulation::upload(const SimState& s, const BinGrid& g, const Setting
     d.grid = BinGridView{g.origin, g.size, (int)g.nx, (int)g.ny, (int)g.nz};
     d.numBins = g.numBins();
     d.refreshView();
-    if (d.freq.nMax() == 0 || !d.needDetection)
+    // n_max is configured once; later uploads (after host-side edits) keep what it adapted to.
+    if (!d.freqConfigured)
         d.freq.configure(settings.updateFreq, std::max(settings.maxUpdateFreq, settings.updateFreq),
                          settings.adaptiveUpdateFreq);
+    d.freqConfigured = true;
     d.needDetection = true;
 }
 
