@@ -84,6 +84,7 @@ int main(int argc, char** argv) {
         .add("clumps", (double)sim.GetNumClumps())
         .add("spheres", spheres)
         .add("contacts_per_sphere", sim.GetAvgSphContacts())
+        .add("contacts_total", (double)sim.GetNumContacts())  // with walls and the mixer
         .add("steps", (double)steps)
         .add("wall_s", wall)
         .add("sphere_steps_per_s", spheres * (double)steps / wall)
