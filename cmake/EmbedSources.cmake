@@ -111,7 +111,10 @@ function(deme_embed_sources target)
     ${inc}/deme/VectorTypes.h
     ${inc}/deme/VariableTypes.h
     ${src}/runtime/SimState.h
+    ${src}/backend/cpu/Parallel.h
     ${src}/dynamics/ContactInputsGather.h
+    ${src}/dynamics/ForcePassLoop.h
+    ${src}/dynamics/ForcePassResult.h
     ${src}/dynamics/KinematicCache.h)
 
   # Include paths are relative to include/ or src/, the roots the library itself compiles with, so

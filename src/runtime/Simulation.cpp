@@ -27,8 +27,9 @@ void Simulation::log(Verbosity level, const std::string& msg) const {
        << msg << std::endl;
 }
 
-void Simulation::start(SimState&& state) {
+void Simulation::start(SimState&& state, ActiveForceModel&& model) {
     m_state = std::move(state);
+    m_model = std::move(model);
     refreshKinematicCache(m_state);
     m_grid = makeBinGrid(m_state, settings.binSize);
     applyDetectionMode();
@@ -40,6 +41,10 @@ void Simulation::start(SimState&& state) {
                              std::to_string(m_grid.size) + " (" + std::to_string(m_grid.numBins()) + " bins), " +
                              std::to_string(cpuThreadCount()) + " CPU threads for dynamics, contact detection " +
                              (settings.asyncDetection ? "on its own thread" : "on the dynamics thread"));
+    const std::string how = m_model.layout.builtIn() ? "built in"
+                            : m_model.cacheHit      ? "compiled earlier, loaded from the cache"
+                                                    : "compiled in " + std::to_string(m_model.compileSeconds) + " s";
+    log(Verbosity::INFO, "force model: " + m_model.layout.description() + " (" + how + ")");
 }
 
 void Simulation::applyDetectionMode() {
@@ -64,7 +69,7 @@ void Simulation::advance(unsigned long long n) {
         {
             PhaseTimer t(m_timing, Phase::FORCE);
             resolveMeshContacts(m_state);
-            const ForcePassResult r = computeContactForces(m_state, m_time, settings.dt);
+            const ForcePassResult r = m_model.pass(m_state, m_time, settings.dt);
             m_realContacts = r.realContacts;
             m_realSphereSphere = r.realSphereSphere;
         }
@@ -99,6 +104,10 @@ void Simulation::advance(unsigned long long n) {
 
 void Simulation::syncContactDetection() {
     if (m_initialized) m_contacts.sync(m_state, m_step, m_timing);
+}
+
+void Simulation::refreshContactSet() {
+    if (m_initialized) m_contacts.bringUpToDate(m_state, settings, families, m_step, m_lastMaxSpeed, m_timing);
 }
 
 void Simulation::reportFault(const IntegrationResult& ir) const {
