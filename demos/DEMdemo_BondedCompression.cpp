@@ -26,10 +26,10 @@ int main(int argc, char** argv) {
         p.endStrain = 0.006;
         p.samples = 60;
     } else {
-        p.halfDims = deme::make_float3(0.009f, 0.009f, 0.016f);  // about 2,900 spheres
+        p.halfDims = deme::make_float3(0.009f, 0.009f, 0.016f);  // 1,980 spheres
         p.plateSpeed = 0.01f;
-        p.endStrain = 0.01;
-        p.samples = 250;
+        p.endStrain = 0.005;
+        p.samples = 200;
     }
     std::printf("compressing a block of bonded spheres (radius %g m, bond stiffness %g N/m, strengths %g-%g N)\n",
                 p.radius, p.kb, p.strengthMin, p.strengthMax);
