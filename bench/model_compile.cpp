@@ -83,7 +83,7 @@ void report(const std::string& variant, double custom, double builtIn) {
 int main(int argc, char** argv) {
     const bool child = argc > 2 && std::string(argv[1]) == "--cached-run";
     const bool ownDir = argc < 2;
-    const fs::path dir = child ? fs::path(argv[2])
+    const fs::path dir = child    ? fs::path(argv[2])
                          : ownDir ? fs::temp_directory_path() / ("deme_model_compile_" + std::to_string(getpid()))
                                   : fs::path(argv[1]);
     // The kernel cache directory is read on first use, so it is set before any solver exists.

@@ -28,8 +28,8 @@ void applyWildcardValuesGivenEarly(const Scene& scene, const ModelLayout& layout
     for (const auto& v : scene.familyOwnerWildcards) {
         const int w = indexOf(layout.ownerWildcards, v.name);
         if (w < 0)
-            throwError("SetFamilyOwnerWildcardValue",
-                       "the force model has no owner wildcard \"" + v.name + "\" (declare it with SetPerOwnerWildcards)");
+            throwError("SetFamilyOwnerWildcardValue", "the force model has no owner wildcard \"" + v.name +
+                                                          "\" (declare it with SetPerOwnerWildcards)");
         for (size_t o = 0; o < s.owners.size(); o++)
             if (s.owners.family[o] == v.family) s.wildcards.owner[w][o] = v.value;
     }
@@ -191,7 +191,8 @@ void DEMSolver::Initialize() {
     const char* call = "Initialize";
     requireNotInitialized(call);
     if (!(m_sim->settings.dt > 0.0)) throwError(call, "no time step: call SetInitTimeStep first");
-    if (!m_scene->forceModel) m_scene->forceModel = std::make_shared<DEMForceModel>(DEMForceModel::Kind::FRICTIONAL_HERTZIAN);
+    if (!m_scene->forceModel)
+        m_scene->forceModel = std::make_shared<DEMForceModel>(DEMForceModel::Kind::FRICTIONAL_HERTZIAN);
     const ModelLayout layout = resolveModelLayout(*m_scene->forceModel, *m_scene, call);
     SimState state = assembleScene(*m_scene, layout);
     applyWildcardValuesGivenEarly(*m_scene, layout, state);

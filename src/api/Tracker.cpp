@@ -82,8 +82,8 @@ void DEMTracker::SetOwnerWildcardValue(const std::string& name, float value, siz
 }
 float DEMTracker::GetOwnerWildcardValue(const std::string& name, size_t offset) const {
     const size_t o = internalID(offset);
-    return m_sim->state().wildcards.owner[wildcardIndex(*m_sim, "DEMTracker::GetOwnerWildcardValue",
-                                                        WildcardKind::OWNER, name)][o];
+    return m_sim->state()
+        .wildcards.owner[wildcardIndex(*m_sim, "DEMTracker::GetOwnerWildcardValue", WildcardKind::OWNER, name)][o];
 }
 
 }  // namespace deme

@@ -92,8 +92,8 @@ void writeClumpCsv(const Simulation& sim, const std::string& path) {
         const double3 p = ownerPosition(s, (bodyID_t)o);
         const float4 q = s.owners.oriQ[o];
         const float3 v = s.owners.vel[o], w = s.owners.angVel[o];
-        std::fprintf(f.get(), "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%u", u, p.x, p.y,
-                     p.z, q.w, q.x, q.y, q.z, v.x, v.y, v.z, w.x, w.y, w.z, sim.ownerMass(o),
+        std::fprintf(f.get(), "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%u", u, p.x,
+                     p.y, p.z, q.w, q.x, q.y, q.z, v.x, v.y, v.z, w.x, w.y, w.z, sim.ownerMass(o),
                      (unsigned)s.owners.family[o]);
         ownerWildcardColumns(f.get(), sim, o);
         std::fprintf(f.get(), "\n");

@@ -157,8 +157,9 @@ std::vector<std::string> hostCompilerCommand() {
 
 std::vector<std::string> hostCompilerFlags() {
     // The library's own -std, optimisation, floating-point options (-fno-math-errno) and -march, and
-    // no fast-math: the compiler then makes the same floating-point choices (e.g. GCC contracts a*b+c into fused multiply-adds where -march
-    // allows, as it does in the library), so run-time code rounds as built-in code does.
+    // no fast-math: the compiler then makes the same floating-point choices (e.g. GCC contracts a*b+c
+    // into fused multiply-adds where -march allows, as it does in the library), so run-time code
+    // rounds as built-in code does.
     std::vector<std::string> flags = {"-std=c++17", "-O3", "-fPIC", "-shared", "-fopenmp"};
     std::istringstream fpOptions(DEME_JIT_FP_OPTIONS);
     for (std::string w; fpOptions >> w;) flags.push_back(w);

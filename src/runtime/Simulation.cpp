@@ -42,8 +42,8 @@ void Simulation::start(SimState&& state, ActiveForceModel&& model) {
                              std::to_string(cpuThreadCount()) + " CPU threads for dynamics, contact detection " +
                              (settings.asyncDetection ? "on its own thread" : "on the dynamics thread"));
     const std::string how = m_model.layout.builtIn() ? "built in"
-                            : m_model.cacheHit      ? "compiled earlier, loaded from the cache"
-                                                    : "compiled in " + std::to_string(m_model.compileSeconds) + " s";
+                            : m_model.cacheHit       ? "compiled earlier, loaded from the cache"
+                                                     : "compiled in " + std::to_string(m_model.compileSeconds) + " s";
     log(Verbosity::INFO, "force model: " + m_model.layout.description() + " (" + how + ")");
 }
 
