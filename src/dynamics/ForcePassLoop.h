@@ -1,17 +1,18 @@
 // The force pass as a template over the contact force model: for every pair of the active-contact
 // set, gather the model's inputs (paper Table 3), run the model, store the force on A and the torques
 // about both owners. The built-in models (ForcePass.cpp) and the code generated for a user's model at
-// run time (forcemodel/CodeGen.cpp) instantiate this same loop, so a model written as a snippet runs
-// exactly as fast as, and computes bit for bit what, the same model built into the library does.
+// run time (forcemodel/CodeGen.cpp) instantiate this same loop, so a model written as a snippet
+// computes bit for bit what the same model built into the library does (test ForceModelBitIdentity).
 //
 // A model is a functor type with
 //   static constexpr unsigned int kNumContactWildcards;  // floats of history per contact
 //   static constexpr bool kSeesApartPairs;    // called for pairs with overlapDepth <= 0 too
-//   static constexpr bool kWritesPersistent;  // may clear the contact's `persistent` flag
+//   static constexpr bool kWritesPersistent;  // may change the contact's `persistent` flag
 //   void operator()(const ContactInputs& in, float* contactWildcards, float3& force,
 //                   float3& torque_only_force, bool& persistent) const;
 // A model that does not see apart pairs gets no call for them: they get zero force and their
-// wildcards are cleared (a later touch starts afresh), as in the paper's default model.
+// wildcards are cleared (a later touch starts afresh), as in the paper's default model, and sphere
+// pairs that are clearly apart skip the gather. Custom models see every pair (docs/force-models.md).
 #pragma once
 
 #include "backend/cpu/Parallel.h"
