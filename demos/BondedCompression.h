@@ -1,7 +1,8 @@
-// A uniaxial compression test of a bonded-particle block (after the paper's §6.4, the granite
-// specimen): spheres on a hexagonal close-packed lattice (HCPSampler) are bonded to their touching
-// neighbours, the block stands between two frictionless plates, and the top plate moves down at
-// constant speed. Shared by DEMdemo_BondedCompression and its test (tests/test_force_models_bonded.cpp).
+// A uniaxial compression test of a bonded-particle block (after the granite specimen of the paper's
+// §6.4, "Contact modeling for particle breakage"): spheres on a hexagonal close-packed lattice
+// (HCPSampler) are bonded to their touching neighbours, the block stands between two frictionless
+// plates, and the top plate moves down at constant speed. Shared by DEMdemo_BondedCompression and its
+// test (tests/test_force_models_bonded.cpp).
 //
 // The force model (a custom one, compiled at run time) is kBondedModel below: bonds are linear springs
 // between sphere centres that break for good once their tension exceeds the strength of the weaker of
