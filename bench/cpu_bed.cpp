@@ -1,6 +1,8 @@
 // CPU-BED benchmark (../shared/bench/README.md): 60,000 settled spheres in a box, the same model,
 // materials and time step as the LIGGGHTS reference input. Prints one JSON line.
-//   usage: cpu_bed [bed60k.csv] [warm-up steps] [timed steps]
+//   usage: cpu_bed [bed60k.csv] [warm-up steps] [timed steps] [auto|sync|async] [builtin|custom]
+// "custom" runs the default model written out as a custom model (compiled at run time), to compare
+// the run-time compiled force loop with the built-in one.
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -47,6 +49,7 @@ int main(int argc, char** argv) {
     const int steps = argc > 3 ? std::atoi(argv[3]) : 2000;
     // "sync" or "async" forces the contact-detection mode; default: the engine's choice (AUTO).
     const std::string mode = argc > 4 ? argv[4] : "auto";
+    const bool custom = argc > 5 && std::string(argv[5]) == "custom";
     const double density = 2600, g = 9.81;
 
     const double t0 = seconds();
@@ -54,6 +57,17 @@ int main(int argc, char** argv) {
     DEMSolver sim;
     sim.SetVerbosity("WARNING");
     auto mat = sim.LoadMaterial({{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}, {"Crr", 0.0}});
+    if (custom) {
+        std::ifstream body(DEME_SOURCE_DIR "/src/physics/models/HertzMindlin.inl");
+        std::ostringstream code;
+        code << "if (!(overlapDepth > 0.0)) {\n    delta_tan_x = delta_tan_y = delta_tan_z = delta_time = 0.f;\n"
+                "    return;\n}\n"
+             << body.rdbuf();
+        auto m = sim.DefineContactForceModel(code.str());
+        m->SetMustHaveMatProp({"E", "nu", "CoR", "mu", "Crr"});
+        m->SetMustPairwiseMatProp({"CoR", "mu", "Crr"});
+        m->SetPerContactWildcards({"delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time"});
+    }
     sim.InstructBoxDomainDimension({-0.01f, 0.11f}, {-0.01f, 0.11f}, {-0.01f, 0.2f});
     auto walls = sim.AddExternalObject();
     walls->AddPlane(make_float3(0, 0, 0), make_float3(1, 0, 0), mat);
@@ -88,6 +102,7 @@ int main(int argc, char** argv) {
     j.add("case", "CPU-BED")
         .add("size", (double)bed.pos.size())
         .add("backend", sim.UsesAsyncContactDetection() ? "cpu-async" : "cpu-sync")
+        .add("model", custom ? "custom (Hertz-Mindlin as a snippet)" : "built-in")
         .add("device", cpuName() + " x " + std::to_string(std::thread::hardware_concurrency()) + " threads")
         .add("spheres", (double)sim.GetNumSpheres())
         .add("contacts_per_sphere", sim.GetAvgSphContacts())

@@ -117,7 +117,10 @@ function(deme_embed_sources target)
     ${src}/runtime/SimState.h
     ${src}/runtime/StateView.h
     ${src}/runtime/FamilyStepMotion.h
+    ${src}/backend/cpu/Parallel.h
     ${src}/dynamics/ContactInputsGather.h
+    ${src}/dynamics/ForcePassLoop.h
+    ${src}/dynamics/ForcePassResult.h
     ${src}/dynamics/OwnerStep.h
     ${src}/dynamics/MeshContactRule.h
     ${src}/dynamics/KinematicCache.h)

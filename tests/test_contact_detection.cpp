@@ -108,7 +108,9 @@ TEST(ContactDetection, MatchesBruteForceExactly) {
     extra[1] = 2e-4f;  // family 1 (and the walls) reach further (SetFamilyExtraMargin)
     int cases = 0;
     for (unsigned seed : {1u, 2u, 3u}) {
-        SimState s = assembleScene(randomScene(seed, 1500));
+        const Scene scene = randomScene(seed, 1500);
+        SimState s = assembleScene(scene, resolveModelLayout(DEMForceModel(DEMForceModel::Kind::FRICTIONAL_HERTZIAN),
+                                                             scene, "ContactDetection"));
         refreshKinematicCache(s);
         // Bins smaller than the largest spheres, so that many spheres span several bins.
         for (double binSize : {0.0015, 0.004, 0.0}) {

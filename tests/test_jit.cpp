@@ -224,8 +224,8 @@ TEST_F(JitEmbeddedSources, HoldTheForceLoopHeadersUnderTheirIncludePaths) {
         EXPECT_GT(f.size, 0u) << f.path;
     }
     for (const char* p : {"deme/HostDevice.h", "deme/VectorTypes.h", "deme/VariableTypes.h", "physics/Quaternion.h",
-                          "physics/DefaultForceModel.h", "physics/models/HertzMindlin.inl", "runtime/SimState.h",
-                          "dynamics/ContactInputsGather.h", "dynamics/KinematicCache.h"})
+                          "physics/BuiltInForceModels.h", "physics/models/HertzMindlin.inl", "runtime/SimState.h",
+                          "dynamics/ContactInputsGather.h", "dynamics/ForcePassLoop.h", "dynamics/KinematicCache.h"})
         EXPECT_TRUE(paths.count(p)) << p;
     EXPECT_TRUE(
         std::is_sorted(embeddedSources().begin(), embeddedSources().end(),

@@ -11,6 +11,7 @@
 
 #include "ClumpTemplate.h"
 #include "ExternalObject.h"
+#include "ForceModel.h"
 #include "Inspector.h"
 #include "Materials.h"
 #include "Mesh.h"
@@ -43,10 +44,68 @@ class DEMSolver {
     void SetOutputContent(const std::vector<std::string>& content);
 
     // ---- Materials ----
+    // Properties by name (C++ identifiers). The default model reads E, nu, CoR, mu and Crr (Crr defaults
+    // to 0); a custom model reads whatever it names. Which ones are required is checked at Initialize.
     std::shared_ptr<DEMMaterial> LoadMaterial(const std::map<std::string, double>& props);
-    // Pairwise value of a property (CoR, mu or Crr) between two materials; otherwise the average.
+    // Pairwise value of a property (e.g. CoR, mu, Crr) between two materials; otherwise the average.
+    // The force model must read the property per pair (SetMustPairwiseMatProp; the default model:
+    // CoR, mu, Crr).
     void SetMaterialPropertyPair(const std::string& name, const std::shared_ptr<DEMMaterial>& a,
                                  const std::shared_ptr<DEMMaterial>& b, double value);
+
+    // ---- Contact force model (docs/force-models.md) ----
+    // The model in use is the last one chosen before Initialize; by default the frictional Hertzian
+    // (history-based Hertz-Mindlin) model. The built-in models are compiled into the library.
+    std::shared_ptr<DEMForceModel> UseFrictionalHertzianModel();
+    std::shared_ptr<DEMForceModel> UseFrictionlessHertzianModel();
+    // A custom model: C++ statements run for every pair of the contact set, compiled at Initialize
+    // (and cached). Declare its material properties and wildcards on the returned handle.
+    std::shared_ptr<DEMForceModel> DefineContactForceModel(const std::string& code);
+    std::shared_ptr<DEMForceModel> ReadContactForceModel(const std::string& path);
+
+    // ---- Wildcards of the force model (ids in user order; after Initialize unless noted) ----
+    void SetOwnerWildcardValue(const std::string& name, size_t ownerID, float value);
+    // Owners firstOwnerID, firstOwnerID + 1, ... get values[0], values[1], ...
+    void SetOwnerWildcardValue(const std::string& name, size_t firstOwnerID, const std::vector<float>& values);
+    // Every owner of the family; before Initialize, applied to the family's owners by Initialize.
+    void SetFamilyOwnerWildcardValue(unsigned int family, const std::string& name, float value);
+    float GetOwnerWildcardValue(const std::string& name, size_t ownerID) const;
+    std::vector<float> GetOwnerWildcardValue(const std::string& name, size_t firstOwnerID, size_t count) const;
+    // Geometry wildcards of spheres (ids as in the sphere file), mesh triangles (index over all meshes
+    // in the order added) and analytical components (index over all external objects' components).
+    void SetSphereWildcardValue(const std::string& name, size_t sphereID, float value);
+    void SetSphereWildcardValue(const std::string& name, size_t firstSphereID, const std::vector<float>& values);
+    float GetSphereWildcardValue(const std::string& name, size_t sphereID) const;
+    std::vector<float> GetSphereWildcardValue(const std::string& name, size_t firstSphereID, size_t count) const;
+    void SetTriWildcardValue(const std::string& name, size_t triangleID, float value);
+    float GetTriWildcardValue(const std::string& name, size_t triangleID) const;
+    void SetAnalWildcardValue(const std::string& name, size_t componentID, float value);
+    float GetAnalWildcardValue(const std::string& name, size_t componentID) const;
+    // Contact wildcards of the contacts now in the set: all of them, those between families a and b,
+    // those with either or both owners in a family. A one-time change (the paper's meaning).
+    void SetContactWildcardValue(const std::string& name, float value);
+    void SetFamilyContactWildcardValue(unsigned int a, unsigned int b, const std::string& name, float value);
+    void SetFamilyContactWildcardValueEither(unsigned int family, const std::string& name, float value);
+    void SetFamilyContactWildcardValueBoth(unsigned int family, const std::string& name, float value);
+    // A rule: contacts that enter the set between families a and b from now on start with `value`
+    // instead of 0 (before or after Initialize; a later rule for the same name and families wins).
+    void SetFamilyContactWildcardInitValue(unsigned int a, unsigned int b, const std::string& name, float value);
+    // Sphere and clump files get one column per owner wildcard, named as the wildcard.
+    void EnableOwnerWildcardOutput(bool enable = true);
+
+    // ---- Persistent contacts (after Initialize) ----
+    // The pairs now in the contact set (touching or within the margin, see SetFamilyExtraMargin) stay
+    // in it even when they separate, until the force model clears `persistent` or the user removes
+    // them: all pairs, pairs between families a and b, pairs with either or both owners in a family.
+    void MarkPersistentContact();
+    void MarkFamilyPersistentContact(unsigned int a, unsigned int b);
+    void MarkFamilyPersistentContactEither(unsigned int family);
+    void MarkFamilyPersistentContactBoth(unsigned int family);
+    void RemovePersistentContact();
+    void RemoveFamilyPersistentContact(unsigned int a, unsigned int b);
+    void RemoveFamilyPersistentContactEither(unsigned int family);
+    void RemoveFamilyPersistentContactBoth(unsigned int family);
+    size_t GetNumPersistentContacts() const;
 
     // ---- Domain and analytical boundaries ----
     // Box of size x * y * z centred on the origin; every grain must stay inside it.
@@ -171,6 +230,7 @@ class DEMSolver {
   private:
     void requireNotInitialized(const char* call) const;
     void requireInitialized(const char* call) const;
+    std::shared_ptr<DEMForceModel> chooseForceModel(const char* call, std::shared_ptr<DEMForceModel> model);
     std::unique_ptr<Scene> m_scene;
     std::unique_ptr<Simulation> m_sim;
 };

@@ -3,6 +3,7 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 
 #include "VariableTypes.h"
 
@@ -39,6 +40,9 @@ class DEMTracker {
     // Extra acceleration, applied on every step of the next DoDynamics/DoStepDynamics call.
     void AddAcc(const float3& acc, size_t offset = 0);
     void AddAngAcc(const float3& angAccLocal, size_t offset = 0);
+    // The force model's owner wildcards (DEMForceModel::SetPerOwnerWildcards) of the tracked owner.
+    void SetOwnerWildcardValue(const std::string& name, float value, size_t offset = 0);
+    float GetOwnerWildcardValue(const std::string& name, size_t offset = 0) const;
 
     size_t GetNumOwners() const { return m_count; }
     // The owner's id in user order: clumps in the order they were added, then external objects.

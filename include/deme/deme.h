@@ -5,6 +5,7 @@
 #include "DEMSolver.h"
 #include "Error.h"
 #include "ExternalObject.h"
+#include "ForceModel.h"
 #include "Inspector.h"
 #include "Materials.h"
 #include "Mesh.h"

@@ -16,10 +16,35 @@
 #include "io/OutputWriters.h"
 #include "backend/cuda/DeviceBuffer.h"
 #include "runtime/BackendSelection.h"
+#include "runtime/ContactEdits.h"
 #include "runtime/Simulation.h"
 #include "runtime/StatsReport.h"
 
 namespace deme {
+
+namespace {
+
+// Wildcard values given before Initialize (SetFamilyOwnerWildcardValue, SetFamilyContactWildcardInitValue),
+// now that the model's names are known; an unknown name is an error naming the call that gave it.
+void applyWildcardValuesGivenEarly(const Scene& scene, const ModelLayout& layout, SimState& s) {
+    for (const auto& v : scene.familyOwnerWildcards) {
+        const int w = indexOf(layout.ownerWildcards, v.name);
+        if (w < 0)
+            throwError("SetFamilyOwnerWildcardValue", "the force model has no owner wildcard \"" + v.name +
+                                                          "\" (declare it with SetPerOwnerWildcards)");
+        for (size_t o = 0; o < s.owners.size(); o++)
+            if (s.owners.family[o] == v.family) s.wildcards.owner[w][o] = v.value;
+    }
+    for (const auto& v : scene.contactWildcardInits) {
+        const int w = indexOf(layout.contactWildcards, v.name);
+        if (w < 0)
+            throwError("SetFamilyContactWildcardInitValue", "the force model has no contact wildcard \"" + v.name +
+                                                                "\" (declare it with SetPerContactWildcards)");
+        addContactWildcardInit(s.wildcards, {v.a, v.b, (unsigned int)w, v.value});
+    }
+}
+
+}  // namespace
 
 DEMSolver::DEMSolver() : m_scene(new Scene()), m_sim(new Simulation()) {}
 DEMSolver::DEMSolver(unsigned int nGPUs) : DEMSolver() {
@@ -178,7 +203,14 @@ void DEMSolver::Initialize() {
     const char* call = "Initialize";
     requireNotInitialized(call);
     if (!(m_sim->settings.dt > 0.0)) throwError(call, "no time step: call SetInitTimeStep first");
-    SimState state = assembleScene(*m_scene);
+    if (!m_scene->forceModel)
+        m_scene->forceModel = std::make_shared<DEMForceModel>(DEMForceModel::Kind::FRICTIONAL_HERTZIAN);
+    const ModelLayout layout = resolveModelLayout(*m_scene->forceModel, *m_scene, call);
+    SimState state = assembleScene(*m_scene, layout);
+    applyWildcardValuesGivenEarly(*m_scene, layout, state);
+    // A custom model is compiled here (or found in the cache); a compile error leaves the solver as it was.
+    ActiveForceModel model = loadForceModel(layout, "Initialize (contact force model)");
+    m_scene->forceModel->m_locked = true;
     size_t offset = 0;
     for (auto& b : m_scene->batches) {
         b->m_ownerOffset = offset;
@@ -194,7 +226,7 @@ void DEMSolver::Initialize() {
         m->m_ownerID = offset++;
         m->m_initialized = true;
     }
-    m_sim->start(std::move(state));
+    m_sim->start(std::move(state), std::move(model));
 }
 
 void DEMSolver::DoDynamics(double duration) {

@@ -12,6 +12,7 @@
 #include "api/SceneAssembly.h"
 #include "api/Validate.h"
 #include "backend/cpu/Parallel.h"
+#include "forcemodel/Identifiers.h"
 #include "io/ClumpCsvReader.h"
 #include "io/ObjReader.h"
 #include "io/OutputWriters.h"
@@ -24,20 +25,19 @@ namespace deme {
 std::shared_ptr<DEMMaterial> DEMSolver::LoadMaterial(const std::map<std::string, double>& props) {
     const char* call = "LoadMaterial";
     requireNotInitialized(call);
-    static const char* known[] = {"E", "nu", "CoR", "mu", "Crr"};
-    static const char* required[] = {"E", "nu", "CoR", "mu"};
+    // Any property a force model may read by name; the ones the model needs are checked at Initialize.
     for (const auto& kv : props) {
-        if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return kv.first == k; }) ==
-            std::end(known))
-            throwError(call, "unknown material property \"" + kv.first + "\" (known: E, nu, CoR, mu, Crr)");
+        if (!isCppIdentifier(kv.first))
+            throwError(call, "material property \"" + kv.first +
+                                 "\" is not a C++ identifier (force models read properties by name)");
         requireFinite(call, kv.first.c_str(), kv.second);
     }
-    for (const char* r : required)
-        if (!props.count(r)) throwError(call, std::string("missing material property \"") + r + "\"");
-    if (!(props.at("E") > 0.0)) throwError(call, "E must be positive");
-    if (!(props.at("nu") >= 0.0 && props.at("nu") < 0.5)) throwError(call, "nu must be in [0, 0.5)");
-    if (!(props.at("CoR") >= 0.0 && props.at("CoR") <= 1.0)) throwError(call, "CoR must be in [0, 1]");
-    if (!(props.at("mu") >= 0.0)) throwError(call, "mu must be >= 0");
+    // The standard properties' ranges, where given.
+    auto has = [&](const char* k) { return props.count(k) > 0; };
+    if (has("E") && !(props.at("E") > 0.0)) throwError(call, "E must be positive");
+    if (has("nu") && !(props.at("nu") >= 0.0 && props.at("nu") < 0.5)) throwError(call, "nu must be in [0, 0.5)");
+    if (has("CoR") && !(props.at("CoR") >= 0.0 && props.at("CoR") <= 1.0)) throwError(call, "CoR must be in [0, 1]");
+    if (has("mu") && !(props.at("mu") >= 0.0)) throwError(call, "mu must be >= 0");
     std::map<std::string, double> full = props;
     if (!full.count("Crr")) full["Crr"] = 0.0;
     if (!(full.at("Crr") >= 0.0)) throwError(call, "Crr must be >= 0");
@@ -52,11 +52,12 @@ void DEMSolver::SetMaterialPropertyPair(const std::string& name, const std::shar
                                         const std::shared_ptr<DEMMaterial>& b, double value) {
     const char* call = "SetMaterialPropertyPair";
     requireNotInitialized(call);
-    if (name != "CoR" && name != "mu" && name != "Crr")
-        throwError(call, "\"" + name + "\" is not a pairwise property (CoR, mu, Crr)");
+    // Whether the force model reads `name` per pair is checked at Initialize.
+    if (!isCppIdentifier(name)) throwError(call, "\"" + name + "\" is not a C++ identifier");
     if (!a || !b) throwError(call, "material is null");
     requireFinite(call, "value", value);
-    if (value < 0.0 || (name == "CoR" && value > 1.0)) throwError(call, "value out of range for " + name);
+    if ((name == "CoR" || name == "mu" || name == "Crr") && (value < 0.0 || (name == "CoR" && value > 1.0)))
+        throwError(call, "value out of range for " + name);
     const unsigned int ia = a->GetLoadOrder(), ib = b->GetLoadOrder();
     m_scene->pairProperties[{name, std::min(ia, ib), std::max(ia, ib)}] = value;
 }

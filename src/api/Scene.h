@@ -10,6 +10,7 @@
 
 #include <deme/ClumpTemplate.h>
 #include <deme/ExternalObject.h>
+#include <deme/ForceModel.h>
 #include <deme/Materials.h>
 #include <deme/Mesh.h>
 
@@ -24,6 +25,21 @@ class Scene {
     std::vector<std::shared_ptr<DEMClumpBatch>> batches;
     std::vector<std::shared_ptr<DEMExternObj>> externObjs;
     std::vector<std::shared_ptr<DEMMeshConnected>> meshes;
+    std::shared_ptr<DEMForceModel> forceModel;  // null: the default (frictional Hertzian)
+    // Wildcard values given before Initialize, applied by it: owners of a family get a value, and
+    // contacts appearing between two families start with one. Names are checked at Initialize.
+    struct FamilyOwnerValue {
+        family_t family;
+        std::string name;
+        float value;
+    };
+    std::vector<FamilyOwnerValue> familyOwnerWildcards;
+    struct ContactInitValue {
+        family_t a, b;
+        std::string name;
+        float value;
+    };
+    std::vector<ContactInitValue> contactWildcardInits;
     bool hasDomain = false;
     float3 domainSize = make_float3(0.f);
     float3 domainLo = make_float3(0.f);  // lower corner

@@ -8,7 +8,6 @@
 #include <deme/Error.h>
 
 #include "physics/ContactGeometry.h"
-#include "physics/DefaultForceModel.h"
 #include "physics/RigidBody.h"
 
 namespace deme {
@@ -19,37 +18,6 @@ const char* CALL = "Initialize";
 
 std::string fmt3(const float3& v) {
     return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
-}
-
-// Pairwise table: the user's pair value, else the average of the two materials' values.
-std::vector<float> pairTable(const Scene& scene, const std::string& name, double fallback) {
-    const size_t n = scene.materials.size();
-    std::vector<float> t(n * n);
-    for (size_t a = 0; a < n; a++)
-        for (size_t b = 0; b < n; b++) {
-            const auto& pa = scene.materials[a]->GetProperties();
-            const auto& pb = scene.materials[b]->GetProperties();
-            const double va = pa.count(name) ? pa.at(name) : fallback;
-            const double vb = pb.count(name) ? pb.at(name) : fallback;
-            double v = 0.5 * (va + vb);
-            const auto it = scene.pairProperties.find({name, (unsigned)std::min(a, b), (unsigned)std::max(a, b)});
-            if (it != scene.pairProperties.end()) v = it->second;
-            t[a * n + b] = (float)v;
-        }
-    return t;
-}
-
-// The derived pair tables of MaterialTables, from the per-material and pair values.
-void mixPairTables(MaterialTables& mt) {
-    const size_t n = mt.count;
-    mt.E_eff.assign(n * n, 0.f);
-    mt.G_eff.assign(n * n, 0.f);
-    mt.beta_CoR.assign(n * n, 0.f);
-    for (size_t a = 0; a < n; a++)
-        for (size_t b = 0; b < n; b++) {
-            matProxy2ContactParam(mt.E_eff[a * n + b], mt.G_eff[a * n + b], mt.E[a], mt.nu[a], mt.E[b], mt.nu[b]);
-            mt.beta_CoR[a * n + b] = dampingBetaFromCoR(mt.CoR[a * n + b]);
-        }
 }
 
 DomainFrame makeFrame(const float3& lo, const float3& size) {
@@ -163,7 +131,7 @@ std::vector<size_t> spatialOrder(const Scene& scene, size_t n, PosOf posOf) {
 
 }  // namespace
 
-SimState assembleScene(const Scene& scene) {
+SimState assembleScene(const Scene& scene, const ModelLayout& model) {
     if (!scene.hasDomain) throwError(CALL, "no simulation domain: call InstructBoxDomainDimension first");
     if (scene.materials.empty()) throwError(CALL, "no material loaded: call LoadMaterial first");
     if (scene.batches.empty() && scene.externObjs.empty() && scene.meshes.empty())
@@ -172,19 +140,8 @@ SimState assembleScene(const Scene& scene) {
     SimState s;
     s.frame = makeFrame(scene.domainLo, scene.domainSize);
     s.domainSize = to_double3(scene.domainSize);
-    s.numWildcards = DEFAULT_MODEL_NUM_WILDCARDS;
-
-    // Materials.
-    MaterialTables& mt = s.materials;
-    mt.count = (unsigned int)scene.materials.size();
-    for (const auto& m : scene.materials) {
-        mt.E.push_back((float)m->Get("E"));
-        mt.nu.push_back((float)m->Get("nu"));
-    }
-    mt.CoR = pairTable(scene, "CoR", 0.0);
-    mt.mu = pairTable(scene, "mu", 0.0);
-    mt.Crr = pairTable(scene, "Crr", 0.0);
-    mixPairTables(mt);
+    s.numWildcards = (unsigned int)model.contactWildcards.size();
+    buildMaterialTables(scene, model, s.materials);
 
     // Mass properties: one entry per template in use, then one per external object.
     std::map<const DEMClumpTemplate*, inertiaID_t> templateIndex;
@@ -290,6 +247,12 @@ SimState assembleScene(const Scene& scene) {
     s.owners.extraAcc.assign(nOwners, make_float3(0.f));
     s.owners.extraAngAcc.assign(nOwners, make_float3(0.f));
     s.owners.travel.assign(nOwners, 0.0);
+    s.sphereUserToInternal.assign(s.spheres.size(), 0);
+    for (size_t i = 0; i < s.spheres.size(); i++) s.sphereUserToInternal[s.sphereInternalToUser[i]] = (bodyID_t)i;
+    // Owner and geometry wildcards start at 0.
+    const size_t nGeometries = s.spheres.size() + s.analytical.size() + s.triangles.size();
+    s.wildcards.owner.assign(model.ownerWildcards.size(), std::vector<float>(nOwners, 0.f));
+    s.wildcards.geometry.assign(model.geometryWildcards.size(), std::vector<float>(nGeometries, 0.f));
     if (s.spheres.size() >= (size_t(1) << 31) || nOwners >= (size_t(1) << 31))
         throwError(CALL, "too many geometries for 32-bit ids");
     return s;

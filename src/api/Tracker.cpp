@@ -1,6 +1,7 @@
 #include <deme/Tracker.h>
 
 #include "api/Validate.h"
+#include "api/WildcardLookup.h"
 #include "physics/Quaternion.h"
 #include "runtime/Simulation.h"
 
@@ -71,6 +72,18 @@ void DEMTracker::AddAngAcc(const float3& angAcc, size_t offset) {
     requireFinite3("DEMTracker::AddAngAcc", "angular acceleration", angAcc);
     m_sim->trackerLoadState().owners.extraAngAcc[internalID(offset)] += angAcc;
     m_sim->trackerLoadState().hasTrackerLoads = true;
+}
+
+void DEMTracker::SetOwnerWildcardValue(const std::string& name, float value, size_t offset) {
+    const char* call = "DEMTracker::SetOwnerWildcardValue";
+    requireFinite(call, "wildcard value", value);
+    const size_t o = internalID(offset);
+    m_sim->editState().wildcards.owner[wildcardIndex(*m_sim, call, WildcardKind::OWNER, name)][o] = value;
+}
+float DEMTracker::GetOwnerWildcardValue(const std::string& name, size_t offset) const {
+    const size_t o = internalID(offset);
+    return m_sim->state()
+        .wildcards.owner[wildcardIndex(*m_sim, "DEMTracker::GetOwnerWildcardValue", WildcardKind::OWNER, name)][o];
 }
 
 }  // namespace deme

@@ -1,74 +1,29 @@
 #include "dynamics/ForcePass.h"
 
 #include "backend/cpu/Parallel.h"
-#include "dynamics/ContactInputsGather.h"
-#include "physics/DefaultForceModel.h"
+#include "dynamics/ForcePassLoop.h"
+#include "physics/BuiltInForceModels.h"
 
 namespace deme {
 
 namespace {
 
-// One contact of the set: its inputs, the model, and the stored force and torques. Instantiated
-// separately for sphere-sphere contacts (most of any granular scene) so that the compiler drops the
-// other geometry branches from that path.
-template <bool SphereSphere>
-DEME_HD_INLINE bool processContact(SimState& s, size_t i, float time, float dt, const DefaultModelMaterials& mat) {
-    ContactArrays& c = s.contacts;
-    // The built-in model's wildcard count is a constant, so its history loops unroll.
-    constexpr unsigned int W = DEFAULT_MODEL_NUM_WILDCARDS;
-    float* wc = c.wildcards.data() + i * W;
-    bool touching;
-    ContactInputs in;
-    if (SphereSphere) {
-        // Most pairs in the set that are apart are sphere pairs: tell them cheaply.
-        const double3 d = s.cache.spherePos[c.geomA[i]] - s.cache.spherePos[c.geomB[i]];
-        const double reach = (double)s.spheres.radius[c.geomA[i]] + (double)s.spheres.radius[c.geomB[i]];
-        touching = dot(d, d) < reach * reach;
-        if (touching) gatherContactInputsOfType(s, i, SPHERE_SPHERE, time, dt, in);
-    } else {
-        gatherContactInputsOfType(s, i, c.type[i], time, dt, in);
-        const bool counts = c.type[i] != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
-        touching = in.overlapDepth > 0.0 && counts;
-    }
-    if (!touching) {
-        // Apart: no force, and the contact's history ends (a later touch starts fresh).
-        for (unsigned int w = 0; w < W; w++) wc[w] = 0.f;
-        c.force[i] = c.torqueA[i] = c.torqueB[i] = make_float3(0.f);
-        return false;
-    }
-    float3 force = make_float3(0.f), torque_only_force = make_float3(0.f);
-    defaultForceModel(in, mat, wc, force, torque_only_force);
-    const float3 total = force + torque_only_force;
-    c.force[i] = force;
-    c.torqueA[i] = cross(in.armA, total);
-    c.torqueB[i] = cross(in.armB, -total);
-    return true;
-}
+PairTable pairTable(const std::vector<float>& table, unsigned int n) { return PairTable{table.data(), n}; }
 
 }  // namespace
 
-ForcePassResult computeContactForces(SimState& s, double time, double dt) {
-    ContactArrays& c = s.contacts;
-    const size_t n = c.size();
+ForcePassResult frictionalHertzForcePass(SimState& s, double time, double dt) {
     const MaterialTables& mt = s.materials;
-    const unsigned int nm = mt.count;
-    const DefaultModelMaterials mat{PairTable{mt.mu.data(), nm}, PairTable{mt.Crr.data(), nm},
-                                    PairTable{mt.E_eff.data(), nm}, PairTable{mt.G_eff.data(), nm},
-                                    PairTable{mt.beta_CoR.data(), nm}};
-    size_t real = 0, realSS = 0;
-#pragma omp parallel if (n > PARALLEL_MIN_ITEMS)
-    {
-        // Sphere pairs first, as one vectorisable sweep (masked lanes for other types) ...
-#pragma omp for simd schedule(static) reduction(+ : realSS) nowait
-        for (size_t i = 0; i < n; i++)
-            if (c.type[i] == SPHERE_SPHERE) realSS += processContact<true>(s, i, (float)time, (float)dt, mat);
-        // ... then the rest, with the same static split so each thread revisits its own range.
-#pragma omp for schedule(static) reduction(+ : real)
-        for (size_t i = 0; i < n; i++)
-            if (c.type[i] != SPHERE_SPHERE) real += processContact<false>(s, i, (float)time, (float)dt, mat);
-    }
-    real += realSS;
-    return ForcePassResult{real, realSS};
+    const unsigned int n = mt.count;
+    const FrictionalHertzModel model{pairTable(mt.mu, n), pairTable(mt.Crr, n), pairTable(mt.E_eff, n),
+                                     pairTable(mt.G_eff, n), pairTable(mt.beta_CoR, n)};
+    return runForcePass(s, model, time, dt);
+}
+
+ForcePassResult frictionlessHertzForcePass(SimState& s, double time, double dt) {
+    const MaterialTables& mt = s.materials;
+    const FrictionlessHertzModel model{pairTable(mt.E_eff, mt.count), pairTable(mt.beta_CoR, mt.count)};
+    return runForcePass(s, model, time, dt);
 }
 
 void buildOwnerContactIndex(SimState& s) {

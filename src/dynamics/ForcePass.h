@@ -2,16 +2,17 @@
 // active-contact set and stores each pair's force and the torques about both owners.
 #pragma once
 
+#include "dynamics/ForcePassResult.h"
 #include "runtime/SimState.h"
 
 namespace deme {
 
-struct ForcePassResult {
-    size_t realContacts = 0;  // pairs with overlap > 0
-    size_t realSphereSphere = 0;
-};
+// One force pass of a given model. The built-in models' passes are compiled into the library; a
+// user's model gets one compiled at run time (forcemodel/ModelLoader.h), with the same loop.
+using ForcePassFunction = ForcePassResult (*)(SimState& s, double time, double dt);
 
-ForcePassResult computeContactForces(SimState& s, double time, double dt);
+ForcePassResult frictionalHertzForcePass(SimState& s, double time, double dt);
+ForcePassResult frictionlessHertzForcePass(SimState& s, double time, double dt);
 
 // For reduction: lists, per owner, the contacts it takes part in (rebuilt after each detection).
 void buildOwnerContactIndex(SimState& s);

@@ -28,6 +28,17 @@ void finish(File& f, const std::string& path, const char* call) {
     if (std::ferror(f.get()) || std::fclose(f.release()) != 0) throwError(call, "error writing \"" + path + "\"");
 }
 
+// The owner wildcards' names as header columns, if EnableOwnerWildcardOutput asked for them.
+void ownerWildcardHeader(FILE* f, const Simulation& sim) {
+    if (!sim.settings.outOwnerWildcards) return;
+    for (const std::string& name : sim.forceModel().layout.ownerWildcards) std::fprintf(f, ",%s", name.c_str());
+}
+
+void ownerWildcardColumns(FILE* f, const Simulation& sim, size_t owner) {
+    if (!sim.settings.outOwnerWildcards) return;
+    for (const std::vector<float>& w : sim.state().wildcards.owner) std::fprintf(f, ",%.9g", w[owner]);
+}
+
 }  // namespace
 
 void writeSphereCsv(const Simulation& sim, const std::string& path) {
@@ -43,6 +54,7 @@ void writeSphereCsv(const Simulation& sim, const std::string& path) {
     if (o.outOwner) std::fprintf(f.get(), ",owner");
     if (o.outMat) std::fprintf(f.get(), ",material");
     if (o.outQuat) std::fprintf(f.get(), ",Qw,Qx,Qy,Qz");
+    ownerWildcardHeader(f.get(), sim);
     std::fprintf(f.get(), "\n");
     // Rows in user order: owners as added, each owner's spheres in template order.
     for (size_t u = 0; u < s.numClumps; u++) {
@@ -61,6 +73,7 @@ void writeSphereCsv(const Simulation& sim, const std::string& path) {
             if (o.outOwner) std::fprintf(f.get(), ",%u", (unsigned)s.ownerInternalToUser[ow]);
             if (o.outMat) std::fprintf(f.get(), ",%u", (unsigned)s.spheres.material[i]);
             if (o.outQuat) std::fprintf(f.get(), ",%.9g,%.9g,%.9g,%.9g", q.w, q.x, q.y, q.z);
+            ownerWildcardColumns(f.get(), sim, ow);
             std::fprintf(f.get(), "\n");
         }
     }
@@ -71,15 +84,19 @@ void writeClumpCsv(const Simulation& sim, const std::string& path) {
     const char* call = "WriteClumpFile";
     const SimState& s = sim.state();
     File f = openForWriting(path, call);
-    std::fprintf(f.get(), "owner,X,Y,Z,Qw,Qx,Qy,Qz,v_x,v_y,v_z,w_x,w_y,w_z,mass,family\n");
+    std::fprintf(f.get(), "owner,X,Y,Z,Qw,Qx,Qy,Qz,v_x,v_y,v_z,w_x,w_y,w_z,mass,family");
+    ownerWildcardHeader(f.get(), sim);
+    std::fprintf(f.get(), "\n");
     for (size_t u = 0; u < s.numClumps; u++) {
         const size_t o = s.ownerUserToInternal[u];
         const double3 p = ownerPosition(s, (bodyID_t)o);
         const float4 q = s.owners.oriQ[o];
         const float3 v = s.owners.vel[o], w = s.owners.angVel[o];
-        std::fprintf(f.get(), "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%u\n", u, p.x,
+        std::fprintf(f.get(), "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%u", u, p.x,
                      p.y, p.z, q.w, q.x, q.y, q.z, v.x, v.y, v.z, w.x, w.y, w.z, sim.ownerMass(o),
                      (unsigned)s.owners.family[o]);
+        ownerWildcardColumns(f.get(), sim, o);
+        std::fprintf(f.get(), "\n");
     }
     finish(f, path, call);
 }
@@ -93,8 +110,11 @@ void writeContactCsv(const Simulation& sim, const std::string& path) {
         ContactInputs in;
         gatherContactInputs(s, c, (float)sim.time(), (float)sim.settings.dt, in);
         const uint8_t type = s.contacts.type[c];
-        if (!(in.overlapDepth > 0.0) || (type == SPHERE_TRIANGLE && !(s.contacts.meshState[c] & 1u))) continue;
         const float3 F = s.contacts.force[c];
+        // Pairs in contact, and pairs a custom model gives a force at a distance.
+        const bool counts = type != SPHERE_TRIANGLE || (s.contacts.meshState[c] & 1u);
+        const bool loaded = F.x != 0.f || F.y != 0.f || F.z != 0.f;
+        if (!counts || !(in.overlapDepth > 0.0 || loaded)) continue;
         const bool ss = type == SPHERE_SPHERE;
         // Ids in user order: spheres as laid out by the templates of the clumps as added.
         const unsigned long geomA = s.sphereInternalToUser[in.AGeo];

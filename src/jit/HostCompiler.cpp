@@ -20,6 +20,10 @@
 #ifndef DEME_JIT_CXX
 #define DEME_JIT_CXX "c++"
 #endif
+// The library's floating-point options (CMakeLists.txt: DEME_FP_OPTIONS), space-separated.
+#ifndef DEME_JIT_FP_OPTIONS
+#define DEME_JIT_FP_OPTIONS ""
+#endif
 
 namespace deme::jit {
 
@@ -152,10 +156,13 @@ std::vector<std::string> hostCompilerCommand() {
 }
 
 std::vector<std::string> hostCompilerFlags() {
-    // The library's own -std, optimisation and -march, and no fast-math: the compiler then makes the
-    // same floating-point choices (e.g. GCC contracts a*b+c into fused multiply-adds where -march
-    // allows, as it does in the library), so run-time code rounds as built-in code does.
+    // The library's own -std, optimisation, floating-point options (-fno-math-errno) and -march, and
+    // no fast-math: the compiler then makes the same floating-point choices (e.g. GCC contracts a*b+c
+    // into fused multiply-adds where -march allows, as it does in the library), so run-time code
+    // rounds as built-in code does.
     std::vector<std::string> flags = {"-std=c++17", "-O3", "-fPIC", "-shared", "-fopenmp"};
+    std::istringstream fpOptions(DEME_JIT_FP_OPTIONS);
+    for (std::string w; fpOptions >> w;) flags.push_back(w);
 #ifdef DEME_JIT_NATIVE_ARCH
     flags.push_back("-march=native");
 #endif

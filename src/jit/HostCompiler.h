@@ -51,8 +51,9 @@ struct HostCompileResult {
 // compiler the library was built with.
 std::vector<std::string> hostCompilerCommand();
 // Flags for every compilation, besides -I<embedded sources> and -o: -std=c++17 -O3 -fPIC -shared
-// -fopenmp, plus -march=native and -DNDEBUG when the library was built with them, so that run-time
-// code computes exactly what the same code built into the library would.
+// -fopenmp and the library's floating-point options (-fno-math-errno), plus -march=native and -DNDEBUG
+// when the library was built with them, so that run-time code computes exactly what the same code
+// built into the library would.
 std::vector<std::string> hostCompilerFlags();
 
 // Compiles `source`, which may include the embedded sources (materializeEmbeddedSources()) as the

@@ -138,4 +138,10 @@ void ContactSetManager::sync(SimState& s, unsigned long long step, TimingStats& 
     considerResult(s, m_result, step, timing);
 }
 
+void ContactSetManager::bringUpToDate(SimState& s, const Settings& settings, const FamilyRules& families,
+                                      unsigned long long step, float maxSpeed, TimingStats& timing) {
+    sync(s, step, timing);
+    if (m_needDetection || m_expired) detectNow(s, settings, families, step, maxSpeed, timing);
+}
+
 }  // namespace deme

@@ -34,6 +34,10 @@ class ContactSetManager {
     }
     // Waits for the kinematics thread to finish its order and takes the result (DoDynamicsThenSync).
     void sync(SimState& s, unsigned long long step, TimingStats& timing);
+    // Between steps, for host-side edits of the contacts (persistence, contact wildcards): takes the
+    // result in flight, then detects now if the set in use could miss a contact of the current state.
+    void bringUpToDate(SimState& s, const Settings& settings, const FamilyRules& families, unsigned long long step,
+                       float maxSpeed, TimingStats& timing);
     // A host-side edit of the state: detect afresh before the next step; results in flight are stale.
     void invalidate() {
         m_needDetection = true;

@@ -38,6 +38,7 @@ struct Settings {
     // Sphere file columns beyond X,Y,Z,r.
     bool outAbsv = false, outVel = false, outAngVel = false, outFamily = false, outOwner = false, outMat = false,
          outQuat = false;
+    bool outOwnerWildcards = false;  // sphere and clump files: one column per owner wildcard
 };
 
 }  // namespace deme

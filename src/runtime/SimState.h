@@ -74,6 +74,9 @@ struct ContactArrays {
     std::vector<bodyID_t> geomA, geomB;
     std::vector<uint8_t> type;     // ContactType
     std::vector<float> wildcards;  // numWildcards values per contact, contact-major
+    // 1: the pair stays in the set even when detection no longer finds it, until the force model
+    // clears the flag or the user removes it (DEMSolver::MarkPersistentContact).
+    std::vector<uint8_t> persistent;
     // Sphere-triangle contacts: bit 0 set if the contact counted this step, bit 1 if it did in the
     // previous step (see dynamics/MeshContacts.h).
     std::vector<uint8_t> meshState;
@@ -111,11 +114,31 @@ struct IntegrationScratch {
 // Material property tables for the force model.
 struct MaterialTables {
     unsigned int count = 0;
+    // The standard properties, which the built-in models and the derived tables read (0 where a
+    // material lacks one).
     std::vector<float> E, nu;         // per material
     std::vector<float> CoR, mu, Crr;  // per pair, count x count
     // Derived once per pair (MaterialMixing.h) so that force models need not mix per contact:
     // effective Young's and shear moduli, and the damping term of CoR.
     std::vector<float> E_eff, G_eff, beta_CoR;
+    // Every property by name for a user's model, in the order of the model's layout
+    // (forcemodel/ModelLayout.h): per-material ones, then the ones the model reads per pair.
+    std::vector<std::vector<float>> props, pairProps;
+};
+
+// The force model's owner and geometry wildcards (paper Table 3): one array per wildcard, in the
+// order the model declares them, indexed by internal owner id or unified geometry id. Contact
+// wildcards live with the contacts (ContactArrays::wildcards).
+struct WildcardArrays {
+    std::vector<std::vector<float>> owner, geometry;
+    // Contacts that appear between families a and b (either way round) start with `value` in
+    // contact wildcard `index` instead of 0.
+    struct ContactInit {
+        family_t a, b;
+        unsigned int index;
+        float value;
+    };
+    std::vector<ContactInit> contactInit;
 };
 
 struct SimState {
@@ -134,8 +157,9 @@ struct SimState {
     // Owners and spheres are stored in a space-filling-curve order for memory locality; users see
     // ids in the order they added things (clumps batch by batch, then external objects).
     std::vector<bodyID_t> ownerUserToInternal, ownerInternalToUser;
-    std::vector<bodyID_t> sphereInternalToUser;
+    std::vector<bodyID_t> sphereInternalToUser, sphereUserToInternal;
     MaterialTables materials;
+    WildcardArrays wildcards;
     unsigned int numWildcards = 0;
     size_t numClumps = 0;  // owners [0, numClumps) are clumps; analytical owners, then meshes follow
     size_t numAnalyticalOwners = 0;

@@ -35,8 +35,9 @@ void Simulation::log(Verbosity level, const std::string& msg) const {
 Simulation::Simulation() = default;
 Simulation::~Simulation() = default;
 
-void Simulation::start(SimState&& state) {
+void Simulation::start(SimState&& state, ActiveForceModel&& model) {
     m_state = std::move(state);
+    m_model = std::move(model);
     refreshKinematicCache(m_state);
     m_grid = makeBinGrid(m_state, settings.binSize);
     applyDetectionMode();
@@ -49,6 +50,10 @@ void Simulation::start(SimState&& state) {
                              std::to_string(m_grid.size) + " (" + std::to_string(m_grid.numBins()) + " bins), " +
                              std::to_string(cpuThreadCount()) + " CPU threads for dynamics, contact detection " +
                              (settings.asyncDetection ? "on its own thread" : "on the dynamics thread"));
+    const std::string how = m_model.layout.builtIn() ? "built in"
+                            : m_model.cacheHit       ? "compiled earlier, loaded from the cache"
+                                                     : "compiled in " + std::to_string(m_model.compileSeconds) + " s";
+    log(Verbosity::INFO, "force model: " + m_model.layout.description() + " (" + how + ")");
 }
 
 void Simulation::applyDetectionMode() {
@@ -72,6 +77,16 @@ void Simulation::startDevice() {
         resolveBackend("Initialize", request, [this](Verbosity v, const std::string& msg) { log(v, msg); });
     settings.onGpu = choice.kind == BackendKind::Cuda;
     if (!settings.onGpu) return;
+    // The GPU step loop runs the default frictional Hertz-Mindlin model so far; other models run on
+    // the CPU. Asked for explicitly (SetBackend("cuda")) that is an error, otherwise it is said.
+    if (m_model.layout.kind != DEMForceModel::Kind::FRICTIONAL_HERTZIAN) {
+        const std::string why = "the CUDA backend runs the default frictional Hertz-Mindlin model only so far; "
+                                "this force model runs on the CPU";
+        if (settings.backend == "cuda") throwError("Initialize", why);
+        log(Verbosity::WARNING, why);
+        settings.onGpu = false;
+        return;
+    }
 #ifdef DEME_HAS_CUDA
     const int device = settings.deviceIds.empty() ? choice.deviceId : settings.deviceIds.front();
     const auto t0 = std::chrono::steady_clock::now();
@@ -103,6 +118,8 @@ void Simulation::advanceOnDevice(unsigned long long n) {
     CollaborationStats& collab = m_contacts.stats();
     const auto t0 = std::chrono::steady_clock::now();
     if (m_deviceStale) {
+        for (uint8_t p : m_state.contacts.persistent)
+            if (p) throwError("DoDynamics", "persistent contacts run on the CPU backend only so far (SetBackend(\"cpu\"))");
         m_device->upload(m_state, m_grid, settings, families);
         m_deviceStale = false;
     }
@@ -151,7 +168,7 @@ void Simulation::advance(unsigned long long n) {
         {
             PhaseTimer t(m_timing, Phase::FORCE);
             resolveMeshContacts(m_state);
-            const ForcePassResult r = computeContactForces(m_state, m_time, settings.dt);
+            const ForcePassResult r = m_model.pass(m_state, m_time, settings.dt);
             m_realContacts = r.realContacts;
             m_realSphereSphere = r.realSphereSphere;
         }
@@ -186,6 +203,10 @@ void Simulation::advance(unsigned long long n) {
 
 void Simulation::syncContactDetection() {
     if (m_initialized) m_contacts.sync(m_state, m_step, m_timing);
+}
+
+void Simulation::refreshContactSet() {
+    if (m_initialized) m_contacts.bringUpToDate(m_state, settings, families, m_step, m_lastMaxSpeed, m_timing);
 }
 
 void Simulation::reportFault(const IntegrationResult& ir) const {

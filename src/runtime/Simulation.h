@@ -7,6 +7,7 @@
 
 #include "kinematics/ContactDetection.h"
 #include "dynamics/Integration.h"
+#include "forcemodel/ActiveForceModel.h"
 #include "runtime/ContactSetManager.h"
 #include "runtime/FamilyRules.h"
 #include "runtime/Settings.h"
@@ -27,8 +28,8 @@ class Simulation {
     FamilyRules families;
 
     bool initialized() const { return m_initialized; }
-    // Takes over an assembled state and runs the first contact detection.
-    void start(SimState&& state);
+    // Takes over an assembled state and the force model; the first step detects contacts.
+    void start(SimState&& state, ActiveForceModel&& model);
     // Advances n steps of settings.dt.
     void advance(unsigned long long n);
 
@@ -51,6 +52,10 @@ class Simulation {
     double currentMargin() const;
     unsigned int updateFreq() const;  // the n_max in use
     const ContactSetManager& contactSets() const { return m_contacts; }
+    const ActiveForceModel& forceModel() const { return m_model; }
+    // Makes s.contacts the set the next step would start from (waiting for the kinematics thread or
+    // detecting now), for host-side edits of the contacts.
+    void refreshContactSet();
     // Resolves settings.detectionMode into settings.asyncDetection and sizes the dynamics thread
     // team accordingly.
     void applyDetectionMode();
@@ -82,6 +87,7 @@ class Simulation {
     std::unique_ptr<cuda::DeviceSimulation> m_device;
     bool m_deviceStale = true;
     mutable bool m_hostStale = false;
+    ActiveForceModel m_model;
     TimingStats m_timing;
     BinGrid m_grid;
     std::array<FamilyStepMotion, NUM_FAMILIES> m_stepMotion;

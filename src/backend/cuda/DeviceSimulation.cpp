@@ -15,7 +15,7 @@
 #include "backend/cuda/kernels/KernelArgs.cuh"
 #include "dynamics/OwnerStep.h"
 #include "jit/EmbeddedSources.h"
-#include "physics/DefaultForceModel.h"
+#include "physics/BuiltInForceModels.h"
 #include "runtime/StateView.h"
 
 namespace deme::cuda {
@@ -411,7 +411,7 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
     Impl& d = *m;
     DeviceFault fault;
     const unsigned int nO = d.view.numOwners, nS = d.view.numSpheres, nT = d.view.numTriangles;
-    const DefaultModelMaterials mat{PairTable{d.mu.data(), d.numMaterials}, PairTable{d.Crr.data(), d.numMaterials},
+    const FrictionalHertzModel mat{PairTable{d.mu.data(), d.numMaterials}, PairTable{d.Crr.data(), d.numMaterials},
                                     PairTable{d.E_eff.data(), d.numMaterials},
                                     PairTable{d.G_eff.data(), d.numMaterials},
                                     PairTable{d.beta_CoR.data(), d.numMaterials}};

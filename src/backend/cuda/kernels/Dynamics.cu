@@ -5,7 +5,7 @@
 #include "dynamics/ContactInputsGather.h"
 #include "dynamics/MeshContactRule.h"
 #include "dynamics/OwnerStep.h"
-#include "physics/DefaultForceModel.h"
+#include "physics/BuiltInForceModels.h"
 #include "runtime/StateView.h"
 
 namespace deme {
@@ -65,7 +65,7 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, StepReduction
 
 // Force pass: each contact's force and torques (as on the CPU), added to both owners' loads. Loads
 // on the few non-clump owners (walls, meshes) are first summed per block in shared memory.
-extern "C" __global__ void deme_force_pass(StateView s, float time, float dt, DefaultModelMaterials mat,
+extern "C" __global__ void deme_force_pass(StateView s, float time, float dt, FrictionalHertzModel model,
                                            unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red) {
     __shared__ float3 blockForce[SHARED_LOAD_SLOTS], blockTorque[SHARED_LOAD_SLOTS];
     __shared__ unsigned int blockReal, blockSS;
@@ -80,7 +80,7 @@ extern "C" __global__ void deme_force_pass(StateView s, float time, float dt, De
     const size_t i = globalIndex();
     if (i < s.numContacts) {
         ContactView& c = s.contacts;
-        constexpr unsigned int W = DEFAULT_MODEL_NUM_WILDCARDS;
+        constexpr unsigned int W = FrictionalHertzModel::kNumContactWildcards;
         float* wc = c.wildcards + i * W;
         const uint8_t type = c.type[i];
         bool touching;
@@ -99,7 +99,8 @@ extern "C" __global__ void deme_force_pass(StateView s, float time, float dt, De
             c.force[i] = c.torqueA[i] = c.torqueB[i] = make_float3(0.f);
         } else {
             float3 force = make_float3(0.f), torque_only_force = make_float3(0.f);
-            defaultForceModel(in, mat, wc, force, torque_only_force);
+            bool persistent = false;
+            model(in, wc, force, torque_only_force, persistent);
             const float3 total = force + torque_only_force;
             const float3 tA = cross(in.armA, total), tB = cross(in.armB, -total);
             c.force[i] = force;

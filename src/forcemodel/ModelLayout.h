@@ -1,0 +1,39 @@
+// What a force model reads, laid out for the engine: the model's kind and source, the material
+// properties it sees per material and per pair, and its wildcards, in the order of the state's
+// tables (SimState::materials, SimState::wildcards, ContactArrays::wildcards).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <deme/ForceModel.h>
+
+#include "api/Scene.h"
+#include "runtime/SimState.h"
+
+namespace deme {
+
+struct ModelLayout {
+    DEMForceModel::Kind kind = DEMForceModel::Kind::FRICTIONAL_HERTZIAN;
+    std::string source, origin;              // a custom model's code, and its name in compiler messages
+    std::vector<std::string> materialProps;  // name[bodyAMatType]
+    std::vector<std::string> pairProps;      // name[bodyAMatType][bodyBMatType]
+    std::vector<std::string> contactWildcards, ownerWildcards, geometryWildcards;
+
+    bool builtIn() const { return kind != DEMForceModel::Kind::CUSTOM; }
+    // "the frictional Hertzian model", "the custom force model", for messages.
+    std::string description() const;
+};
+
+// Index of `name` in `list`, or -1.
+int indexOf(const std::vector<std::string>& list, const std::string& name);
+
+// Checks the scene's materials against the model (every must-have property in every material, a
+// value for every pair of each pairwise property, no pair value the model does not read per pair)
+// and the model's names against each other; throws deme::Error naming `call` and the culprit.
+ModelLayout resolveModelLayout(const DEMForceModel& model, const Scene& scene, const char* call);
+
+// Fills `mt`: the standard and derived tables, and the model's properties by name.
+void buildMaterialTables(const Scene& scene, const ModelLayout& layout, MaterialTables& mt);
+
+}  // namespace deme
