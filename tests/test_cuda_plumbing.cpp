@@ -147,7 +147,7 @@ TEST_F(CudaNvrtc, PhysicsHeadersCompileForTheDevice) {
     const std::string source = R"(
 #include "physics/CompactPosition.h"
 #include "physics/ContactGeometry.h"
-#include "physics/DefaultForceModel.h"
+#include "physics/BuiltInForceModels.h"
 #include "physics/MaterialMixing.h"
 #include "physics/RigidBody.h"
 
@@ -157,12 +157,13 @@ static_assert(sizeof(deme::double3) == 24, "host layout");
 static_assert(sizeof(uint64_t) == 8 && sizeof(int64_t) == 8 && sizeof(uint16_t) == 2 && sizeof(uint8_t) == 1, "");
 
 namespace deme {
-__global__ void forceKernel(const ContactInputs* in, DefaultModelMaterials mat, float* wildcards, float3* force,
+__global__ void forceKernel(const ContactInputs* in, FrictionalHertzModel model, float* wildcards, float3* force,
                             float3* torqueOnlyForce, unsigned int n) {
     const unsigned int i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= n) return;
     float3 f = make_float3(0.f), t = make_float3(0.f);
-    defaultForceModel(in[i], mat, wildcards + DEFAULT_MODEL_NUM_WILDCARDS * i, f, t);
+    bool persistent = false;
+    model(in[i], wildcards + FrictionalHertzModel::kNumContactWildcards * i, f, t, persistent);
     force[i] = f;
     torqueOnlyForce[i] = t;
 }

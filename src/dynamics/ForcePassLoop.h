@@ -18,6 +18,7 @@
 #include "backend/cpu/Parallel.h"
 #include "dynamics/ContactInputsGather.h"
 #include "dynamics/ForcePassResult.h"
+#include "runtime/SimState.h"
 
 namespace deme {
 

@@ -1,7 +1,7 @@
 // The embedded sources (jit/EmbeddedSources.h) as NVRTC's in-memory headers.
 //
 // NVRTC finds an in-memory header only by the exact name an #include spells, and does not resolve a
-// quoted include relative to the including header (physics/DefaultForceModel.h's "Quaternion.h"
+// quoted include relative to the including header (physics/BuiltInForceModels.h's "Quaternion.h"
 // stays "Quaternion.h"). So each quoted include of an embedded file is respelled with the file's
 // path from the include root, by the rule cmake/EmbedSources.cmake checks at build time: next to the
 // including file first, then at the root. Only include lines change, and each stays one line, so
