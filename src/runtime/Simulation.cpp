@@ -19,6 +19,10 @@
 #ifdef DEME_HAS_CUDA
 #include "backend/cuda/DeviceSimulation.h"
 #include "backend/cuda/kernels/KernelArgs.cuh"
+#else
+namespace deme::cuda {
+class DeviceSimulation {};  // never created in a build without the CUDA backend
+}  // namespace deme::cuda
 #endif
 
 namespace deme {
