@@ -93,6 +93,10 @@ void Simulation::startDevice() {
     }
 #ifdef DEME_HAS_CUDA
     const int device = settings.deviceIds.empty() ? choice.deviceId : settings.deviceIds.front();
+    if (settings.deviceIds.size() > 1)
+        log(Verbosity::WARNING, std::to_string(settings.deviceIds.size()) +
+                                    " GPUs were given; the CUDA backend uses one so far (GPU " +
+                                    std::to_string(device) + ") for both contact detection and dynamics");
     const auto t0 = std::chrono::steady_clock::now();
     m_device.reset(new cuda::DeviceSimulation(device, settings));
     log(Verbosity::INFO, "GPU kernels for " + m_device->deviceName() + (m_device->kernelsFromCache() ? " loaded from the cache" : " compiled") +

@@ -19,6 +19,7 @@ namespace {
 // ---- Device.h
 bool cudaBackendBuilt() { return false; }
 int builtMinimumArchitecture() { return 0; }
+const DeviceInfo& useDevice(const std::string& call, int) { throwError(call, cudaNotBuiltMessage()); }
 const DeviceQuery& queryDevices() {
     static const DeviceQuery none{{}, "the CUDA backend was not built into this library", {}};
     return none;

@@ -81,6 +81,19 @@ bool cudaBackendBuilt() { return true; }
 
 int builtMinimumArchitecture() { return DEME_CUDA_MIN_ARCH; }
 
+const DeviceInfo& useDevice(const std::string& call, int id) {
+    std::string usable;
+    for (const DeviceInfo& d : usableDevices()) {
+        if (d.id == id) {
+            DEME_CUDA_CHECK(call.c_str(), cudaSetDevice(id));
+            return d;
+        }
+        usable += (usable.empty() ? "" : ", ") + std::to_string(d.id) + " (" + d.name + ")";
+    }
+    throwError(call, "GPU " + std::to_string(id) + " is not a usable device; usable: " +
+                         (usable.empty() ? std::string("none (") + queryDevices().whyNone + ")" : usable));
+}
+
 const DeviceQuery& queryDevices() {
     static const DeviceQuery query = runQuery();
     return query;

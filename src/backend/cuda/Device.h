@@ -38,4 +38,8 @@ inline const std::vector<DeviceInfo>& usableDevices() { return queryDevices().us
 // (CMAKE_CUDA_ARCHITECTURES); 0 when not built with CUDA or when the build targets "native"/"all".
 int builtMinimumArchitecture();
 
+// Makes GPU `id` (a CUDA device ordinal) current for this thread and returns its description;
+// throws deme::Error naming `call` and listing the usable ones if it is not usable.
+const DeviceInfo& useDevice(const std::string& call, int id);
+
 }  // namespace deme::cuda

@@ -146,7 +146,7 @@ struct DeviceSimulation::Impl {
 
 void DeviceSimulation::Impl::compileKernels(const Settings& settings) {
     (void)settings;
-    const DeviceInfo& info = usableDevices().at((size_t)device);
+    const DeviceInfo& info = useDevice("Initialize", device);
     name = info.name;
     CudaCompileOptions opt;
     opt.architecture = info.architecture();
