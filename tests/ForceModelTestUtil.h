@@ -8,6 +8,7 @@
 
 #include <deme/deme.h>
 
+#include "TestHelpers.h"
 #include "jit/EmbeddedSources.h"
 
 namespace deme_test {
@@ -38,18 +39,6 @@ inline void declareHertzMindlinInputs(deme::DEMForceModel& model) {
     model.SetMustHaveMatProp({"E", "nu", "CoR", "mu", "Crr"});
     model.SetMustPairwiseMatProp({"CoR", "mu", "Crr"});
     model.SetPerContactWildcards({"delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time"});
-}
-
-// The message of the deme::Error that f throws; fails the test if it throws none.
-template <class F>
-std::string demeErrorMessage(F&& f) {
-    try {
-        f();
-    } catch (const deme::Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no deme::Error thrown";
-    return "";
 }
 
 }  // namespace deme_test

@@ -5,6 +5,8 @@
 #include <map>
 #include <string>
 
+#include <gtest/gtest.h>
+
 #include <deme/deme.h>
 
 namespace deme_test {
@@ -19,5 +21,17 @@ inline double sphereMass(double r, double density) { return density * 4.0 / 3.0 
 
 // Effective modulus of two identical materials: E* = E / (2 (1 - nu^2)).
 inline double effectiveModulus(double E, double nu) { return E / (2.0 * (1.0 - nu * nu)); }
+
+// The message of the deme::Error that f throws; fails the test if it throws none.
+template <class F>
+std::string demeErrorMessage(F&& f) {
+    try {
+        f();
+    } catch (const deme::Error& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no deme::Error thrown";
+    return "";
+}
 
 }  // namespace deme_test

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "ScratchDirTest.h"
+#include "TestHelpers.h"
 #include "backend/cuda/Device.h"
 #include "backend/cuda/DeviceBuffer.h"
 #include "backend/cuda/NvrtcCompiler.h"
@@ -23,18 +24,6 @@ using namespace deme;
 using namespace deme::cuda;
 
 namespace {
-
-// The message of the deme::Error that f throws; fails the test if it throws none.
-template <class F>
-std::string errorMessage(F&& f) {
-    try {
-        f();
-    } catch (const deme::Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no deme::Error thrown";
-    return "";
-}
 
 std::string embeddedText(const std::string& path) {
     for (const jit::EmbeddedFile& f : jit::embeddedSources())
@@ -194,7 +183,7 @@ TEST_F(CudaNvrtc, QuotedIncludesResolveNextToTheIncluderFirst) {
         "#include \"deme/VariableTypes.h\"\n"
         "extern \"C\" __global__ void relative(deme::float4* q) { q[0] = deme::quatNormalize(q[0]); }\n";
     EXPECT_NO_THROW(compile("physics/relative_include_test.cu", source, "compute_90"));
-    const std::string msg = errorMessage([&] { compile("elsewhere/relative_include_test.cu", source, "compute_90"); });
+    const std::string msg = deme_test::demeErrorMessage([&] { compile("elsewhere/relative_include_test.cu", source, "compute_90"); });
     EXPECT_NE(msg.find("Quaternion.h"), std::string::npos) << msg;
 }
 
@@ -206,7 +195,7 @@ TEST_F(CudaNvrtc, ErrorsPointIntoTheMarkedSnippet) {
         "    float x = 1.f +;\n"
         "    out[0] = x;\n"
         "}\n";
-    const std::string msg = errorMessage([&] { compile("generated_force_kernel", source, "compute_90"); });
+    const std::string msg = deme_test::demeErrorMessage([&] { compile("generated_force_kernel", source, "compute_90"); });
     EXPECT_EQ(msg.rfind("test: ", 0), 0u) << msg;  // names the call
     EXPECT_NE(msg.find("force_model(1)"), std::string::npos) << msg;
     EXPECT_NE(msg.find("generated_force_kernel"), std::string::npos) << msg;
@@ -218,24 +207,24 @@ TEST_F(CudaNvrtc, LongLogsAreCut) {
     std::string source = "extern \"C\" __global__ void k() {\n";
     for (int i = 0; i < 60; i++) source += "  undefined_" + std::to_string(i) + " = 1;\n";
     source += "}\n";
-    const std::string msg = errorMessage([&] { compile("many_errors", source, "compute_90"); });
+    const std::string msg = deme_test::demeErrorMessage([&] { compile("many_errors", source, "compute_90"); });
     EXPECT_NE(msg.find("more lines]"), std::string::npos) << msg;
 }
 
 TEST_F(CudaNvrtc, UnknownArchitectureIsAnError) {
-    const std::string msg = errorMessage([&] { compile("k", "__global__ void k() {}", "gfx90a"); });
+    const std::string msg = deme_test::demeErrorMessage([&] { compile("k", "__global__ void k() {}", "gfx90a"); });
     EXPECT_NE(msg.find("gfx90a"), std::string::npos) << msg;
 }
 
 TEST_F(CudaNvrtc, NoArchitectureAndNoGpuIsAnError) {
     if (!usableDevices().empty()) GTEST_SKIP() << "a GPU is present: the architecture is the GPU's";
-    const std::string msg = errorMessage([&] { compile("k", "__global__ void k() {}", ""); });
+    const std::string msg = deme_test::demeErrorMessage([&] { compile("k", "__global__ void k() {}", ""); });
     EXPECT_NE(msg.find("no usable GPU"), std::string::npos) << msg;
 }
 
 TEST(CudaNotBuilt, CallsSaySoWhenTheBackendIsMissing) {
     if (cudaBackendBuilt()) GTEST_SKIP() << "the CUDA backend is built";
-    const std::string msg = errorMessage([] { compileCudaSource("Compile", "k", "", {}); });
+    const std::string msg = deme_test::demeErrorMessage([] { compileCudaSource("Compile", "k", "", {}); });
     EXPECT_NE(msg.find("not built"), std::string::npos) << msg;
     EXPECT_NE(queryDevices().whyNone.find("not built"), std::string::npos);
     EXPECT_THROW(DeviceBuffer<int>(4), deme::Error);
@@ -277,7 +266,7 @@ TEST(CudaBackendSelection, ParsesTheThreeNames) {
     EXPECT_EQ(parseBackendRequest("t", "cpu"), BackendRequest::Cpu);
     EXPECT_EQ(parseBackendRequest("t", " CUDA "), BackendRequest::Cuda);
     EXPECT_EQ(parseBackendRequest("t", "Auto"), BackendRequest::Auto);
-    const std::string msg = errorMessage([] { parseBackendRequest("SetBackend", "gpu"); });
+    const std::string msg = deme_test::demeErrorMessage([] { parseBackendRequest("SetBackend", "gpu"); });
     EXPECT_EQ(msg.rfind("SetBackend: ", 0), 0u) << msg;
     EXPECT_NE(msg.find("\"gpu\""), std::string::npos) << msg;
     EXPECT_NE(msg.find("cpu, cuda, auto"), std::string::npos) << msg;
@@ -294,7 +283,7 @@ TEST(CudaBackendSelection, ReadsTheEnvironment) {
     setenv("DEME_BACKEND", "cpu", 1);
     EXPECT_EQ(backendRequestFromEnvironment(), BackendRequest::Cpu);
     setenv("DEME_BACKEND", "opencl", 1);
-    const std::string msg = errorMessage([] { backendRequestFromEnvironment(); });
+    const std::string msg = deme_test::demeErrorMessage([] { backendRequestFromEnvironment(); });
     EXPECT_EQ(msg.rfind("DEME_BACKEND: ", 0), 0u) << msg;
     if (old)
         setenv("DEME_BACKEND", saved.c_str(), 1);
@@ -354,10 +343,10 @@ TEST(CudaBackendSelection, AutoTakesAUsableGpu) {
 }
 
 TEST(CudaBackendSelection, CudaWithoutAGpuIsAnError) {
-    const std::string noDriver = errorMessage([] { resolveBackend("Initialize", BackendRequest::Cuda, kNoDriver); });
+    const std::string noDriver = deme_test::demeErrorMessage([] { resolveBackend("Initialize", BackendRequest::Cuda, kNoDriver); });
     EXPECT_EQ(noDriver.rfind("Initialize: ", 0), 0u) << noDriver;
     EXPECT_NE(noDriver.find("no CUDA driver"), std::string::npos) << noDriver;
-    const std::string notBuilt = errorMessage([] { resolveBackend("Initialize", BackendRequest::Cuda, kNotBuilt); });
+    const std::string notBuilt = deme_test::demeErrorMessage([] { resolveBackend("Initialize", BackendRequest::Cuda, kNotBuilt); });
     EXPECT_NE(notBuilt.find("not built"), std::string::npos) << notBuilt;
     EXPECT_EQ(resolveBackend("t", BackendRequest::Cuda, withGpu()).kind, BackendKind::Cuda);
 }

@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "ScratchDirTest.h"
+#include "TestHelpers.h"
 #include "dynamics/ContactInputsGather.h"
 #include "jit/EmbeddedSources.h"
 #include "jit/HostCompiler.h"
@@ -45,18 +46,6 @@ std::vector<std::string> entries(const fs::path& dir) {
     std::vector<std::string> names;
     for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
     return names;
-}
-
-// The message of the deme::Error that f throws; fails the test if it throws none.
-template <class F>
-std::string errorMessage(F&& f) {
-    try {
-        f();
-    } catch (const deme::Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no deme::Error thrown";
-    return "";
 }
 
 void reportTime(const char* what, double seconds) {
@@ -365,7 +354,7 @@ TEST_F(JitHostCompiler, SyntaxErrorNamesTheSnippetLine) {
 }
 )";
     const std::string msg =
-        errorMessage([&] { compileHostModule("DEMSolver::DefineContactForceModel", source, cache); });
+        deme_test::demeErrorMessage([&] { compileHostModule("DEMSolver::DefineContactForceModel", source, cache); });
     EXPECT_EQ(msg.rfind("DEMSolver::DefineContactForceModel: ", 0), 0u) << msg;
     EXPECT_NE(msg.find("user_snippet:3"), std::string::npos) << msg;
     EXPECT_NE(msg.find("error"), std::string::npos) << msg;
@@ -381,7 +370,7 @@ float force(float overlap) {
     return overlap * stiffnes;
 }
 )";
-    const std::string msg = errorMessage([&] { compileHostModule("JitTest", source, cache); });
+    const std::string msg = deme_test::demeErrorMessage([&] { compileHostModule("JitTest", source, cache); });
     EXPECT_NE(msg.find("force_model:2"), std::string::npos) << msg;
     EXPECT_NE(msg.find("stiffnes"), std::string::npos) << msg;
 }
@@ -389,7 +378,7 @@ float force(float overlap) {
 TEST_F(JitHostCompiler, MissingSymbolIsAnError) {
     KernelCache cache(dir.string());
     HostCompileResult r = compileHostModule("JitTest", kAddSource, cache);
-    const std::string msg = errorMessage([&] { r.module.symbol("subtract"); });
+    const std::string msg = deme_test::demeErrorMessage([&] { r.module.symbol("subtract"); });
     EXPECT_EQ(msg.rfind("JitTest: ", 0), 0u) << msg;
     EXPECT_NE(msg.find("subtract"), std::string::npos) << msg;
     EXPECT_THROW(CompiledModule("JitTest", (dir / "no-such.so").string()), deme::Error);

@@ -44,8 +44,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
     const size_t nSpheres = s.spheres.size();
     const size_t nTris = s.triangles.size();
     const float h = (float)dt;
-    const StepConstants consts{gravity,          (float)dt,          dt, errorOutVelocity * errorOutVelocity,
-                               s.hasTrackerLoads, s.frame, s.domainSize};
+    const StepConstants consts{gravity, (float)dt, dt, errorOutVelocity * errorOutVelocity, s.frame, s.domainSize};
     IntegrationScratch& scratch = s.integrationScratch;
     scratch.flags.resize(n);
     scratch.midAngVel.resize(n);

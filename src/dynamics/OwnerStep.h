@@ -49,7 +49,6 @@ struct StepConstants {
     float h;
     double dt;
     float maxSpeed2;  // error-out speed, squared
-    bool trackerLoads;
     DomainFrame frame;
     double3 domainSize;
 };

@@ -1,5 +1,7 @@
 #include "jit/HostCompiler.h"
 
+#include "jit/CompilerLog.h"
+
 #include <deme/Error.h>
 
 #include <dlfcn.h>
@@ -76,21 +78,6 @@ const std::string& targetArchitecture() {
         return s;
     }();
     return arch;
-}
-
-std::string firstLines(const std::string& text, size_t maxLines) {
-    std::istringstream in(text);
-    std::string out, line;
-    size_t n = 0, total = 0;
-    while (std::getline(in, line)) {
-        if (n < maxLines) {
-            out += line + "\n";
-            n++;
-        }
-        total++;
-    }
-    if (total > n) out += "[... " + std::to_string(total - n) + " more lines]\n";
-    return out;
 }
 
 // Deletes a file when the scope ends, however it ends.

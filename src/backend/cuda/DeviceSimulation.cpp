@@ -416,7 +416,7 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
                                     PairTable{d.G_eff.data(), d.numMaterials},
                                     PairTable{d.beta_CoR.data(), d.numMaterials}};
     const StepConstants consts{settings.gravity, (float)settings.dt, settings.dt,
-                               settings.errorOutVelocity * settings.errorOutVelocity, false, d.view.frame,
+                               settings.errorOutVelocity * settings.errorOutVelocity, d.view.frame,
                                d.view.domainSize};
     for (unsigned long long k = 0; k < n; k++) {
         // A contact set serves at most n_max steps, and only while nobody has travelled its margin.

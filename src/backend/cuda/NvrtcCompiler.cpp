@@ -1,5 +1,7 @@
 #include "backend/cuda/NvrtcCompiler.h"
 
+#include "jit/CompilerLog.h"
+
 #include <deme/Error.h>
 
 #include <cuda_runtime_api.h>
@@ -21,21 +23,6 @@ namespace deme::cuda {
 namespace {
 
 constexpr size_t kMaxLogLines = 40;
-
-std::string firstLines(const std::string& text, size_t maxLines) {
-    std::istringstream in(text);
-    std::string out, line;
-    size_t n = 0, total = 0;
-    while (std::getline(in, line)) {
-        if (n < maxLines) {
-            out += line + "\n";
-            n++;
-        }
-        total++;
-    }
-    if (total > n) out += "[... " + std::to_string(total - n) + " more lines]\n";
-    return out;
-}
 
 std::string joined(const std::vector<std::string>& words) {
     std::string s;
@@ -122,7 +109,7 @@ void runNvrtc(const std::string& call, const std::string& programName, const std
     if (compiled != NVRTC_SUCCESS)
         throwError(call, "compiling CUDA program '" + programName + "' for " + result.architecture + " failed (NVRTC " +
                              nvrtcVersionString() + ", " + nvrtcGetErrorString(compiled) + "):\n" +
-                             firstLines(log, kMaxLogLines));
+                             jit::firstLines(log, kMaxLogLines));
 
     size_t size = 0;
     if (result.kind == GpuImageKind::Ptx) {

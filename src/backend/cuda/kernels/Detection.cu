@@ -57,6 +57,18 @@ __device__ inline void insertionSort(bodyID_t* ids, unsigned int n) {
     }
 }
 
+// Whether analytical component j is a partner of a sphere at pA with enlarged radius eA.
+__device__ inline bool analyticalInReach(const StateView& s, const PairSearchArgs& a, const uint8_t* maskRow,
+                                         const double3& pA, double eA, unsigned int j) {
+    const bodyID_t oJ = s.analytical.owner[j];
+    if (!maskRow[s.owners.family[oJ]]) return false;
+    const double dist = s.analytical.type[j] == ANAL_PLANE
+                            ? planeSignedDistance(pA, s.cache.analPos[j], s.cache.analDir[j])
+                            : cylinderSignedDistance(pA, s.cache.analPos[j], s.cache.analDir[j], s.analytical.radius[j],
+                                                     s.analytical.inside[j] != 0);
+    return dist < eA + marginOf(s, a.familyExtraMargin, a.margin, oJ);
+}
+
 }  // namespace
 
 extern "C" __global__ void deme_sphere_bin_boxes(StateView s, BinGridView g, double margin,
@@ -184,13 +196,7 @@ extern "C" __global__ void deme_pair_search(StateView s, PairSearchArgs a, unsig
     }
     unsigned int nAna = 0;
     for (unsigned int j = 0; j < s.numAnalytical; j++) {
-        const bodyID_t oJ = s.analytical.owner[j];
-        if (!maskRow[s.owners.family[oJ]]) continue;
-        const double dist = s.analytical.type[j] == ANAL_PLANE
-                                ? planeSignedDistance(pA, s.cache.analPos[j], s.cache.analDir[j])
-                                : cylinderSignedDistance(pA, s.cache.analPos[j], s.cache.analDir[j],
-                                                         s.analytical.radius[j], s.analytical.inside[j] != 0);
-        if (dist >= eA + marginOf(s, a.familyExtraMargin, a.margin, oJ)) continue;
+        if (!analyticalInReach(s, a, maskRow, pA, eA, j)) continue;
         nAna++;
     }
     if (!write) {
@@ -204,13 +210,7 @@ extern "C" __global__ void deme_pair_search(StateView s, PairSearchArgs a, unsig
     for (unsigned int k = nTri; k > 0; k--) mine[nSph + nAna + k - 1] = mine[nSph + k - 1];
     unsigned int at = nSph;
     for (unsigned int j = 0; j < s.numAnalytical; j++) {
-        const bodyID_t oJ = s.analytical.owner[j];
-        if (!maskRow[s.owners.family[oJ]]) continue;
-        const double dist = s.analytical.type[j] == ANAL_PLANE
-                                ? planeSignedDistance(pA, s.cache.analPos[j], s.cache.analDir[j])
-                                : cylinderSignedDistance(pA, s.cache.analPos[j], s.cache.analDir[j],
-                                                         s.analytical.radius[j], s.analytical.inside[j] != 0);
-        if (dist >= eA + marginOf(s, a.familyExtraMargin, a.margin, oJ)) continue;
+        if (!analyticalInReach(s, a, maskRow, pA, eA, j)) continue;
         mine[at++] = s.analyticalIdBase() + j;
     }
     const unsigned int total = nSph + nAna + nTri;

@@ -1,6 +1,7 @@
 // An example of a kernel compiled at run time by NVRTC (src/backend/cuda/NvrtcCompiler.h): it
-// includes the single-source physics headers exactly as the CPU code does. A placeholder until the
-// real kernels arrive; the tests compile every file in this folder, and run this one on a GPU.
+// includes the single-source physics headers exactly as the CPU code does. Kept as the smallest
+// case for the plumbing tests, which run it on a GPU against the host (the simulation's kernels are
+// Dynamics.cu and Detection.cu; the tests compile every file in this folder).
 #include "physics/ContactGeometry.h"
 #include "physics/Quaternion.h"
 
