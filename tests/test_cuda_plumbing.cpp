@@ -19,6 +19,7 @@
 #include "backend/cuda/NvrtcCompiler.h"
 #include "jit/EmbeddedSources.h"
 #include "runtime/BackendSelection.h"
+#include "runtime/FamilyMotionSource.h"
 
 using namespace deme;
 using namespace deme::cuda;
@@ -128,6 +129,33 @@ TEST_F(CudaNvrtc, EveryEmbeddedKernelCompiles) {
         compiled++;
     }
     EXPECT_GE(compiled, 1) << "no kernels embedded under " << folder;
+}
+
+// The families' prescriptions as generated source: every function the expression language has, fixed
+// families and all six components, compile for sm_90 (the GPU evaluates them each step).
+TEST_F(CudaNvrtc, FamilyPrescriptionsCompile) {
+    FamilyRules rules;
+    const char* const texts[] = {"0.1*sin(t) + cos(t) - tan(t)", "asin(0.5)*acos(t)*atan(t)", "sinh(t)/cosh(t)+tanh(t)",
+                                 "exp(t)*log(1+t)+log10(2+t)", "sqrt(t)+abs(-t)+fabs(t)+floor(t)+ceil(t)",
+                                 "atan2(t, 1) + pow(t, 2) + fmin(t, 1) + fmax(t, 0) + min(t, 1) + max(t, 0) + fmod(t, 1)"};
+    for (unsigned int f = 0; f < 6; f++) {
+        FamilyMotion& m = rules.motion(f + 1);
+        for (int i = 0; i < 3; i++) {
+            m.linPrescribed[i] = m.angPrescribed[i] = true;
+            m.lin[i] = Expression::parse(texts[(f + i) % 6], {"t"}, "test");
+            m.ang[i] = Expression::parse(texts[(f + i + 1) % 6], {"t"}, "test");
+        }
+    }
+    rules.motion(255).fixed = true;
+    const std::string source = familyMotionKernelSource(rules);
+    EXPECT_NE(source.find("case 255:"), std::string::npos);
+    EXPECT_NE(source.find("s.fixed = 1;"), std::string::npos);
+    try {
+        const CudaCompileResult r = compile("deme_family_motion.cu", source, "compute_90");
+        EXPECT_NE(r.image.find(kFamilyMotionKernel), std::string::npos);
+    } catch (const deme::Error& e) {
+        ADD_FAILURE() << e.what() << "\n" << source;
+    }
 }
 
 // Every single-source physics header compiles for the device, the default force model (with its

@@ -167,3 +167,30 @@ TEST(Expression, PathologicalNestingIsRejectedNotCrashing) {
     // Reasonable nesting still works.
     EXPECT_EQ(eval(std::string(50, '(') + "t" + std::string(50, ')'), 2.0), 2.0);
 }
+
+// ---- C++ source for run-time compiled kernels (the GPU's prescriptions)
+std::string cpp(const std::string& text) { return Expression::parse(text, kT, "test").toCppSource({"t"}); }
+
+TEST(ExpressionCppSource, ParenthesisesEveryOperationAndWritesExactConstants) {
+    // 0.1 is not a binary fraction: the hexadecimal literal carries its double exactly.
+    EXPECT_EQ(cpp("0.1*sin(t)"), "((0x1.999999999999ap-4) * (sin(t)))");
+    // Left associativity and the unary minus survive as explicit parentheses.
+    EXPECT_EQ(cpp("t-t-t"), "(((t) - (t)) - (t))");
+    EXPECT_EQ(cpp("-t*2"), "((-(t)) * (0x1p+1))");
+    EXPECT_EQ(cpp("t/(t+1)"), "((t) / ((t) + (0x1p+0)))");
+}
+
+TEST(ExpressionCppSource, NamesFunctionsTheDeviceHas) {
+    EXPECT_EQ(cpp("abs(t)"), "(fabs(t))");
+    EXPECT_EQ(cpp("min(t, 1)"), "(deme_min((t), (0x1p+0)))");
+    EXPECT_EQ(cpp("max(t, 1)"), "(deme_max((t), (0x1p+0)))");
+    EXPECT_EQ(cpp("pow(t, 2)"), "(pow((t), (0x1p+1)))");
+}
+
+TEST(ExpressionCppSource, FoldedConstantsIncludingNonFiniteOnes) {
+    EXPECT_EQ(cpp("2*pi"), "(" + std::string("0x1.921fb54442d18p+2") + ")");
+    EXPECT_EQ(cpp("1/0"), "(1.0 / 0.0)");
+    EXPECT_EQ(cpp("-1/0"), "(-1.0 / 0.0)");
+    EXPECT_EQ(cpp("0/0"), "(0.0 / 0.0)");
+    EXPECT_EQ(Expression().toCppSource({"t"}), "(0.0)");
+}

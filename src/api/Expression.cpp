@@ -9,6 +9,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 namespace deme {
 
@@ -18,37 +19,38 @@ namespace {
 // address is not portable.
 struct Function {
     const char* name;
+    const char* cppName;  // what generated C++ calls (toCppSource)
     int arity;
     double (*fn1)(double);
     double (*fn2)(double, double);
 };
 
 const Function kFunctions[] = {
-    {"sin", 1, [](double x) { return std::sin(x); }, nullptr},
-    {"cos", 1, [](double x) { return std::cos(x); }, nullptr},
-    {"tan", 1, [](double x) { return std::tan(x); }, nullptr},
-    {"asin", 1, [](double x) { return std::asin(x); }, nullptr},
-    {"acos", 1, [](double x) { return std::acos(x); }, nullptr},
-    {"atan", 1, [](double x) { return std::atan(x); }, nullptr},
-    {"sinh", 1, [](double x) { return std::sinh(x); }, nullptr},
-    {"cosh", 1, [](double x) { return std::cosh(x); }, nullptr},
-    {"tanh", 1, [](double x) { return std::tanh(x); }, nullptr},
-    {"exp", 1, [](double x) { return std::exp(x); }, nullptr},
-    {"log", 1, [](double x) { return std::log(x); }, nullptr},
-    {"log10", 1, [](double x) { return std::log10(x); }, nullptr},
-    {"sqrt", 1, [](double x) { return std::sqrt(x); }, nullptr},
-    {"abs", 1, [](double x) { return std::fabs(x); }, nullptr},
-    {"fabs", 1, [](double x) { return std::fabs(x); }, nullptr},
-    {"floor", 1, [](double x) { return std::floor(x); }, nullptr},
-    {"ceil", 1, [](double x) { return std::ceil(x); }, nullptr},
-    {"atan2", 2, nullptr, [](double y, double x) { return std::atan2(y, x); }},
-    {"pow", 2, nullptr, [](double x, double y) { return std::pow(x, y); }},
-    {"fmin", 2, nullptr, [](double x, double y) { return std::fmin(x, y); }},
-    {"fmax", 2, nullptr, [](double x, double y) { return std::fmax(x, y); }},
+    {"sin", "sin", 1, [](double x) { return std::sin(x); }, nullptr},
+    {"cos", "cos", 1, [](double x) { return std::cos(x); }, nullptr},
+    {"tan", "tan", 1, [](double x) { return std::tan(x); }, nullptr},
+    {"asin", "asin", 1, [](double x) { return std::asin(x); }, nullptr},
+    {"acos", "acos", 1, [](double x) { return std::acos(x); }, nullptr},
+    {"atan", "atan", 1, [](double x) { return std::atan(x); }, nullptr},
+    {"sinh", "sinh", 1, [](double x) { return std::sinh(x); }, nullptr},
+    {"cosh", "cosh", 1, [](double x) { return std::cosh(x); }, nullptr},
+    {"tanh", "tanh", 1, [](double x) { return std::tanh(x); }, nullptr},
+    {"exp", "exp", 1, [](double x) { return std::exp(x); }, nullptr},
+    {"log", "log", 1, [](double x) { return std::log(x); }, nullptr},
+    {"log10", "log10", 1, [](double x) { return std::log10(x); }, nullptr},
+    {"sqrt", "sqrt", 1, [](double x) { return std::sqrt(x); }, nullptr},
+    {"abs", "fabs", 1, [](double x) { return std::fabs(x); }, nullptr},
+    {"fabs", "fabs", 1, [](double x) { return std::fabs(x); }, nullptr},
+    {"floor", "floor", 1, [](double x) { return std::floor(x); }, nullptr},
+    {"ceil", "ceil", 1, [](double x) { return std::ceil(x); }, nullptr},
+    {"atan2", "atan2", 2, nullptr, [](double y, double x) { return std::atan2(y, x); }},
+    {"pow", "pow", 2, nullptr, [](double x, double y) { return std::pow(x, y); }},
+    {"fmin", "fmin", 2, nullptr, [](double x, double y) { return std::fmin(x, y); }},
+    {"fmax", "fmax", 2, nullptr, [](double x, double y) { return std::fmax(x, y); }},
     // std::min/std::max semantics (not fmin/fmax) so NaN behaves as it would in the user's C++.
-    {"min", 2, nullptr, [](double x, double y) { return std::min(x, y); }},
-    {"max", 2, nullptr, [](double x, double y) { return std::max(x, y); }},
-    {"fmod", 2, nullptr, [](double x, double y) { return std::fmod(x, y); }},
+    {"min", "deme_min", 2, nullptr, [](double x, double y) { return std::min(x, y); }},
+    {"max", "deme_max", 2, nullptr, [](double x, double y) { return std::max(x, y); }},
+    {"fmod", "fmod", 2, nullptr, [](double x, double y) { return std::fmod(x, y); }},
 };
 
 bool isIdentStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
@@ -254,6 +256,7 @@ class Parser {
         Op op{f->arity == 1 ? Op::Fn1 : Op::Fn2};
         op.fn1 = f->fn1;
         op.fn2 = f->fn2;
+        op.name = f->cppName;
         emit(op);
     }
 };
@@ -294,6 +297,49 @@ double Expression::evaluate(const double* values) const {
                 --sp;
                 stack[sp - 1] = apply(op, stack[sp - 1], stack[sp]);
                 break;
+        }
+    }
+    return stack[0];
+}
+
+std::string Expression::toCppSource(const std::vector<std::string>& variables) const {
+    if (code_.empty()) return "(0.0)";
+    // Postfix to fully parenthesised infix, so no precedence question can arise.
+    std::vector<std::string> stack;
+    for (const Op& op : code_) {
+        switch (op.code) {
+            case Op::Const: {
+                char buf[64];
+                if (std::isnan(op.value))  // folded from e.g. 0/0: no literal spells these
+                    std::snprintf(buf, sizeof buf, "(0.0 / 0.0)");
+                else if (std::isinf(op.value))
+                    std::snprintf(buf, sizeof buf, "(%s1.0 / 0.0)", op.value < 0 ? "-" : "");
+                else
+                    std::snprintf(buf, sizeof buf, "(%a)", op.value);  // hexadecimal: exact, round-trips
+                stack.emplace_back(buf);
+                break;
+            }
+            case Op::Var:
+                stack.push_back("(" + variables.at(op.var) + ")");
+                break;
+            case Op::Neg:
+                stack.back() = "(-" + stack.back() + ")";
+                break;
+            case Op::Fn1:
+                stack.back() = std::string("(") + op.name + stack.back() + ")";
+                break;
+            default: {
+                const std::string b = stack.back();
+                stack.pop_back();
+                std::string& a = stack.back();
+                if (op.code == Op::Fn2) {
+                    a = std::string("(") + op.name + "(" + a + ", " + b + "))";
+                } else {
+                    const char* sym = op.code == Op::Add ? " + " : op.code == Op::Sub ? " - " : op.code == Op::Mul ? " * " : " / ";
+                    a = "(" + a + sym + b + ")";
+                }
+                break;
+            }
         }
     }
     return stack[0];

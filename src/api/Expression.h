@@ -40,6 +40,12 @@ class Expression {
     bool isConstant() const;  // true if no variable is referenced
     const std::string& text() const { return text_; }
 
+    // The same computation as C++ source (one parenthesised double expression), for code compiled at
+    // run time (the GPU's prescription kernel): variables[i] is the source text that stands for
+    // variable i, constants are written as exact hexadecimal literals, and min/max/abs are spelled
+    // deme_min/deme_max/fabs (the caller defines deme_min/deme_max with std::min/max semantics).
+    std::string toCppSource(const std::vector<std::string>& variables) const;
+
     // Deepest value stack any expression may need; deeper ones are rejected at parse time so that
     // evaluate() can use a fixed-size array on the C++ stack.
     static constexpr int kMaxStack = 64;
@@ -51,6 +57,7 @@ class Expression {
         double value = 0.0;                       // Const
         double (*fn1)(double) = nullptr;          // Fn1
         double (*fn2)(double, double) = nullptr;  // Fn2
+        const char* name = nullptr;               // Fn1/Fn2: the C++ function to call in generated code
     };
 
   private:

@@ -16,6 +16,7 @@
 #include "dynamics/OwnerStep.h"
 #include "jit/EmbeddedSources.h"
 #include "physics/BuiltInForceModels.h"
+#include "runtime/FamilyMotionSource.h"
 #include "runtime/StateView.h"
 
 namespace deme::cuda {
@@ -87,6 +88,10 @@ struct DeviceSimulation::Impl {
     CudaKernel kResetReduction, kCopyDoubles, kClearLoads, kResolveMesh, kForce, kIntegrate, kLargeRot, kPlaceSpheres,
         kPlaceTris, kAnalytical;
     CudaKernel kSphereBoxes, kTriBoxes, kBinEntries, kBinStarts, kPairSearch, kMapHistory;
+    // The families' prescriptions, compiled from the user's expressions (recompiled when they change).
+    CudaModule familyModule;
+    CudaKernel kFamilyMotion;
+    std::string familySource;
     double compileSeconds = 0.0;
     bool fromCache = true;
     DevicePrimitives prim;
@@ -131,7 +136,6 @@ struct DeviceSimulation::Impl {
     unsigned long long acsStep = 0;
     bool needDetection = true, expired = false, freqConfigured = false;
     float lastMaxSpeed = 0.f;
-    std::array<FamilyStepMotion, NUM_FAMILIES> stepMotion;
     // Counters at the last detection, and what it cost (for the adaptive n_max).
     struct CostMark {
         unsigned long long steps = 0;
@@ -139,6 +143,7 @@ struct DeviceSimulation::Impl {
     } costMark;
 
     void compileKernels(const Settings& settings);
+    void prepareFamilyMotion(const FamilyRules& families);
     void refreshView();
     void detect(const Settings& settings, const FamilyRules& families, TimingStats& timing);
     unsigned int readCount(const DeviceBuffer<unsigned int>& offsets, size_t at);
@@ -173,6 +178,19 @@ void DeviceSimulation::Impl::compileKernels(const Settings& settings) {
     kBinStarts = detection.kernel("deme_bin_starts");
     kPairSearch = detection.kernel("deme_pair_search");
     kMapHistory = detection.kernel("deme_map_history");
+}
+
+void DeviceSimulation::Impl::prepareFamilyMotion(const FamilyRules& families) {
+    std::string source = familyMotionKernelSource(families);
+    if (source == familySource) return;
+    CudaCompileOptions opt;
+    opt.architecture = useDevice(CALL, device).architecture();
+    const CudaCompileResult r = compileCudaSource(CALL, "deme_family_motion.cu", source, opt);
+    compileSeconds += r.compileSeconds;
+    fromCache = fromCache && r.cacheHit;
+    familyModule = CudaModule(CALL, r.image);
+    kFamilyMotion = familyModule.kernel(kFamilyMotionKernel);
+    familySource = std::move(source);
 }
 
 void DeviceSimulation::Impl::refreshView() {
@@ -415,6 +433,7 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
                                     PairTable{d.E_eff.data(), d.numMaterials},
                                     PairTable{d.G_eff.data(), d.numMaterials},
                                     PairTable{d.beta_CoR.data(), d.numMaterials}};
+    d.prepareFamilyMotion(families);
     const StepConstants consts{settings.gravity, (float)settings.dt, settings.dt,
                                settings.errorOutVelocity * settings.errorOutVelocity, d.view.frame,
                                d.view.domainSize};
@@ -444,8 +463,7 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
                                         collab.realContactSum, now() - tDetect};
         }
         const double t0 = now();
-        families.evaluate(time + settings.dt, d.stepMotion);
-        d.motion.uploadAsync(d.stepMotion.data(), NUM_FAMILIES, nullptr);
+        launch(d.kFamilyMotion, 1, NUM_FAMILIES, 0, nullptr, time + settings.dt, d.motion.data());
         StepReduction* red = d.reduction.data();
         launch(d.kResetReduction, 1, 32, 0, nullptr, red);
         if (nT && d.numContacts)
