@@ -2,7 +2,7 @@
 # GPU test run (on a machine with an NVIDIA GPU; see docs/gpu-tests.md): builds with the CUDA backend,
 # runs the CUDA unit tests, the whole suite with DEME_BACKEND=cuda, and the CPU/GPU parity tests.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|unit|suite|bench ...]   (default: build unit suite)
+#   tests/gpu/run.sh [build|unit|suite|bench|settled|profile|filter ...]   (default: build unit suite)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 OUT="${OUT:-$PWD/gpu-test-out}"
@@ -40,6 +40,29 @@ for step in "${steps[@]}"; do
                 timeout 300 ./build-gpu/bench/mixer "$obj" "$r" "$kind" 2000 2000 2>&1 | tee -a "$OUT/bench.jsonl" | tail -n 3
             done
         done
+        ;;
+    settled)
+        # The settled variant: 100000 warm-up steps (0.05 s of mixing), then 2000 timed steps.
+        # SETTLED="r:kind ..." picks the cases.
+        for spec in ${SETTLED:-0.004:spheres 0.004:clumps}; do
+            timeout 550 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj "${spec%%:*}" "${spec##*:}" 100000 2000 2>&1 |
+                tee -a "$OUT/settled.jsonl" | tail -n 3
+        done
+        ;;
+    profile)
+        # Nsight Compute counters of every kernel of a few steps of the settled mixer (r = 4 mm): the
+        # capture starts after the warm-up (DEME_CUDA_PROFILE_FROM_STEP), so the warm-up runs at speed.
+        DEME_CUDA_PROFILE_FROM_STEP=100001 timeout 550 ncu --profile-from-start off --launch-count 40 --csv \
+            --metrics gpu__time_duration.sum,dram__bytes_read.sum,dram__bytes_write.sum,dram__throughput.avg.pct_of_peak_sustained_elapsed \
+            ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 spheres 100000 4 >"$OUT/ncu.csv" 2>"$OUT/ncu.err"
+        echo "profile: rc $? ($(wc -l <"$OUT/ncu.csv") lines)"
+        tail -n 5 "$OUT/ncu.err"
+        ;;
+    filter)
+        # DEME_BACKEND=cuda on the gtest filter in FILTER.
+        DEME_BACKEND=cuda ./build-gpu/tests/deme_tests --gtest_filter="$FILTER" >"$OUT/filter.log" 2>&1
+        echo "filter $FILTER: rc $? ($(grep -c '^\[       OK' "$OUT/filter.log") ok)"
+        grep -E '^\[  FAILED|^\[  SKIPPED' "$OUT/filter.log" | head -20
         ;;
     *)
         echo "unknown step $step" >&2

@@ -2,6 +2,7 @@
 
 #include <deme/Error.h>
 
+#include <cuda_profiler_api.h>
 #include <cuda_runtime_api.h>
 
 #include "backend/cuda/CudaCheck.h"
@@ -104,5 +105,7 @@ void throwCudaError(cudaError_t error, const char* call, const char* expression,
     throwError(call, std::string(file) + ":" + std::to_string(line) + ": " + expression +
                          " failed: " + cudaGetErrorName(error) + ": " + cudaGetErrorString(error));
 }
+
+void startProfilerCapture() { DEME_CUDA_CHECK("DoDynamics", cudaProfilerStart()); }
 
 }  // namespace deme::cuda

@@ -42,4 +42,8 @@ int builtMinimumArchitecture();
 // throws deme::Error naming `call` and listing the usable ones if it is not usable.
 const DeviceInfo& useDevice(const std::string& call, int id);
 
+// Starts a profiler's capture (cudaProfilerStart), for `ncu --profile-from-start off`: the step loop
+// calls it at the step named by DEME_CUDA_PROFILE_FROM_STEP, so a profile can skip the warm-up.
+void startProfilerCapture();
+
 }  // namespace deme::cuda

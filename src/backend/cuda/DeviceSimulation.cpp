@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 
@@ -94,6 +95,8 @@ struct DeviceSimulation::Impl {
     std::string familySource;
     double compileSeconds = 0.0;
     bool fromCache = true;
+    // DEME_CUDA_PROFILE_FROM_STEP: the step at which a profiler's capture starts (docs/gpu-tests.md).
+    unsigned long long profileFromStep = ~0ull;
     DevicePrimitives prim;
 
     // State (SimState's arrays).
@@ -314,6 +317,7 @@ void DeviceSimulation::Impl::detect(const Settings& settings, const FamilyRules&
 DeviceSimulation::DeviceSimulation(int device, const Settings& settings) : m(new Impl()) {
     m->device = device;
     m->compileKernels(settings);
+    if (const char* p = std::getenv("DEME_CUDA_PROFILE_FROM_STEP")) m->profileFromStep = std::strtoull(p, nullptr, 10);
 }
 
 DeviceSimulation::~DeviceSimulation() = default;
@@ -462,6 +466,7 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
             d.costMark = Impl::CostMark{collab.steps, timing.seconds[(int)Phase::FORCE], collab.contactSetSizeSum,
                                         collab.realContactSum, now() - tDetect};
         }
+        if (step == d.profileFromStep) startProfilerCapture();
         const double t0 = now();
         launch(d.kFamilyMotion, 1, NUM_FAMILIES, 0, nullptr, time + settings.dt, d.motion.data());
         StepReduction* red = d.reduction.data();
