@@ -100,3 +100,30 @@ TEST(Families, FixedStaysAndPrescribedMotionFollowsItsExpression) {
     EXPECT_NEAR(tm->Pos().x, -0.5 + 0.1 * std::sin(sim.GetSimTime()), 1e-5);
     EXPECT_LT(tm->Pos().z, -0.5);  // the free component fell: z = -g t^2 / 2 = -1.226
 }
+
+// UpdateStepSize between DoDynamics calls: a free fall of 0.2 s at dt = 1e-3 then 0.2 s at 1e-4 ends
+// where z = z0 - g t^2 / 2 puts it (exact for constant acceleration up to the integrator's first-order
+// position error, g dt t / 2 <= 1e-3 m at the coarse step) and the clock counts both phases' steps.
+TEST(TimeStepping, UpdateStepSizeBetweenCalls) {
+    DEMSolver sim;
+    sim.SetVerbosity("QUIET");
+    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.5));
+    sim.InstructBoxDomainDimension(4, 4, 4);
+    auto ball = sim.AddClumps(sim.LoadSphereType(1.f, 0.05f, mat), {make_float3(0, 0, 1.5f)});
+    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    sim.SetInitTimeStep(1e-3);
+    sim.Initialize();
+    auto t = sim.Track(ball);
+    sim.DoDynamics(0.2);
+    EXPECT_EQ(sim.GetTimeStep(), 1e-3);
+    sim.UpdateStepSize(1e-4);
+    EXPECT_EQ(sim.GetTimeStep(), 1e-4);
+    sim.DoDynamics(0.2);
+    EXPECT_NEAR(sim.GetSimTime(), 0.4, 1e-9);
+    // Velocities are floats: 2200 additions of g dt near 4 m/s round by up to 2.4e-7 each (5e-4 in all),
+    // still half of what one step too many at the fine step (9.8e-4) would add.
+    EXPECT_NEAR(t->Vel().z, -9.81 * 0.4, 5e-4);
+    EXPECT_NEAR(t->Pos().z, 1.5 - 0.5 * 9.81 * 0.4 * 0.4, 1.5e-3);
+    EXPECT_THROW(sim.UpdateStepSize(0.0), deme::Error);
+    EXPECT_THROW(sim.UpdateStepSize(-1e-4), deme::Error);
+}

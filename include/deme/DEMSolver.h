@@ -165,6 +165,9 @@ class DEMSolver {
 
     // ---- Time stepping ----
     void SetInitTimeStep(double dt);
+    // Changes the time step between DoDynamics calls (e.g. a coarse step for a settling phase, then
+    // the fine one); contact history and the margin follow the new step.
+    void UpdateStepSize(double dt);
     void SetGravitationalAcceleration(const float3& g);
     // A simulation whose fastest owner exceeds this speed stops with an error naming the owner.
     void SetErrorOutVelocity(float v);

@@ -127,6 +127,10 @@ void DEMSolver::SetInitTimeStep(double dt) {
     requirePositive("SetInitTimeStep", "time step", dt);
     m_sim->settings.dt = dt;
 }
+void DEMSolver::UpdateStepSize(double dt) {
+    requirePositive("UpdateStepSize", "time step", dt);
+    m_sim->settings.dt = dt;
+}
 void DEMSolver::SetGravitationalAcceleration(const float3& g) {
     requireFinite3("SetGravitationalAcceleration", "gravity", g);
     m_sim->settings.gravity = g;

@@ -42,19 +42,19 @@ for step in "${steps[@]}"; do
         done
         ;;
     settled)
-        # The settled variant: 100000 warm-up steps (0.05 s of mixing), then 2000 timed steps.
-        # SETTLED="r:kind ..." picks the cases.
+        # The settled variant: 0.25 s of mixing as 125000 warm-up steps of 2e-6 s (the grains land on
+        # the floor), then 2000 timed steps of 5e-7 s. SETTLED="r:kind ..." picks the cases.
         for spec in ${SETTLED:-0.004:spheres 0.004:clumps}; do
-            timeout 550 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj "${spec%%:*}" "${spec##*:}" 100000 2000 2>&1 |
+            timeout 550 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj "${spec%%:*}" "${spec##*:}" 125000 2000 2e-6 2>&1 |
                 tee -a "$OUT/settled.jsonl" | tail -n 3
         done
         ;;
     profile)
         # Nsight Compute counters of every kernel of a few steps of the settled mixer (r = 4 mm): the
         # capture starts after the warm-up (DEME_CUDA_PROFILE_FROM_STEP), so the warm-up runs at speed.
-        DEME_CUDA_PROFILE_FROM_STEP=100001 timeout 550 ncu --profile-from-start off --launch-count 40 --csv \
+        DEME_CUDA_PROFILE_FROM_STEP=125001 timeout 550 ncu --profile-from-start off --launch-count 40 --csv \
             --metrics gpu__time_duration.sum,dram__bytes_read.sum,dram__bytes_write.sum,dram__throughput.avg.pct_of_peak_sustained_elapsed \
-            ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 spheres 100000 4 >"$OUT/ncu.csv" 2>"$OUT/ncu.err"
+            ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 spheres 125000 4 2e-6 >"$OUT/ncu.csv" 2>"$OUT/ncu.err"
         echo "profile: rc $? ($(wc -l <"$OUT/ncu.csv") lines)"
         tail -n 5 "$OUT/ncu.err"
         ;;
