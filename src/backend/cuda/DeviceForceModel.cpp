@@ -1,5 +1,7 @@
 #include "backend/cuda/DeviceForceModel.h"
 
+#include <cstddef>
+
 #include <deme/Error.h>
 
 #include "backend/cuda/kernels/KernelArgs.cuh"

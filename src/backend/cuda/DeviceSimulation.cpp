@@ -9,15 +9,14 @@
 
 #include "backend/cuda/CudaModule.h"
 #include "backend/cuda/Device.h"
+#include "backend/cuda/DeviceBuffer.h"
 #include "backend/cuda/DeviceForceModel.h"
 #include "backend/cuda/DevicePersistentContacts.h"
-#include "backend/cuda/DeviceBuffer.h"
 #include "backend/cuda/DevicePrimitives.h"
 #include "backend/cuda/NvrtcCompiler.h"
 #include "backend/cuda/kernels/KernelArgs.cuh"
 #include "dynamics/OwnerStep.h"
 #include "jit/EmbeddedSources.h"
-#include "physics/BuiltInForceModels.h"
 #include "runtime/StateView.h"
 
 namespace deme::cuda {
@@ -52,7 +51,6 @@ struct DeviceContacts {
     DeviceBuffer<float3> force, torqueA, torqueB;
     DeviceBuffer<uint8_t> persistent;
     void resize(size_t n, unsigned int W) {
-        persistent.resize(n);
         geomA.resize(n);
         geomB.resize(n);
         type.resize(n);
@@ -61,6 +59,7 @@ struct DeviceContacts {
         force.resize(n);
         torqueA.resize(n);
         torqueB.resize(n);
+        persistent.resize(n);
     }
 };
 
