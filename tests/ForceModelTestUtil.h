@@ -9,6 +9,7 @@
 #include <deme/deme.h>
 
 #include "TestHelpers.h"
+#include "backend/cuda/Device.h"
 #include "jit/EmbeddedSources.h"
 
 namespace deme_test {
@@ -40,5 +41,44 @@ inline void declareHertzMindlinInputs(deme::DEMForceModel& model) {
     model.SetMustPairwiseMatProp({"CoR", "mu", "Crr"});
     model.SetPerContactWildcards({"delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time"});
 }
+
+// Whether the CUDA backend can run here; the GPU twins of the force model tests (GpuParity.*) skip
+// themselves otherwise (CI), and tests/gpu/run.sh runs them on a GPU machine.
+inline bool gpuPresent() { return deme::cuda::cudaBackendBuilt() && !deme::cuda::usableDevices().empty(); }
+
+// Custom models shared by the CPU tests and their GPU twins (GpuParity.* beside them).
+
+// Coulomb's force between the owners' charges Q (an owner wildcard), for every pair in the contact set
+// whether or not it touches.
+inline const char* const kElectrostatic = R"(
+const double3 d = bodyAPos - bodyBPos;
+const double r = length(d);
+const double magnitude = 8.9875517923e9 * (double)Q[AOwner] * (double)Q[BOwner] / (r * r);
+force += to_float3(d * (magnitude / r));
+)";
+
+// Counts the steps a pair has overlapped since it entered the contact set, and shows the count on
+// both owners (an owner wildcard the model writes: one writing contact per owner here).
+inline const char* const kAgeCounter = R"(
+if (overlapDepth > 0.0) age += 1.f;
+ageSeen[AOwner] = age;
+ageSeen[BOwner] = age;
+)";
+
+// DMT (Derjaguin-Muller-Toporov) adhesion: the Hertz force of the default model (with its CoR
+// damping) minus a constant pull 2 pi W R while the surfaces overlap, W being the work of adhesion of
+// the material pair. A sphere under a ceiling hangs while m g < 2 pi W R, the DMT pull-off force, at
+// the overlap where the Hertz force 4/3 E* sqrt(R) d^(3/2) equals 2 pi W R - m g.
+inline const char* const kDMT = R"(
+if (overlapDepth > 0.0) {
+    const float R = ARadius * BRadius / (ARadius + BRadius);
+    const float m = AOwnerMass * BOwnerMass / (AOwnerMass + BOwnerMass);
+    const float Sn = 2.f * E_eff[bodyAMatType][bodyBMatType] * sqrtf(R * (float)overlapDepth);
+    const float vn = dot((ALinVel + rotVelCPA) - (BLinVel + rotVelCPB), B2A);
+    const float damping = 2.f * sqrtf(5.f / 6.f) * beta_CoR[bodyAMatType][bodyBMatType] * sqrtf(Sn * m);
+    const float pull = 2.f * (float)deme::PI * W[bodyAMatType][bodyBMatType] * R;
+    force += (2.f / 3.f * Sn * (float)overlapDepth + damping * vn - pull) * B2A;
+}
+)";
 
 }  // namespace deme_test

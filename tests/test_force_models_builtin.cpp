@@ -16,10 +16,13 @@ using namespace deme_test;
 // frictionless model ignores mu, so the tangential velocity comes out exactly as it went in and the
 // sphere does not spin; the normal rebound speed over the impact speed is the CoR (5 %, as the default
 // model's HertzImpact test, since both share the normal force).
-TEST(ForceModelFrictionless, ObliqueImpactKeepsTangentialVelocity) {
+namespace {
+
+void checkFrictionlessObliqueImpact(const std::string& backend) {
     const double r = 0.01, density = 2600, E = 1e8, nu = 0.3, cor = 0.5, v = 1.0;
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
+    sim.SetBackend(backend);
     auto mat = sim.LoadMaterial(material(E, nu, cor, 0.5, 0.1));
     auto model = sim.UseFrictionlessHertzianModel();
     EXPECT_EQ(model->GetKind(), DEMForceModel::Kind::FRICTIONLESS_HERTZIAN);
@@ -41,6 +44,16 @@ TEST(ForceModelFrictionless, ObliqueImpactKeepsTangentialVelocity) {
     EXPECT_NEAR(tr->Vel().z / v, cor, 0.05 * cor);
     EXPECT_EQ(tr->Vel().x, 0.5f);
     EXPECT_EQ(tr->AngVelGlobal().y, 0.f);
+}
+
+}  // namespace
+
+TEST(ForceModelFrictionless, ObliqueImpactKeepsTangentialVelocity) { checkFrictionlessObliqueImpact("cpu"); }
+
+// The frictionless kernel built into the GPU's dynamics module. Skipped without a usable GPU.
+TEST(GpuParity, FrictionlessObliqueImpact) {
+    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    checkFrictionlessObliqueImpact("cuda");
 }
 
 class ForceModelOutput : public ScratchDirTest {};

@@ -12,21 +12,6 @@ using namespace deme_test;
 
 namespace {
 
-// DMT (Derjaguin-Muller-Toporov) adhesion: the Hertz force of the default model (with its CoR
-// damping) minus a constant pull 2 pi W R while the surfaces overlap, W being the work of adhesion of
-// the material pair. A sphere under a ceiling hangs while m g < 2 pi W R, the DMT pull-off force, at
-// the overlap where the Hertz force 4/3 E* sqrt(R) d^(3/2) equals 2 pi W R - m g.
-const char* const kDMT = R"(
-if (overlapDepth > 0.0) {
-    const float R = ARadius * BRadius / (ARadius + BRadius);
-    const float m = AOwnerMass * BOwnerMass / (AOwnerMass + BOwnerMass);
-    const float Sn = 2.f * E_eff[bodyAMatType][bodyBMatType] * sqrtf(R * (float)overlapDepth);
-    const float vn = dot((ALinVel + rotVelCPA) - (BLinVel + rotVelCPB), B2A);
-    const float damping = 2.f * sqrtf(5.f / 6.f) * beta_CoR[bodyAMatType][bodyBMatType] * sqrtf(Sn * m);
-    const float pull = 2.f * (float)deme::PI * W[bodyAMatType][bodyBMatType] * R;
-    force += (2.f / 3.f * Sn * (float)overlapDepth + damping * vn - pull) * B2A;
-}
-)";
 
 struct Hanging {
     double overlap;  // after settling (or the last value while falling): R - distance to the ceiling
@@ -35,12 +20,13 @@ struct Hanging {
 
 // A sphere (R = 5 mm) starts touching a ceiling at z = 0 under gravity, its weight `weightRatio`
 // times the pull-off force; returns its state after `duration`.
-Hanging hang(double weightRatio, double duration, double& expectedOverlap) {
+Hanging hang(double weightRatio, double duration, double& expectedOverlap, const std::string& backend = "cpu") {
     const double R = 0.005, E = 1e6, nu = 0.3, W = 0.05, g = 9.81;
     const double pullOff = 2 * PI * W * R;  // DMT
     const double mass = weightRatio * pullOff / g;
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
+    sim.SetBackend(backend);
     auto grain = sim.LoadMaterial({{"E", E}, {"nu", nu}, {"CoR", 0.3}, {"W", 0.0}});
     auto ceilingMat = sim.LoadMaterial({{"E", E}, {"nu", nu}, {"CoR", 0.3}, {"W", 0.0}});
     sim.SetMaterialPropertyPair("W", grain, ceilingMat, W);
@@ -79,4 +65,16 @@ TEST(ForceModelCohesion, SphereHangsBelowPullOffAndFallsAbove) {
     const Hanging above = hang(1.05, 0.1, expected);
     EXPECT_LT(above.overlap, -0.005);
     EXPECT_LT(above.velocity, -0.5);  // falling freely: g t ~ 1 m/s after leaving
+}
+
+// The DMT model (material and pair properties read by a custom model) on the GPU. Skipped without a
+// usable GPU.
+TEST(GpuParity, CustomModelDmtSphereHangsBelowPullOff) {
+    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    double expected = 0.0;
+    const Hanging below = hang(0.95, 0.3, expected, "cuda");
+    EXPECT_NEAR(below.overlap, expected, 0.01 * expected);
+    EXPECT_LT(std::fabs(below.velocity), 1e-4);
+    const Hanging above = hang(1.05, 0.1, expected, "cuda");
+    EXPECT_LT(above.overlap, -0.005);
 }

@@ -78,10 +78,11 @@ namespace {
 // driven 5 mm away along the bond in 0.05 s, far beyond any margin: the bond still pulls with
 // k * stretch, because the pair stays in the contact set. After RemovePersistentContact the pair
 // leaves the set at the next detection: no force.
-void checkPersistentPairSurvives(bool async) {
+void checkPersistentPairSurvives(bool async, const std::string& backend = "cpu") {
     const float r = 1e-3f, k = 100.f;
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
+    sim.SetBackend(backend);
     auto mat = sim.LoadMaterial({{"kb", k}, {"cb", 0.0}});
     auto model = sim.DefineContactForceModel(bonded_demo::kBondedModel);
     model->SetMustHaveMatProp({"kb", "cb"});
@@ -129,3 +130,10 @@ void checkPersistentPairSurvives(bool async) {
 
 TEST(ForceModelPersistence, PersistentPairSurvivesDetection) { checkPersistentPairSurvives(false); }
 TEST(ForceModelPersistence, PersistentPairSurvivesAsyncDetection) { checkPersistentPairSurvives(true); }
+
+// On the GPU: detection there merges the persistent pair back in (DevicePersistentContacts), and the
+// host's Mark/Remove calls reach the device set. Skipped without a usable GPU.
+TEST(GpuParity, PersistentPairSurvivesDetection) {
+    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    checkPersistentPairSurvives(false, "cuda");
+}

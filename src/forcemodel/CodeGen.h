@@ -3,6 +3,7 @@
 // in the engine's own force loop (dynamics/ForcePassLoop.h) and exported as an extern "C" force pass.
 #pragma once
 
+#include <sstream>
 #include <string>
 
 #include "forcemodel/ModelLayout.h"
@@ -13,5 +14,13 @@ namespace deme {
 constexpr const char* kGeneratedForcePassSymbol = "deme_force_pass";
 
 std::string generateForceModelSource(const ModelLayout& layout);
+
+// The model functor `UserForceModel` shared by the CPU's and the GPU's generated code (CudaCodeGen.h):
+// its constants, members (material tables, wildcard arrays), `constructor` (the text that fills the
+// members, which differs per backend) and its call operator, which declares the inputs and holds the
+// user's code under `#line 1 "<origin>"`; after it, numbering returns to `generatedName`. Written at
+// the end of `out`, whose earlier lines count for that numbering.
+void writeUserForceModel(std::ostringstream& out, const ModelLayout& layout, const std::string& constructor,
+                         const std::string& generatedName);
 
 }  // namespace deme

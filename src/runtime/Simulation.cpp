@@ -81,16 +81,8 @@ void Simulation::startDevice() {
         resolveBackend("Initialize", request, [this](Verbosity v, const std::string& msg) { log(v, msg); });
     settings.onGpu = choice.kind == BackendKind::Cuda;
     if (!settings.onGpu) return;
-    // The GPU step loop runs the default frictional Hertz-Mindlin model so far; other models run on
-    // the CPU. Asked for explicitly (SetBackend("cuda")) that is an error, otherwise it is said.
-    if (m_model.layout.kind != DEMForceModel::Kind::FRICTIONAL_HERTZIAN) {
-        const std::string why = "the CUDA backend runs the default frictional Hertz-Mindlin model only so far; "
-                                "this force model runs on the CPU";
-        if (settings.backend == "cuda") throwError("Initialize", why);
-        log(Verbosity::WARNING, why);
-        settings.onGpu = false;
-        return;
-    }
+    // Every force model runs on the GPU: built-in ones are kernels of the library, a custom one is
+    // compiled for the GPU here too (NVRTC, cached), beside its CPU build.
 #ifdef DEME_HAS_CUDA
     const int device = settings.deviceIds.empty() ? choice.deviceId : settings.deviceIds.front();
     if (settings.deviceIds.size() > 1)
@@ -98,7 +90,7 @@ void Simulation::startDevice() {
                                     " GPUs were given; the CUDA backend uses one so far (GPU " +
                                     std::to_string(device) + ") for both contact detection and dynamics");
     const auto t0 = std::chrono::steady_clock::now();
-    m_device.reset(new cuda::DeviceSimulation(device, settings));
+    m_device.reset(new cuda::DeviceSimulation(device, settings, m_model.layout));
     log(Verbosity::INFO, "GPU kernels for " + m_device->deviceName() + (m_device->kernelsFromCache() ? " loaded from the cache" : " compiled") +
                              " in " + std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) + " s");
     m_deviceStale = true;
@@ -126,8 +118,6 @@ void Simulation::advanceOnDevice(unsigned long long n) {
     CollaborationStats& collab = m_contacts.stats();
     const auto t0 = std::chrono::steady_clock::now();
     if (m_deviceStale) {
-        for (uint8_t p : m_state.contacts.persistent)
-            if (p) throwError("DoDynamics", "persistent contacts run on the CPU backend only so far (SetBackend(\"cpu\"))");
         m_device->upload(m_state, m_grid, settings, families);
         m_deviceStale = false;
     }

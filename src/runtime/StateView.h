@@ -58,6 +58,7 @@ struct ContactView {
     float* wildcards;
     uint8_t* meshState;
     float3 *force, *torqueA, *torqueB;
+    uint8_t* persistent;  // ContactArrays::persistent; read and written by models that write it
 };
 
 struct CacheView {

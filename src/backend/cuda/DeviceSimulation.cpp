@@ -11,12 +11,13 @@
 #include "backend/cuda/CudaModule.h"
 #include "backend/cuda/Device.h"
 #include "backend/cuda/DeviceBuffer.h"
+#include "backend/cuda/DeviceForceModel.h"
+#include "backend/cuda/DevicePersistentContacts.h"
 #include "backend/cuda/DevicePrimitives.h"
 #include "backend/cuda/NvrtcCompiler.h"
 #include "backend/cuda/kernels/KernelArgs.cuh"
 #include "dynamics/OwnerStep.h"
 #include "jit/EmbeddedSources.h"
-#include "physics/BuiltInForceModels.h"
 #include "runtime/FamilyMotionSource.h"
 #include "runtime/StateView.h"
 
@@ -50,6 +51,7 @@ struct DeviceContacts {
     DeviceBuffer<uint8_t> type, meshState;
     DeviceBuffer<float> wildcards;
     DeviceBuffer<float3> force, torqueA, torqueB;
+    DeviceBuffer<uint8_t> persistent;
     void resize(size_t n, unsigned int W) {
         geomA.resize(n);
         geomB.resize(n);
@@ -59,6 +61,7 @@ struct DeviceContacts {
         force.resize(n);
         torqueA.resize(n);
         torqueB.resize(n);
+        persistent.resize(n);
     }
 };
 
@@ -86,7 +89,7 @@ struct DeviceSimulation::Impl {
     int device = 0;
     std::string name;
     CudaModule dynamics, detection;
-    CudaKernel kResetReduction, kCopyDoubles, kClearLoads, kResolveMesh, kForce, kIntegrate, kLargeRot, kPlaceSpheres,
+    CudaKernel kResetReduction, kCopyDoubles, kClearLoads, kResolveMesh, kIntegrate, kLargeRot, kPlaceSpheres,
         kPlaceTris, kAnalytical;
     CudaKernel kSphereBoxes, kTriBoxes, kBinEntries, kBinStarts, kPairSearch, kMapHistory;
     // The families' prescriptions, compiled from the user's expressions (recompiled when they change).
@@ -98,6 +101,8 @@ struct DeviceSimulation::Impl {
     // DEME_CUDA_PROFILE_FROM_STEP: the step at which a profiler's capture starts (docs/gpu-tests.md).
     unsigned long long profileFromStep = ~0ull;
     DevicePrimitives prim;
+    DeviceForceModel model;
+    DevicePersistentContacts persistence;
 
     // State (SimState's arrays).
     DeviceBuffer<voxelID_t> voxel;
@@ -120,7 +125,7 @@ struct DeviceSimulation::Impl {
     // Rules, materials, per-step inputs and results.
     DeviceBuffer<FamilyStepMotion> motion;
     DeviceBuffer<uint8_t> familyMask;
-    DeviceBuffer<float> familyExtraMargin, mu, Crr, E_eff, G_eff, beta_CoR;
+    DeviceBuffer<float> familyExtraMargin;
     DeviceBuffer<StepReduction> reduction;
     // Detection scratch.
     DeviceBins sphereBins, triBins;
@@ -145,14 +150,14 @@ struct DeviceSimulation::Impl {
         double forceSeconds = 0.0, pairs = 0.0, real = 0.0, detectSeconds = 0.0;
     } costMark;
 
-    void compileKernels(const Settings& settings);
+    void compileKernels(const Settings& settings, const ModelLayout& layout);
     void prepareFamilyMotion(const FamilyRules& families);
     void refreshView();
     void detect(const Settings& settings, const FamilyRules& families, TimingStats& timing);
     unsigned int readCount(const DeviceBuffer<unsigned int>& offsets, size_t at);
 };
 
-void DeviceSimulation::Impl::compileKernels(const Settings& settings) {
+void DeviceSimulation::Impl::compileKernels(const Settings& settings, const ModelLayout& layout) {
     (void)settings;
     const DeviceInfo& info = useDevice("Initialize", device);
     name = info.name;
@@ -169,7 +174,6 @@ void DeviceSimulation::Impl::compileKernels(const Settings& settings) {
     kCopyDoubles = dynamics.kernel("deme_copy_doubles");
     kClearLoads = dynamics.kernel("deme_clear_owner_loads");
     kResolveMesh = dynamics.kernel("deme_resolve_mesh_contacts");
-    kForce = dynamics.kernel("deme_force_pass");
     kIntegrate = dynamics.kernel("deme_integrate");
     kLargeRot = dynamics.kernel("deme_large_rotations");
     kPlaceSpheres = dynamics.kernel("deme_place_spheres");
@@ -181,6 +185,10 @@ void DeviceSimulation::Impl::compileKernels(const Settings& settings) {
     kBinStarts = detection.kernel("deme_bin_starts");
     kPairSearch = detection.kernel("deme_pair_search");
     kMapHistory = detection.kernel("deme_map_history");
+    model.load("Initialize (contact force model)", layout, dynamics, opt);
+    persistence.load("Initialize", opt);
+    compileSeconds += model.compileSeconds() + persistence.compileSeconds();
+    fromCache = fromCache && model.fromCache() && persistence.fromCache();
 }
 
 void DeviceSimulation::Impl::prepareFamilyMotion(const FamilyRules& families) {
@@ -210,7 +218,8 @@ void DeviceSimulation::Impl::refreshView() {
                                vertTriStart.data(), vertTris.data()};
     DeviceContacts& c = contacts[current];
     v.contacts = ContactView{c.geomA.data(), c.geomB.data(), c.type.data(),   c.wildcards.data(),
-                             c.meshState.data(), c.force.data(), c.torqueA.data(), c.torqueB.data()};
+                             c.meshState.data(), c.force.data(), c.torqueA.data(), c.torqueB.data(),
+                             c.persistent.data()};
     v.cache = CacheView{ownerPos.data(), angVelG.data(), spherePos.data(), sphereArm.data(),
                         analPos.data(),  analDir.data(), triVert.data()};
     v.integrationScratch = IntegrationScratchView{flags.data(), midAngVel.data()};
@@ -286,7 +295,7 @@ void DeviceSimulation::Impl::detect(const Settings& settings, const FamilyRules&
     launch(kPairSearch, blocksFor(nS, THREADS), THREADS, 0, nullptr, view, args, pairCount.data(),
            (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr, (uint8_t*)nullptr);
     prim.exclusiveSum(pairCount.data(), pairOffset.data(), nS + 1, nullptr);
-    const unsigned int total = readCount(pairOffset, nS);
+    unsigned int total = readCount(pairOffset, nS);
     DeviceContacts& fresh = contacts[1 - current];
     fresh.resize(total, W);
     if (total)
@@ -298,11 +307,19 @@ void DeviceSimulation::Impl::detect(const Settings& settings, const FamilyRules&
 
     // 3. History: pairs found again keep their wildcards.
     DeviceContacts& old = contacts[current];
+    // Persistent pairs the detection missed stay in the set (DevicePersistentContacts.h).
+    const ContactKeys oldKeys{old.geomA.data(), old.geomB.data(), numContacts};
+    const unsigned int detected = total;
+    total = persistence.merge(fresh.geomA, fresh.geomB, fresh.type, total, oldKeys, old.type.data(),
+                              old.persistent.data(), prim, nullptr);
+    if (total != detected) fresh.resize(total, W);
     if (total)
         launch(kMapHistory, blocksFor(total, THREADS), THREADS, 0, nullptr, (const bodyID_t*)fresh.geomA.data(),
                (const bodyID_t*)fresh.geomB.data(), total, (const bodyID_t*)old.geomA.data(),
                (const bodyID_t*)old.geomB.data(), numContacts, (const float*)old.wildcards.data(),
                (const uint8_t*)old.meshState.data(), W, fresh.wildcards.data(), fresh.meshState.data());
+    persistence.carryOver(view, ContactKeys{fresh.geomA.data(), fresh.geomB.data(), total}, fresh.type.data(),
+                          fresh.persistent.data(), fresh.wildcards.data(), W, oldKeys, old.persistent.data(), nullptr);
     current = 1 - current;
     numContacts = total;
     refreshView();
@@ -314,9 +331,9 @@ void DeviceSimulation::Impl::detect(const Settings& settings, const FamilyRules&
     (void)families;
 }
 
-DeviceSimulation::DeviceSimulation(int device, const Settings& settings) : m(new Impl()) {
+DeviceSimulation::DeviceSimulation(int device, const Settings& settings, const ModelLayout& model) : m(new Impl()) {
     m->device = device;
-    m->compileKernels(settings);
+    m->compileKernels(settings, model);
     if (const char* p = std::getenv("DEME_CUDA_PROFILE_FROM_STEP")) m->profileFromStep = std::strtoull(p, nullptr, 10);
 }
 
@@ -384,19 +401,20 @@ void DeviceSimulation::upload(const SimState& s, const BinGrid& g, const Setting
     put(c.type, s.contacts.type);
     put(c.meshState, s.contacts.meshState);
     put(c.wildcards, s.contacts.wildcards);
+    put(c.persistent, s.contacts.persistent);
+    if (c.persistent.size() != d.numContacts) {  // not kept by the host yet: none is persistent
+        c.persistent.resize(d.numContacts);
+        c.persistent.zeroAsync(nullptr);
+    }
     c.force.resize(d.numContacts);
     c.torqueA.resize(d.numContacts);
     c.torqueB.resize(d.numContacts);
     // Rules and materials.
     put(d.familyMask, std::vector<uint8_t>(families.contactMask(), families.contactMask() + NUM_FAMILIES * NUM_FAMILIES));
     put(d.familyExtraMargin, std::vector<float>(settings.familyExtraMargin, settings.familyExtraMargin + NUM_FAMILIES));
-    const MaterialTables& mt = s.materials;
-    put(d.mu, mt.mu);
-    put(d.Crr, mt.Crr);
-    put(d.E_eff, mt.E_eff);
-    put(d.G_eff, mt.G_eff);
-    put(d.beta_CoR, mt.beta_CoR);
-    d.numMaterials = mt.count;
+    d.numMaterials = s.materials.count;
+    d.model.upload(s);
+    d.persistence.uploadRules(s.wildcards.contactInit);
     d.motion.resize(NUM_FAMILIES);
     d.reduction.resize(1);
     synchronize(nullptr);
@@ -433,10 +451,6 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
     Impl& d = *m;
     DeviceFault fault;
     const unsigned int nO = d.view.numOwners, nS = d.view.numSpheres, nT = d.view.numTriangles;
-    const FrictionalHertzModel mat{PairTable{d.mu.data(), d.numMaterials}, PairTable{d.Crr.data(), d.numMaterials},
-                                    PairTable{d.E_eff.data(), d.numMaterials},
-                                    PairTable{d.G_eff.data(), d.numMaterials},
-                                    PairTable{d.beta_CoR.data(), d.numMaterials}};
     d.prepareFamilyMotion(families);
     const StepConstants consts{settings.gravity, (float)settings.dt, settings.dt,
                                settings.errorOutVelocity * settings.errorOutVelocity, d.view.frame,
@@ -474,9 +488,7 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
         if (nT && d.numContacts)
             launch(d.kResolveMesh, blocksFor(d.numContacts, THREADS), THREADS, 0, nullptr, d.view, red);
         launch(d.kClearLoads, blocksFor(nO, THREADS), THREADS, 0, nullptr, d.view);
-        if (d.numContacts)
-            launch(d.kForce, blocksFor(d.numContacts, THREADS), THREADS, 0, nullptr, d.view, (float)time,
-                   (float)settings.dt, mat, d.numClumps, nO - d.numClumps, red);
+        d.model.launch(d.view, (float)time, (float)settings.dt, d.numClumps, nO - d.numClumps, red, nullptr);
         synchronize(nullptr);
         const double t1 = now();
         timing.seconds[(int)Phase::FORCE] += t1 - t0;
@@ -555,7 +567,9 @@ void DeviceSimulation::download(SimState& s) const {
     get(c.force, hc.force, nc);
     get(c.torqueA, hc.torqueA, nc);
     get(c.torqueB, hc.torqueB, nc);
+    get(c.persistent, hc.persistent, nc);
     synchronize(nullptr);
+    d.model.download(s);
 }
 
 unsigned int DeviceSimulation::nMax() const { return m->freq.nMax(); }

@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "forcemodel/ModelLayout.h"
 #include "kinematics/ContactDetection.h"
 #include "runtime/CollaborationStats.h"
 #include "runtime/FamilyRules.h"
@@ -36,8 +37,8 @@ struct DeviceStepTotals {
 
 class DeviceSimulation {
   public:
-    // Compiles (or loads from the cache) the kernels for GPU `device`.
-    DeviceSimulation(int device, const Settings& settings);
+    // Compiles (or loads from the cache) the kernels for GPU `device`, the force model's included.
+    DeviceSimulation(int device, const Settings& settings, const ModelLayout& model);
     ~DeviceSimulation();
     DeviceSimulation(const DeviceSimulation&) = delete;
     DeviceSimulation& operator=(const DeviceSimulation&) = delete;

@@ -1,6 +1,8 @@
-// The dynamics side on the GPU: mesh contact rule, force pass with load accumulation, integration
+// The dynamics side on the GPU: mesh contact rule, the built-in models' force passes, integration
 // and pose caches. Compiled at run time by NVRTC together with the physics headers; every per-item
 // function here is the one the CPU sweeps call.
+#include "backend/cuda/kernels/ForceModelParams.cuh"
+#include "backend/cuda/kernels/ForcePassKernel.cuh"
 #include "backend/cuda/kernels/KernelArgs.cuh"
 #include "dynamics/ContactInputsGather.h"
 #include "dynamics/MeshContactRule.h"
@@ -13,12 +15,6 @@ namespace deme {
 namespace {
 
 __device__ inline size_t globalIndex() { return (size_t)blockIdx.x * blockDim.x + threadIdx.x; }
-
-__device__ inline void atomicAdd3(float3* target, const float3& v) {
-    atomicAdd(&target->x, v.x);
-    atomicAdd(&target->y, v.y);
-    atomicAdd(&target->z, v.z);
-}
 
 __device__ inline void raiseError(StepReduction* red, unsigned int flag, unsigned int item) {
     if (atomicOr(&red->errorFlags, flag) == 0u) red->errorItem = item;
@@ -63,73 +59,23 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, StepReduction
         raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, c.geomA[i]);
 }
 
-// Force pass: each contact's force and torques (as on the CPU), added to both owners' loads. Loads
-// on the few non-clump owners (walls, meshes) are first summed per block in shared memory.
-extern "C" __global__ void deme_force_pass(StateView s, float time, float dt, FrictionalHertzModel model,
-                                           unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red) {
-    __shared__ float3 blockForce[SHARED_LOAD_SLOTS], blockTorque[SHARED_LOAD_SLOTS];
-    __shared__ unsigned int blockReal, blockSS;
-    const unsigned int slots = numNonClump < SHARED_LOAD_SLOTS ? numNonClump : SHARED_LOAD_SLOTS;
-    for (unsigned int k = threadIdx.x; k < slots; k += blockDim.x) {
-        blockForce[k] = make_float3(0.f);
-        blockTorque[k] = make_float3(0.f);
-    }
-    if (threadIdx.x == 0) blockReal = blockSS = 0;
-    __syncthreads();
+// Force passes of the built-in models (kernels/ForcePassKernel.cuh); a custom model's pass is
+// generated and compiled at Initialize (forcemodel/CudaCodeGen.cpp). All take the same arguments.
+extern "C" __global__ void deme_force_pass_frictional_hertz(StateView s, float time, float dt, ForceModelParams p,
+                                                            unsigned int firstNonClump, unsigned int numNonClump,
+                                                            StepReduction* red) {
+    const unsigned int n = p.numMaterials;
+    const FrictionalHertzModel model{PairTable{p.mu, n}, PairTable{p.Crr, n}, PairTable{p.E_eff, n},
+                                     PairTable{p.G_eff, n}, PairTable{p.beta_CoR, n}};
+    forcePassKernel(s, model, time, dt, firstNonClump, numNonClump, red);
+}
 
-    const size_t i = globalIndex();
-    if (i < s.numContacts) {
-        ContactView& c = s.contacts;
-        constexpr unsigned int W = FrictionalHertzModel::kNumContactWildcards;
-        float* wc = c.wildcards + i * W;
-        const uint8_t type = c.type[i];
-        bool touching;
-        ContactInputs in;
-        if (type == SPHERE_SPHERE) {
-            const double3 d = s.cache.spherePos[c.geomA[i]] - s.cache.spherePos[c.geomB[i]];
-            const double reach = (double)s.spheres.radius[c.geomA[i]] + (double)s.spheres.radius[c.geomB[i]];
-            touching = dot(d, d) < reach * reach;
-            if (touching) gatherContactInputsOfType(s, i, SPHERE_SPHERE, time, dt, in);
-        } else {
-            gatherContactInputsOfType(s, i, type, time, dt, in);
-            touching = in.overlapDepth > 0.0 && (type != SPHERE_TRIANGLE || (c.meshState[i] & 1u));
-        }
-        if (!touching) {
-            for (unsigned int w = 0; w < W; w++) wc[w] = 0.f;
-            c.force[i] = c.torqueA[i] = c.torqueB[i] = make_float3(0.f);
-        } else {
-            float3 force = make_float3(0.f), torque_only_force = make_float3(0.f);
-            bool persistent = false;
-            model(in, wc, force, torque_only_force, persistent);
-            const float3 total = force + torque_only_force;
-            const float3 tA = cross(in.armA, total), tB = cross(in.armB, -total);
-            c.force[i] = force;
-            c.torqueA[i] = tA;
-            c.torqueB[i] = tB;
-            atomicAdd3(&s.owners.contactForce[in.AOwner], force);
-            atomicAdd3(&s.owners.contactTorque[in.AOwner], tA);
-            const unsigned int slot = in.BOwner - firstNonClump;
-            if (in.BOwner >= firstNonClump && slot < slots) {
-                atomicAdd3(&blockForce[slot], -force);
-                atomicAdd3(&blockTorque[slot], tB);
-            } else {
-                atomicAdd3(&s.owners.contactForce[in.BOwner], -force);
-                atomicAdd3(&s.owners.contactTorque[in.BOwner], tB);
-            }
-            atomicAdd(&blockReal, 1u);
-            if (type == SPHERE_SPHERE) atomicAdd(&blockSS, 1u);
-        }
-    }
-    __syncthreads();
-    for (unsigned int k = threadIdx.x; k < slots; k += blockDim.x) {
-        const float3 f = blockForce[k], t = blockTorque[k];
-        if (f.x != 0.f || f.y != 0.f || f.z != 0.f) atomicAdd3(&s.owners.contactForce[firstNonClump + k], f);
-        if (t.x != 0.f || t.y != 0.f || t.z != 0.f) atomicAdd3(&s.owners.contactTorque[firstNonClump + k], t);
-    }
-    if (threadIdx.x == 0) {
-        if (blockReal) atomicAdd(&red->realContacts, (unsigned long long)blockReal);
-        if (blockSS) atomicAdd(&red->realSphereSphere, (unsigned long long)blockSS);
-    }
+extern "C" __global__ void deme_force_pass_frictionless_hertz(StateView s, float time, float dt, ForceModelParams p,
+                                                              unsigned int firstNonClump, unsigned int numNonClump,
+                                                              StepReduction* red) {
+    const unsigned int n = p.numMaterials;
+    const FrictionlessHertzModel model{PairTable{p.E_eff, n}, PairTable{p.beta_CoR, n}};
+    forcePassKernel(s, model, time, dt, firstNonClump, numNonClump, red);
 }
 
 // Integration of every owner (stepOwner), with the step's maxima and first fault combined per warp.

@@ -1,0 +1,127 @@
+// The GPU's persistent-contact kernels (src/backend/cuda/kernels/PersistentMerge.cu) checked without
+// a GPU: the kernel file is compiled here for the host, each kernel run as a loop over its threads,
+// and the result compared with the CPU's installDetectedContacts (kinematics/HistoryMapping.cpp) on
+// random contact sets: the same pairs in the same order, the same persistent flags, the same initial
+// wildcards of new pairs. The kernels use nothing of CUDA but the thread index, so the emulation is
+// three variables. (History mapping of wildcards is Detection.cu's, tested on the GPU.)
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "kinematics/HistoryMapping.h"
+
+namespace {
+struct EmulatedIndex {
+    unsigned int x = 0, y = 0, z = 0;
+};
+EmulatedIndex blockIdx, threadIdx, blockDim{1, 1, 1};
+}  // namespace
+
+#define __global__
+#define __device__
+#include "backend/cuda/kernels/PersistentMerge.cu"
+#undef __global__
+#undef __device__
+
+using namespace deme;
+
+namespace {
+
+template <class Kernel>
+void runThreads(size_t n, Kernel k) {
+    for (size_t i = 0; i < n; i++) {
+        blockIdx.x = (unsigned int)i;
+        k();
+    }
+}
+
+struct Pairs {
+    std::vector<bodyID_t> a, b;
+};
+
+// `n` distinct sphere pairs (a < b) among `spheres`, sorted by key.
+Pairs randomPairs(std::mt19937& rng, unsigned int spheres, size_t n) {
+    std::uniform_int_distribution<bodyID_t> pick(0, spheres - 1);
+    std::set<std::pair<bodyID_t, bodyID_t>> s;
+    while (s.size() < n) {
+        bodyID_t x = pick(rng), y = pick(rng);
+        if (x != y) s.insert({std::min(x, y), std::max(x, y)});
+    }
+    Pairs p;
+    for (const auto& q : s) p.a.push_back(q.first), p.b.push_back(q.second);
+    return p;
+}
+
+}  // namespace
+
+TEST(CudaPersistentMerge, KernelsFollowTheCpuRules) {
+    std::mt19937 rng(11);
+    const unsigned int spheres = 40;
+    for (int round = 0; round < 200; round++) {
+        SCOPED_TRACE(round);
+        // The CPU's state: spheres in families 0..2, one contact wildcard, a rule for families 0-1.
+        SimState s;
+        for (unsigned int i = 0; i < spheres; i++) {
+            s.spheres.owner.push_back(i);
+            s.owners.family.push_back((family_t)(i % 3));
+        }
+        s.numWildcards = 1;
+        s.wildcards.contactInit.push_back({0, 1, 0, 7.f});
+        const Pairs old = randomPairs(rng, spheres, std::uniform_int_distribution<size_t>(0, 60)(rng));
+        const Pairs fresh = randomPairs(rng, spheres, std::uniform_int_distribution<size_t>(0, 60)(rng));
+        const size_t nOld = old.a.size(), nFresh = fresh.a.size();
+        std::vector<uint8_t> oldPersistent(nOld);
+        for (auto& p : oldPersistent) p = (uint8_t)(rng() % 3 == 0);
+        ContactArrays& c = s.contacts;
+        c.geomA = old.a;
+        c.geomB = old.b;
+        c.type.assign(nOld, SPHERE_SPHERE);
+        c.wildcards.assign(nOld, -1.f);
+        c.persistent = oldPersistent;
+        c.meshState.assign(nOld, 0);
+        DetectedContacts detected;
+        detected.geomA = fresh.a;
+        detected.geomB = fresh.b;
+        detected.type.assign(nFresh, SPHERE_SPHERE);
+        installDetectedContacts(s, detected);
+
+        // The GPU's steps, as DevicePersistentContacts runs them.
+        const std::vector<uint8_t> oldType(nOld, SPHERE_SPHERE), freshType(nFresh, SPHERE_SPHERE);
+        const ContactKeys freshKeys{fresh.a.data(), fresh.b.data(), (unsigned int)nFresh};
+        const ContactKeys oldKeys{old.a.data(), old.b.data(), (unsigned int)nOld};
+        std::vector<unsigned int> missing(nOld + 1, 0), before(nOld + 1, 0);
+        unsigned int any = 0;
+        runThreads(nOld, [&] {
+            deme_persistent_missing(freshKeys, oldKeys, oldPersistent.data(), missing.data(), &any);
+        });
+        for (size_t j = 1; j <= nOld; j++) before[j] = before[j - 1] + missing[j - 1];
+        const size_t total = nFresh + before[nOld];
+        std::vector<bodyID_t> A(total), B(total);
+        std::vector<uint8_t> T(total);
+        runThreads(nFresh + nOld, [&] {
+            deme_persistent_merge(freshKeys, freshType.data(), oldKeys, oldType.data(), missing.data(), before.data(),
+                                  A.data(), B.data(), T.data());
+        });
+        ASSERT_EQ(A, c.geomA);
+        ASSERT_EQ(B, c.geomB);
+        // History mapping would copy the old wildcards of pairs found again; new pairs start at 0.
+        std::vector<float> wildcards(total, 0.f);
+        std::vector<uint8_t> persistent(total, 9);
+        StateView view{};
+        view.spheres.owner = s.spheres.owner.data();
+        view.owners.family = s.owners.family.data();
+        view.numSpheres = spheres;
+        const ContactInitRule rule{0, 1, 0, 7.f};
+        const ContactKeys mergedKeys{A.data(), B.data(), (unsigned int)total};
+        runThreads(total, [&] {
+            deme_persistent_flags(view, mergedKeys, T.data(), oldKeys, any ? oldPersistent.data() : nullptr,
+                                  persistent.data(), &rule, 1, wildcards.data(), 1);
+        });
+        EXPECT_EQ(persistent, c.persistent);
+        for (size_t i = 0; i < total; i++)
+            if (c.wildcards[i] != -1.f) EXPECT_EQ(wildcards[i], c.wildcards[i]) << "pair " << i;
+    }
+}
