@@ -1,6 +1,9 @@
 // MIXER-BENCH (../shared/bench/README.md): the paper's mixer scaling test at a fixed size.
-//   mixer <internal_mixer.obj> <r> [spheres|clumps] [warm steps] [timed steps]
-// (The README's settled variant: 100000 warm-up steps, i.e. 0.05 s of mixing.)
+//   mixer <internal_mixer.obj> <r> [spheres|clumps] [warm steps] [timed steps] [gpus] [auto|sync|async]
+// (The README's settled variant: 100000 warm-up steps, i.e. 0.05 s of mixing.) gpus: 1 (default)
+// runs dynamics and contact detection on one GPU, 2 puts detection on a second GPU (DEMSolver(2));
+// the last argument selects the contact detection mode (default auto: asynchronous where the CPU
+// has 8 or more cores).
 // Prints one JSON line: sphere-steps/s over the timed steps, contacts per sphere, n_max, dynamics
 // wait share, device bytes per sphere, and how long Initialize() took (run twice for cold and warm:
 // the second run finds the kernels in the cache).
@@ -17,7 +20,8 @@ using namespace deme;
 
 int main(int argc, char** argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: %s <internal_mixer.obj> <r> [spheres|clumps] [warm] [steps]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s <internal_mixer.obj> <r> [spheres|clumps] [warm] [steps] [gpus] [auto|sync|async]\n",
+                     argv[0]);
         return 2;
     }
     const std::string obj = argv[1];
@@ -25,9 +29,15 @@ int main(int argc, char** argv) {
     const bool clumps = argc > 3 && std::string(argv[3]) == "clumps";
     const unsigned long warm = argc > 4 ? std::strtoul(argv[4], nullptr, 10) : 2000;
     const unsigned long steps = argc > 5 ? std::strtoul(argv[5], nullptr, 10) : 2000;
+    const unsigned long gpus = argc > 6 ? std::strtoul(argv[6], nullptr, 10) : 1;
+    const std::string mode = argc > 7 ? argv[7] : "auto";
+    if (gpus < 1 || (mode != "auto" && mode != "sync" && mode != "async")) {
+        std::fprintf(stderr, "gpus must be 1 or more, the mode auto, sync or async\n");
+        return 2;
+    }
     const double dt = 5e-7, density = 2600.0;
 
-    DEMSolver sim;
+    DEMSolver sim((unsigned int)gpus);
     sim.SetVerbosity("WARNING");
     auto mat = sim.LoadMaterial({{"E", 1e9}, {"nu", 0.3}, {"CoR", 0.2}, {"mu", 0.5}, {"Crr", 0.0}});
     sim.InstructBoxDomainDimension(1, 1, 1);
@@ -66,6 +76,7 @@ int main(int argc, char** argv) {
     sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
     sim.SetCDUpdateFreq(20);
     sim.SetMaxVelocity(5.f);  // the blade tips move at about 4.7 m/s
+    if (mode != "auto") sim.SetSynchronousContactDetection(mode == "sync");
 
     const double t0 = deme_bench::seconds();
     sim.Initialize();
@@ -88,7 +99,11 @@ int main(int argc, char** argv) {
         .add("steps", (double)steps)
         .add("wall_s", wall)
         .add("sphere_steps_per_s", spheres * (double)steps / wall)
+        .add("gpus", (double)gpus)
+        .add("detection", sim.UsesAsyncContactDetection() ? "async" : "sync")
         .add("update_freq", (double)sim.GetUpdateFreq())
+        .add("dT_wait_share", sim.GetDynamicsWaitShare())
+        .add("async_updates", (double)sim.GetNumAsyncContactSetUpdates())
         .add("device_bytes_per_sphere", (double)sim.GetDeviceMemUsage() / spheres)
         .add("peak_host_mem_mib", deme_bench::peakMemoryMiB())
         .add("initialize_s", initSeconds);
