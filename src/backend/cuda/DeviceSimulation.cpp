@@ -346,9 +346,11 @@ void DeviceSimulation::upload(const SimState& s, const BinGrid& g, const Setting
     put(d.analPos, s.cache.analPos, st);
     put(d.analDir, s.cache.analDir, st);
     put(d.triVert, s.cache.triVert, st);
-    d.flags.resize(ow.size());
-    d.midAngVel.resize(ow.size());
-    d.orderBaseline.resize(ow.size());
+    // Scratch whose contents the steps overwrite: no copy of the old contents when it grows (a copy
+    // would go on the legacy default stream, unordered with dT's).
+    d.flags.resizeDiscarding(ow.size());
+    d.midAngVel.resizeDiscarding(ow.size());
+    d.orderBaseline.resizeDiscarding(ow.size());
     // The contact set the host has (history included).
     d.W = s.numWildcards;
     d.current = 0;
@@ -359,9 +361,9 @@ void DeviceSimulation::upload(const SimState& s, const BinGrid& g, const Setting
     put(c.type, s.contacts.type, st);
     put(c.meshState, s.contacts.meshState, st);
     put(c.wildcards, s.contacts.wildcards, st);
-    c.force.resize(d.numContacts);
-    c.torqueA.resize(d.numContacts);
-    c.torqueB.resize(d.numContacts);
+    c.force.resizeDiscarding(d.numContacts);
+    c.torqueA.resizeDiscarding(d.numContacts);
+    c.torqueB.resizeDiscarding(d.numContacts);
     // Materials.
     const MaterialTables& mt = s.materials;
     put(d.mu, mt.mu, st);
@@ -370,9 +372,9 @@ void DeviceSimulation::upload(const SimState& s, const BinGrid& g, const Setting
     put(d.G_eff, mt.G_eff, st);
     put(d.beta_CoR, mt.beta_CoR, st);
     d.numMaterials = mt.count;
-    d.motion.resize(NUM_FAMILIES);
-    d.reduction.resize(1);
-    d.maxTravelBits.resize(1);
+    d.motion.resizeDiscarding(NUM_FAMILIES);
+    d.reduction.resizeDiscarding(1);
+    d.maxTravelBits.resizeDiscarding(1);
     synchronize(st);
     // What detection reads and never changes during a run, including the family rules.
     d.kinematics->setGeometry(s, g, families, settings);
