@@ -1,8 +1,12 @@
 // MIXER-BENCH (../shared/bench/README.md): the paper's mixer scaling test at a fixed size.
-//   mixer <internal_mixer.obj> <r> [spheres|clumps] [warm steps] [timed steps] [warm-up dt]
+//   mixer <internal_mixer.obj> <r> [spheres|clumps] [warm steps] [timed steps] [warm-up dt] [gpus]
+//         [auto|sync|async]
 // The timed steps always use dt = 5e-7. The warm-up may use a coarser step: the settled variant,
 // with the grains landed on the floor and in contact, is 125000 warm-up steps of 2e-6 (0.25 s of
 // mixing; the grains fall about 0.3 m first, so after the README's 0.05 s none touch yet).
+// gpus: 1 (default) runs dynamics and contact detection on one GPU, 2 puts detection on a second
+// GPU (DEMSolver(2)); the last argument selects the contact detection mode (default auto:
+// asynchronous where the CPU has 8 or more cores).
 // Prints one JSON line: sphere-steps/s over the timed steps, contacts per sphere, n_max, dynamics
 // wait share, device bytes per sphere, and how long Initialize() took (run twice for cold and warm:
 // the second run finds the kernels in the cache).
@@ -19,7 +23,9 @@ using namespace deme;
 
 int main(int argc, char** argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: %s <internal_mixer.obj> <r> [spheres|clumps] [warm] [steps] [warm dt]\n",
+        std::fprintf(stderr,
+                     "usage: %s <internal_mixer.obj> <r> [spheres|clumps] [warm] [steps] [warm dt] [gpus] "
+                     "[auto|sync|async]\n",
                      argv[0]);
         return 2;
     }
@@ -30,8 +36,14 @@ int main(int argc, char** argv) {
     const unsigned long steps = argc > 5 ? std::strtoul(argv[5], nullptr, 10) : 2000;
     const double dt = 5e-7, density = 2600.0;
     const double warmDt = argc > 6 ? std::atof(argv[6]) : dt;
+    const unsigned long gpus = argc > 7 ? std::strtoul(argv[7], nullptr, 10) : 1;
+    const std::string mode = argc > 8 ? argv[8] : "auto";
+    if (gpus < 1 || (mode != "auto" && mode != "sync" && mode != "async")) {
+        std::fprintf(stderr, "gpus must be 1 or more, the mode auto, sync or async\n");
+        return 2;
+    }
 
-    DEMSolver sim;
+    DEMSolver sim((unsigned int)gpus);
     sim.SetVerbosity("WARNING");
     auto mat = sim.LoadMaterial({{"E", 1e9}, {"nu", 0.3}, {"CoR", 0.2}, {"mu", 0.5}, {"Crr", 0.0}});
     sim.InstructBoxDomainDimension(1, 1, 1);
@@ -70,6 +82,7 @@ int main(int argc, char** argv) {
     sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
     sim.SetCDUpdateFreq(20);
     sim.SetMaxVelocity(5.f);  // the blade tips move at about 4.7 m/s
+    if (mode != "auto") sim.SetSynchronousContactDetection(mode == "sync");
 
     const double t0 = deme_bench::seconds();
     sim.Initialize();
@@ -95,7 +108,11 @@ int main(int argc, char** argv) {
         .add("steps", (double)steps)
         .add("wall_s", wall)
         .add("sphere_steps_per_s", spheres * (double)steps / wall)
+        .add("gpus", (double)gpus)
+        .add("detection", sim.UsesAsyncContactDetection() ? "async" : "sync")
         .add("update_freq", (double)sim.GetUpdateFreq())
+        .add("dT_wait_share", sim.GetDynamicsWaitShare())
+        .add("async_updates", (double)sim.GetNumAsyncContactSetUpdates())
         .add("device_bytes_per_sphere", (double)sim.GetDeviceMemUsage() / spheres)
         .add("peak_host_mem_mib", deme_bench::peakMemoryMiB())
         .add("initialize_s", initSeconds);

@@ -93,6 +93,40 @@ TEST(CudaDeviceBuffer, CountsTheBytesItHolds) {
     EXPECT_EQ(deviceBytesAllocated(), before);
 }
 
+// Device-to-device copies (what the kinematics exchange uses), and a buffer stays on the GPU it was
+// allocated on: growing it with another GPU current, or copying between two GPUs, keeps each buffer
+// where it is and counts its bytes there. The second half needs two GPUs.
+TEST(CudaDeviceBuffer, CopiesBetweenBuffersAndStaysOnItsGpu) {
+    SKIP_WITHOUT_GPU();
+    const int first = usableDevices()[0].id;
+    useDevice("test", first);
+    std::vector<int> host(500);
+    std::iota(host.begin(), host.end(), 3);
+    DeviceBuffer<int> a, b(500);
+    a.upload(host);
+    b.copyFromAsync(a, 500, nullptr);
+    EXPECT_EQ(b.download(), host);
+    EXPECT_EQ(a.device(), first);
+    const size_t onFirst = deviceBytesAllocatedOn(first);
+    EXPECT_GE(onFirst, a.capacity() * sizeof(int) + b.capacity() * sizeof(int));
+    if (usableDevices().size() < 2) return;
+    const int second = usableDevices()[1].id;
+    useDevice("test", second);
+    const size_t onSecond = deviceBytesAllocatedOn(second);
+    DeviceBuffer<int> c(500);  // on the second GPU
+    EXPECT_EQ(c.device(), second);
+    EXPECT_EQ(deviceBytesAllocatedOn(second), onSecond + c.capacity() * sizeof(int));
+    c.copyFromAsync(a, 500, nullptr);  // from the first GPU
+    synchronize(nullptr);
+    a.resize(5000);  // grows on the first GPU although the second is current
+    EXPECT_EQ(a.device(), first);
+    EXPECT_EQ(deviceBytesAllocatedOn(second), onSecond + c.capacity() * sizeof(int));
+    EXPECT_EQ(c.download(), host);
+    useDevice("test", first);
+    a.release();  // freed on its own GPU
+    EXPECT_EQ(deviceBytesAllocatedOn(first), onFirst - 500 * sizeof(int));  // a held exactly 500 before it grew
+}
+
 TEST(CudaDeviceBuffer, OutOfMemoryIsAnError) {
     SKIP_WITHOUT_GPU();
     const size_t tooMuch = usableDevices().front().totalMemoryBytes * 4;

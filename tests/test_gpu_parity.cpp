@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <random>
 
 #include "TestHelpers.h"
 #include "backend/cuda/Device.h"
+#include "backend/cuda/DeviceBuffer.h"
 
 using namespace deme;
 using namespace deme_test;
@@ -19,14 +21,26 @@ bool gpuPresent() { return cuda::cudaBackendBuilt() && !cuda::usableDevices().em
 struct BedResult {
     double floorForce = 0.0, weight = 0.0, meanHeight = 0.0;
     size_t contacts = 0, spheres = 0;
+    // How contact detection and dynamics worked together.
+    double waitShare = 0.0;
+    unsigned long long asyncUpdates = 0;
+    unsigned int updateFreq = 0;
+    size_t deviceBytes = 0, deviceBytesGpu1 = 0;
+};
+
+struct BedRun {
+    std::string backend = "cpu";
+    bool sync = true;           // synchronous contact detection
+    unsigned int gpus = 0;      // 0: the solver's default; 2: kinematics on the second GPU
 };
 
 // About 9,700 spheres settle in a box with frictionless side walls; the floor carries the weight.
-BedResult settleBed(const std::string& backend) {
+BedResult settleBed(const BedRun& run) {
     const double r = 0.0025, density = 2600;
-    DEMSolver sim;
+    std::unique_ptr<DEMSolver> solver(run.gpus ? new DEMSolver(run.gpus) : new DEMSolver());
+    DEMSolver& sim = *solver;
     sim.SetVerbosity("QUIET");
-    sim.SetBackend(backend);
+    sim.SetBackend(run.backend);
     auto grain = sim.LoadMaterial(material(1e7, 0.3, 0.3, 0.5));
     auto side = sim.LoadMaterial(material(1e7, 0.3, 0.3, 0.0));
     sim.SetMaterialPropertyPair("mu", grain, side, 0.0);
@@ -46,7 +60,7 @@ BedResult settleBed(const std::string& backend) {
     auto batch = sim.AddClumps(tmpl, pts);
     sim.SetInitTimeStep(2e-5);
     sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
-    sim.SetSynchronousContactDetection(true);
+    sim.SetSynchronousContactDetection(run.sync);
     sim.Initialize();
     auto floorTracker = sim.Track(floorObj);
     auto grains = sim.Track(batch);
@@ -61,7 +75,25 @@ BedResult settleBed(const std::string& backend) {
     res.weight = pts.size() * sphereMass(r, density) * 9.81;
     for (size_t i = 0; i < pts.size(); i++) res.meanHeight += grains->Pos(i).z / (double)pts.size();
     res.contacts = sim.GetNumContacts();
+    res.waitShare = sim.GetDynamicsWaitShare();
+    res.asyncUpdates = sim.GetNumAsyncContactSetUpdates();
+    res.updateFreq = sim.GetUpdateFreq();
+    res.deviceBytes = sim.GetDeviceMemUsage();
+    res.deviceBytesGpu1 = cuda::deviceBytesAllocatedOn(1);
     return res;
+}
+
+BedResult settleBed(const std::string& backend) {
+    BedRun run;
+    run.backend = backend;
+    return settleBed(run);
+}
+
+// The bed's physics agrees (the checks of SettledBedAgreesWithTheCpu).
+void expectSameBed(const BedResult& ref, const BedResult& other) {
+    EXPECT_NEAR(other.floorForce, other.weight, 0.01 * other.weight);
+    EXPECT_NEAR(other.meanHeight, ref.meanHeight, 0.1 * 0.0025);
+    EXPECT_NEAR((double)other.contacts, (double)ref.contacts, 0.03 * (double)ref.contacts);
 }
 
 }  // namespace
@@ -77,6 +109,62 @@ TEST(GpuParity, SettledBedAgreesWithTheCpu) {
     // packing depends on the order of summation, through chaotic collisions, only in detail).
     EXPECT_NEAR(gpu.meanHeight, cpu.meanHeight, 0.1 * 0.0025);
     EXPECT_NEAR((double)gpu.contacts, (double)cpu.contacts, 0.03 * (double)cpu.contacts);
+}
+
+// Asynchronous detection on the GPU (kinematics on its own stream and thread beside the steps):
+// the same bed as the CPU's, and the detection really overlaps the steps: most contact sets arrive
+// from orders sent ahead, and the dynamics side waits for a small share of the loop only.
+TEST(GpuParity, AsyncSettledBedAgreesWithTheCpu) {
+    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    const BedResult cpu = settleBed("cpu");
+    BedRun run;
+    run.backend = "cuda";
+    run.sync = false;
+    const BedResult gpu = settleBed(run);
+    ASSERT_GE(cpu.spheres, 9500u);
+    EXPECT_NEAR(cpu.floorForce, cpu.weight, 0.01 * cpu.weight);
+    expectSameBed(cpu, gpu);
+    EXPECT_GT(gpu.asyncUpdates, 0u);
+    EXPECT_LT(gpu.waitShare, 1.0);
+}
+
+// Synchronous detection on the GPU never overlaps: no set arrives from an order.
+TEST(GpuParity, SyncDetectionOnTheGpuSendsNoOrders) {
+    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    BedRun run;
+    run.backend = "cuda";
+    run.sync = true;
+    const BedResult gpu = settleBed(run);
+    EXPECT_EQ(gpu.asyncUpdates, 0u);
+    EXPECT_EQ(gpu.waitShare, 0.0);
+}
+
+// Two GPUs (DEMSolver(2)): kinematics on the second, reading the snapshot from and writing the
+// contact list into the first GPU's memory; the bed agrees with the one-GPU run, detection overlaps,
+// and both GPUs hold memory. Needs two GPUs.
+TEST(GpuParity, TwoGpusAgreeWithOne) {
+    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    if (cuda::usableDevices().size() < 2 || cuda::usableDevices()[1].id != 1)
+        GTEST_SKIP() << "needs two usable GPUs (0 and 1), found " << cuda::usableDevices().size();
+    BedRun one;
+    one.backend = "cuda";
+    one.sync = false;
+    const BedResult ref = settleBed(one);
+    for (bool sync : {false, true}) {
+        SCOPED_TRACE(sync ? "synchronous" : "asynchronous");
+        BedRun two = one;
+        two.gpus = 2;
+        two.sync = sync;
+        const BedResult res = settleBed(two);
+        expectSameBed(ref, res);
+        EXPECT_NEAR(res.floorForce, ref.floorForce, 0.01 * ref.weight);
+        EXPECT_GT(res.deviceBytesGpu1, 0u);                 // kT's geometry and scratch
+        EXPECT_GT(res.deviceBytes, res.deviceBytesGpu1);    // and dT's state on GPU 0
+        if (!sync) {
+            EXPECT_GT(res.asyncUpdates, 0u);
+            EXPECT_LT(res.waitShare, 1.0);
+        }
+    }
 }
 
 // A sphere rolling without slip up an incline decelerates at (5/7) g sin(alpha) (solid sphere,

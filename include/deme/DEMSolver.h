@@ -229,6 +229,12 @@ class DEMSolver {
     // How the kinematics and dynamics sides worked together: waits, contact-set updates, n_max,
     // false-positive share of the contact set.
     void ShowThreadCollaborationStats() const;
+    // Share (0 to 1) of the step loop's wall time that the dynamics side spent waiting for a contact
+    // set it could not step without (0 when detection is fully hidden behind the steps).
+    double GetDynamicsWaitShare() const;
+    // Contact sets the kinematics side detected while the dynamics side kept stepping, and that
+    // were installed (asynchronous detection; 0 in synchronous mode).
+    unsigned long long GetNumAsyncContactSetUpdates() const;
 
   private:
     void requireNotInitialized(const char* call) const;

@@ -311,6 +311,12 @@ void DEMSolver::ShowMemStats() const {
     std::cout << "[deme] memory: " << (m_sim->settings.onGpu ? "GPU " : "CPU backend, GPU ")
               << (double)cuda::deviceBytesAllocated() / (1 << 20) << " MiB held now, "
               << (double)cuda::deviceBytesAllocatedPeak() / (1 << 20) << " MiB at most";
+    // Dynamics and kinematics on two GPUs: what each holds.
+    const std::vector<int>& ids = m_sim->settings.deviceIds;
+    if (m_sim->settings.onGpu && ids.size() > 1)
+        for (size_t i = 0; i < 2; i++)
+            std::cout << (i == 0 ? " (GPU " : ", GPU ") << ids[i] << ": "
+                      << (double)cuda::deviceBytesAllocatedOn(ids[i]) / (1 << 20) << " MiB" << (i == 1 ? ")" : "");
     if (m_sim->initialized() && m_sim->settings.onGpu && m_sim->state().spheres.size())
         std::cout << " (" << (double)cuda::deviceBytesAllocated() / (double)m_sim->state().spheres.size()
                   << " bytes per sphere)";
@@ -318,5 +324,15 @@ void DEMSolver::ShowMemStats() const {
 }
 
 void DEMSolver::ShowThreadCollaborationStats() const { std::cout << collaborationReport(*m_sim) << std::endl; }
+
+double DEMSolver::GetDynamicsWaitShare() const {
+    const CollaborationStats& c = m_sim->contactSets().stats();
+    return c.dynamicsSeconds > 0.0 ? std::min(1.0, c.dynamicsWaitSeconds / c.dynamicsSeconds) : 0.0;
+}
+
+unsigned long long DEMSolver::GetNumAsyncContactSetUpdates() const {
+    const CollaborationStats& c = m_sim->contactSets().stats();
+    return c.acsUpdates > c.syncDetections ? c.acsUpdates - c.syncDetections : 0;
+}
 
 }  // namespace deme

@@ -12,11 +12,11 @@
 
 #include "kinematics/ContactDetection.h"
 #include "runtime/CollaborationStats.h"
+#include "runtime/DetectionSchedule.h"
 #include "runtime/FamilyRules.h"
 #include "runtime/KinematicsWorker.h"
 #include "runtime/Settings.h"
 #include "runtime/TimingStats.h"
-#include "runtime/UpdateFrequency.h"
 
 namespace deme {
 
@@ -29,9 +29,7 @@ class ContactSetManager {
     void prepareStep(SimState& s, const Settings& settings, const FamilyRules& families, unsigned long long step,
                      float maxSpeed, TimingStats& timing);
     // After each step: the largest travel of any owner since the current set's snapshot.
-    void afterStep(double maxTravel) {
-        if (maxTravel > m_margin) m_expired = true;
-    }
+    void afterStep(double maxTravel) { m_schedule.afterStep(maxTravel); }
     // Waits for the kinematics thread to finish its order and takes the result (DoDynamicsThenSync).
     void sync(SimState& s, unsigned long long step, TimingStats& timing);
     // Between steps, for host-side edits of the contacts (persistence, contact wildcards): takes the
@@ -39,39 +37,28 @@ class ContactSetManager {
     void bringUpToDate(SimState& s, const Settings& settings, const FamilyRules& families, unsigned long long step,
                        float maxSpeed, TimingStats& timing);
     // A host-side edit of the state: detect afresh before the next step; results in flight are stale.
-    void invalidate() {
-        m_needDetection = true;
-        m_generation++;
-    }
+    void invalidate() { m_schedule.invalidate(); }
     const std::vector<double>& travelBaseline() const { return m_baseline; }
-    unsigned int nMax() const { return m_freq.nMax(); }
-    double margin() const { return m_margin; }
+    unsigned int nMax() const { return m_schedule.nMax(); }
+    double margin() const { return m_schedule.margin(); }
     CollaborationStats& stats() { return m_stats; }
     const CollaborationStats& stats() const { return m_stats; }
-    const UpdateFrequency& frequency() const { return m_freq; }
+    const UpdateFrequency& frequency() const { return m_schedule.frequency(); }
 
   private:
-    double chooseMargin(const Settings& settings, float maxSpeed) const;
     void detectNow(SimState& s, const Settings& settings, const FamilyRules& families, unsigned long long step,
                    float maxSpeed, TimingStats& timing);
     void considerResult(SimState& s, DetectionResult& r, unsigned long long step, TimingStats& timing);
-    void install(SimState& s, DetectedContacts& pairs, TimingStats& timing);
+    void install(SimState& s, DetectedContacts& pairs, unsigned long long snapshotStep, double margin,
+                 TimingStats& timing);
 
     std::unique_ptr<KinematicsWorker> m_worker;
     ContactDetector m_detector;  // for detections on the dynamics thread
     BinGrid m_grid;
-    UpdateFrequency m_freq;
+    DetectionSchedule m_schedule;
     CollaborationStats m_stats;
     std::vector<double> m_baseline, m_orderBaseline;  // owners' travel at the set's / the order's snapshot
     DetectionResult m_result;
-    // Counters at the last synchronous detection, and what it cost (for the sync n_max).
-    struct CostMark {
-        unsigned long long steps = 0;
-        double forceSeconds = 0.0, pairs = 0.0, real = 0.0, detectSeconds = 0.0;
-    } m_costMark;
-    double m_margin = 0.0;
-    unsigned long long m_acsStep = 0, m_generation = 0;
-    bool m_orderInFlight = false, m_expired = false, m_needDetection = true;
 };
 
 }  // namespace deme

@@ -84,15 +84,26 @@ void Simulation::startDevice() {
     // Every force model runs on the GPU: built-in ones are kernels of the library, a custom one is
     // compiled for the GPU here too (NVRTC, cached), beside its CPU build.
 #ifdef DEME_HAS_CUDA
-    const int device = settings.deviceIds.empty() ? choice.deviceId : settings.deviceIds.front();
-    if (settings.deviceIds.size() > 1)
-        log(Verbosity::WARNING, std::to_string(settings.deviceIds.size()) +
-                                    " GPUs were given; the CUDA backend uses one so far (GPU " +
-                                    std::to_string(device) + ") for both contact detection and dynamics");
+    // One GPU: dynamics and kinematics share it, each on its own stream. Two (or more; the first two
+    // are used): dynamics on the first, kinematics on the second, as in the paper.
+    const std::vector<int>& ids = settings.deviceIds;
+    const int device = ids.empty() ? choice.deviceId : ids[0];
+    const int kinematicsDevice = ids.size() > 1 ? ids[1] : device;
+    if (ids.size() > 2)
+        log(Verbosity::WARNING, std::to_string(ids.size()) + " GPUs were given; the CUDA backend uses two (GPU " +
+                                    std::to_string(device) + " for dynamics, GPU " +
+                                    std::to_string(kinematicsDevice) + " for contact detection)");
     const auto t0 = std::chrono::steady_clock::now();
-    m_device.reset(new cuda::DeviceSimulation(device, settings, m_model.layout));
-    log(Verbosity::INFO, "GPU kernels for " + m_device->deviceName() + (m_device->kernelsFromCache() ? " loaded from the cache" : " compiled") +
-                             " in " + std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) + " s");
+    m_device.reset(new cuda::DeviceSimulation(device, kinematicsDevice, settings, m_model.layout));
+    log(Verbosity::INFO, "GPU kernels for " + m_device->deviceName() +
+                             (kinematicsDevice != device ? " and " + m_device->kinematicsDeviceName() : std::string()) +
+                             (m_device->kernelsFromCache() ? " loaded from the cache" : " compiled") + " in " +
+                             std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) +
+                             " s; contact detection on GPU " + std::to_string(kinematicsDevice) +
+                             (kinematicsDevice == device ? " (its own stream)"
+                              : m_device->kinematicsPeerAccess() ? " (peer access to GPU " + std::to_string(device) + ")"
+                                                                  : " (no peer access: transfers through the host)") +
+                             (settings.asyncDetection ? ", asynchronous" : ", synchronous"));
     m_deviceStale = true;
 #endif
 }
@@ -118,7 +129,7 @@ void Simulation::advanceOnDevice(unsigned long long n) {
     CollaborationStats& collab = m_contacts.stats();
     const auto t0 = std::chrono::steady_clock::now();
     if (m_deviceStale) {
-        m_device->upload(m_state, m_grid, settings, families);
+        m_device->upload(m_state, m_grid, settings, families, collab);
         m_deviceStale = false;
     }
     const bool loads = m_state.hasTrackerLoads;
@@ -200,6 +211,12 @@ void Simulation::advance(unsigned long long n) {
 }
 
 void Simulation::syncContactDetection() {
+#ifdef DEME_HAS_CUDA
+    if (m_device) {
+        if (!m_deviceStale) m_device->finishDetection(m_step, m_timing, m_contacts.stats());
+        return;
+    }
+#endif
     if (m_initialized) m_contacts.sync(m_state, m_step, m_timing);
 }
 

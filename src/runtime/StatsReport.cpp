@@ -34,7 +34,9 @@ std::string collaborationReport(const Simulation& sim) {
     const double steps = (double)std::max<unsigned long long>(c.steps, 1);
     const double received = (double)(c.ordersSent > 0 ? c.ordersSent : 1);
     os << "Kinematics/dynamics collaboration over " << c.steps << " steps ("
-       << (sim.settings.onGpu ? "on the GPU, synchronous" : sim.settings.asyncDetection ? "asynchronous" : "synchronous")
+       << (sim.settings.onGpu ? (sim.settings.asyncDetection ? "on the GPU, asynchronous" : "on the GPU, synchronous")
+           : sim.settings.asyncDetection ? "asynchronous"
+                                         : "synchronous")
        << " detection):\n"
        << "  contact-set updates " << c.acsUpdates << " (" << c.syncDetections << " detected on the dynamics thread, "
        << c.ordersSent << " ordered from the kinematics thread, " << c.discardedResults << " discarded as stale)\n"

@@ -46,6 +46,7 @@ CudaCompileResult compileCudaSource(const std::string& call, const std::string&,
 // ---- DeviceBuffer.h (nothing is ever allocated, so there is nothing to free)
 size_t deviceBytesAllocated() { return 0; }
 size_t deviceBytesAllocatedPeak() { return 0; }
+size_t deviceBytesAllocatedOn(int) { return 0; }
 RawDeviceBuffer::~RawDeviceBuffer() = default;
 RawDeviceBuffer::RawDeviceBuffer(RawDeviceBuffer&&) noexcept {}
 RawDeviceBuffer& RawDeviceBuffer::operator=(RawDeviceBuffer&&) noexcept { return *this; }
@@ -59,6 +60,9 @@ void RawDeviceBuffer::reallocateExactly(size_t bytes, size_t, Stream) {
 void RawDeviceBuffer::uploadAsync(size_t, const void*, size_t, Stream) { notBuilt("DeviceBuffer::uploadAsync"); }
 void RawDeviceBuffer::downloadAsync(size_t, void*, size_t, Stream) const { notBuilt("DeviceBuffer::downloadAsync"); }
 void RawDeviceBuffer::zeroAsync(size_t, size_t, Stream) { notBuilt("DeviceBuffer::zeroAsync"); }
+void RawDeviceBuffer::copyFromAsync(size_t, const RawDeviceBuffer&, size_t, size_t, Stream) {
+    notBuilt("DeviceBuffer::copyFromAsync");
+}
 void synchronize(Stream) { notBuilt("synchronize"); }
 void startProfilerCapture() {}
 

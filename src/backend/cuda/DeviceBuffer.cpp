@@ -16,17 +16,55 @@ namespace {
 
 std::atomic<size_t> allocatedBytes{0};
 std::atomic<size_t> peakBytes{0};
+// Per GPU ordinal; a node has far fewer GPUs than this.
+constexpr int MAX_COUNTED_DEVICES = 64;
+std::atomic<size_t> allocatedOn[MAX_COUNTED_DEVICES] = {};
 
-void countAllocation(size_t bytes) {
+void countAllocation(int device, size_t bytes) {
     const size_t now = allocatedBytes.fetch_add(bytes) + bytes;
+    if (device >= 0 && device < MAX_COUNTED_DEVICES) allocatedOn[device] += bytes;
     size_t peak = peakBytes.load();
     while (now > peak && !peakBytes.compare_exchange_weak(peak, now)) {
     }
 }
 
+void countFree(int device, size_t bytes) {
+    allocatedBytes -= bytes;
+    if (device >= 0 && device < MAX_COUNTED_DEVICES) allocatedOn[device] -= bytes;
+}
+
 cudaStream_t toCuda(Stream s) { return static_cast<cudaStream_t>(s); }
 
-// A fresh allocation of `bytes` holding the first `keepBytes` of `old`; the old one is freed.
+// Makes `device` current for this thread while it lives (if it is not already), and restores the
+// previous one; -1: leaves the current device as it is. No throw from the destructor.
+class DeviceScope {
+  public:
+    explicit DeviceScope(int device) {
+        if (device < 0) return;
+        DEME_CUDA_CHECK("DeviceBuffer", cudaGetDevice(&previous_));
+        if (previous_ == device)
+            previous_ = -1;  // nothing to restore
+        else
+            DEME_CUDA_CHECK("DeviceBuffer", cudaSetDevice(device));
+    }
+    ~DeviceScope() {
+        if (previous_ >= 0 && cudaSetDevice(previous_) != cudaSuccess) cudaGetLastError();
+    }
+    DeviceScope(const DeviceScope&) = delete;
+    DeviceScope& operator=(const DeviceScope&) = delete;
+
+  private:
+    int previous_ = -1;
+};
+
+int currentDevice() {
+    int d = 0;
+    DEME_CUDA_CHECK("DeviceBuffer", cudaGetDevice(&d));
+    return d;
+}
+
+// A fresh allocation of `bytes` on the current GPU holding the first `keepBytes` of `old`; the old
+// one is freed.
 void* reallocate(void* old, size_t oldCapacity, size_t bytes, size_t keepBytes, Stream stream) {
     const char* call = "DeviceBuffer";
     void* fresh = nullptr;
@@ -40,21 +78,22 @@ void* reallocate(void* old, size_t oldCapacity, size_t bytes, size_t keepBytes, 
                              " free; this process's buffers hold " + std::to_string(deviceBytesAllocated()) + ")");
     }
     DEME_CUDA_CHECK(call, error);
-    countAllocation(bytes);
+    const int device = currentDevice();
+    countAllocation(device, bytes);
     const size_t keep = std::min({keepBytes, oldCapacity, bytes});
     if (old && keep > 0) {
         try {
             DEME_CUDA_CHECK(call, cudaMemcpyAsync(fresh, old, keep, cudaMemcpyDeviceToDevice, toCuda(stream)));
         } catch (...) {
             cudaFree(fresh);
-            allocatedBytes -= bytes;
+            countFree(device, bytes);
             throw;
         }
     }
     if (old) {
         // cudaFree waits for the device, so the copy above has read `old` before it goes.
         DEME_CUDA_CHECK(call, cudaFree(old));
-        allocatedBytes -= oldCapacity;
+        countFree(device, oldCapacity);
     }
     return fresh;
 }
@@ -63,12 +102,17 @@ void* reallocate(void* old, size_t oldCapacity, size_t bytes, size_t keepBytes, 
 
 size_t deviceBytesAllocated() { return allocatedBytes.load(); }
 size_t deviceBytesAllocatedPeak() { return peakBytes.load(); }
+size_t deviceBytesAllocatedOn(int device) {
+    return device >= 0 && device < MAX_COUNTED_DEVICES ? allocatedOn[device].load() : 0;
+}
 
 RawDeviceBuffer::~RawDeviceBuffer() { release(); }
 
-RawDeviceBuffer::RawDeviceBuffer(RawDeviceBuffer&& other) noexcept : data_(other.data_), capacity_(other.capacity_) {
+RawDeviceBuffer::RawDeviceBuffer(RawDeviceBuffer&& other) noexcept
+    : data_(other.data_), capacity_(other.capacity_), device_(other.device_) {
     other.data_ = nullptr;
     other.capacity_ = 0;
+    other.device_ = -1;
 }
 
 RawDeviceBuffer& RawDeviceBuffer::operator=(RawDeviceBuffer&& other) noexcept {
@@ -76,8 +120,10 @@ RawDeviceBuffer& RawDeviceBuffer::operator=(RawDeviceBuffer&& other) noexcept {
         release();
         data_ = other.data_;
         capacity_ = other.capacity_;
+        device_ = other.device_;
         other.data_ = nullptr;
         other.capacity_ = 0;
+        other.device_ = -1;
     }
     return *this;
 }
@@ -85,8 +131,10 @@ RawDeviceBuffer& RawDeviceBuffer::operator=(RawDeviceBuffer&& other) noexcept {
 void RawDeviceBuffer::reserve(size_t bytes, size_t keepBytes, Stream stream) {
     if (bytes <= capacity_) return;
     const size_t grown = std::max(bytes, capacity_ + capacity_ / 2);
+    DeviceScope scope(device_);
     data_ = reallocate(data_, capacity_, grown, keepBytes, stream);
     capacity_ = grown;
+    device_ = currentDevice();
 }
 
 void RawDeviceBuffer::reallocateExactly(size_t bytes, size_t keepBytes, Stream stream) {
@@ -95,18 +143,27 @@ void RawDeviceBuffer::reallocateExactly(size_t bytes, size_t keepBytes, Stream s
         release();
         return;
     }
+    DeviceScope scope(device_);
     data_ = reallocate(data_, capacity_, bytes, keepBytes, stream);
     capacity_ = bytes;
+    device_ = currentDevice();
 }
 
 void RawDeviceBuffer::release() {
     if (data_) {
         // No throw: this runs in destructors. A failure here means the context is already gone.
+        // Freed with its own GPU current (the memory may belong to another GPU than the caller's).
+        int previous = -1;
+        if (cudaGetDevice(&previous) != cudaSuccess) cudaGetLastError();
+        const bool other = device_ >= 0 && previous >= 0 && previous != device_;
+        if (other && cudaSetDevice(device_) != cudaSuccess) cudaGetLastError();
         if (cudaFree(data_) != cudaSuccess) cudaGetLastError();
-        allocatedBytes -= capacity_;
+        if (other && cudaSetDevice(previous) != cudaSuccess) cudaGetLastError();
+        countFree(device_, capacity_);
     }
     data_ = nullptr;
     capacity_ = 0;
+    device_ = -1;
 }
 
 void RawDeviceBuffer::uploadAsync(size_t offsetBytes, const void* host, size_t bytes, Stream stream) {
@@ -125,6 +182,17 @@ void RawDeviceBuffer::zeroAsync(size_t offsetBytes, size_t bytes, Stream stream)
     if (bytes == 0) return;
     DEME_CUDA_CHECK("DeviceBuffer::zeroAsync",
                     cudaMemsetAsync(static_cast<char*>(data_) + offsetBytes, 0, bytes, toCuda(stream)));
+}
+
+void RawDeviceBuffer::copyFromAsync(size_t offsetBytes, const RawDeviceBuffer& src, size_t srcOffsetBytes,
+                                    size_t bytes, Stream stream) {
+    if (bytes == 0) return;
+    // cudaMemcpyDefault: with unified addressing the runtime knows each pointer's GPU, and a copy
+    // between two GPUs goes peer to peer where they can, through the host where they cannot.
+    DEME_CUDA_CHECK("DeviceBuffer::copyFromAsync",
+                    cudaMemcpyAsync(static_cast<char*>(data_) + offsetBytes,
+                                    static_cast<const char*>(src.data_) + srcOffsetBytes, bytes, cudaMemcpyDefault,
+                                    toCuda(stream)));
 }
 
 void synchronize(Stream stream) { DEME_CUDA_CHECK("synchronize", cudaStreamSynchronize(toCuda(stream))); }

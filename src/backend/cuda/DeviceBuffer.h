@@ -19,10 +19,11 @@
 
 namespace deme::cuda {
 
-// Bytes of GPU memory held by all device buffers of this process now, and at most so far (what
-// GetDeviceMemUsage reports).
+// Bytes of GPU memory held by all device buffers of this process now (on every GPU together), and at
+// most so far (what GetDeviceMemUsage reports); and what they hold now on GPU `device`.
 size_t deviceBytesAllocated();
 size_t deviceBytesAllocatedPeak();
+size_t deviceBytesAllocatedOn(int device);
 
 // Untyped storage behind DeviceBuffer<T>.
 class RawDeviceBuffer {
@@ -36,6 +37,10 @@ class RawDeviceBuffer {
 
     void* data() const { return data_; }
     size_t capacityBytes() const { return capacity_; }
+    // The GPU holding the memory (-1 while none is held). A buffer is allocated on the GPU current
+    // for the calling thread and stays on it: growing or freeing it later selects that GPU again,
+    // whichever is current then (kinematics on a second GPU writes into buffers on the first).
+    int device() const { return device_; }
 
     // Makes room for at least `bytes`: when more is needed, allocates max(bytes, 1.5 x capacity) and
     // copies the first `keepBytes` of the old contents across on `stream` (0: nothing to keep, e.g.
@@ -49,10 +54,15 @@ class RawDeviceBuffer {
     void uploadAsync(size_t offsetBytes, const void* host, size_t bytes, Stream stream);
     void downloadAsync(size_t offsetBytes, void* host, size_t bytes, Stream stream) const;
     void zeroAsync(size_t offsetBytes, size_t bytes, Stream stream);
+    // Copies `bytes` from another device buffer (same GPU, or a peer GPU: the runtime routes it) on
+    // `stream`, which must belong to the GPU current for the calling thread.
+    void copyFromAsync(size_t offsetBytes, const RawDeviceBuffer& src, size_t srcOffsetBytes, size_t bytes,
+                       Stream stream);
 
   private:
     void* data_ = nullptr;
     size_t capacity_ = 0;
+    int device_ = -1;
 };
 
 // Waits until everything queued on `stream` has finished; throws deme::Error if any of it failed.
@@ -110,6 +120,19 @@ class DeviceBuffer {
         raw_.downloadAsync(offset * sizeof(T), host, count * sizeof(T), stream);
     }
     void zeroAsync(Stream stream) { raw_.zeroAsync(0, bytes(), stream); }
+    // The first `count` elements of `src` (on this GPU or a peer) into this buffer's first ones.
+    void copyFromAsync(const DeviceBuffer& src, size_t count, Stream stream) {
+        checkRange(0, count);
+        src.checkRange(0, count);
+        raw_.copyFromAsync(0, src.raw_, 0, count * sizeof(T), stream);
+    }
+    // Sets the size without keeping the contents (no copy when the buffer grows): for buffers that
+    // are about to be overwritten.
+    void resizeDiscarding(size_t count) {
+        size_ = 0;
+        resize(count);
+    }
+    int device() const { return raw_.device(); }
 
     // Whole-buffer copies that wait for the stream: for set-up, tests and output, not the step loop.
     void upload(const std::vector<T>& host, Stream stream = nullptr) {

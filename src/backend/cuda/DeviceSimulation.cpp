@@ -4,20 +4,25 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
-#include <map>
 
 #include <deme/Error.h>
 
+#include <cuda_runtime_api.h>
+
+#include "backend/cuda/CudaCheck.h"
 #include "backend/cuda/CudaModule.h"
 #include "backend/cuda/Device.h"
 #include "backend/cuda/DeviceBuffer.h"
+#include "backend/cuda/DeviceContactSet.h"
 #include "backend/cuda/DeviceForceModel.h"
+#include "backend/cuda/DeviceKinematics.h"
 #include "backend/cuda/DevicePersistentContacts.h"
 #include "backend/cuda/DevicePrimitives.h"
+#include "backend/cuda/EmbeddedKernel.h"
 #include "backend/cuda/NvrtcCompiler.h"
 #include "backend/cuda/kernels/KernelArgs.cuh"
 #include "dynamics/OwnerStep.h"
-#include "jit/EmbeddedSources.h"
+#include "runtime/DetectionSchedule.h"
 #include "runtime/FamilyMotionSource.h"
 #include "runtime/StateView.h"
 
@@ -30,57 +35,16 @@ constexpr const char* CALL = "DoDynamics";
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-const std::string& embeddedText(const std::string& path) {
-    static std::map<std::string, std::string> texts;
-    auto it = texts.find(path);
-    if (it != texts.end()) return it->second;
-    for (const jit::EmbeddedFile& f : jit::embeddedSources())
-        if (path == f.path) return texts[path] = std::string(f.text, f.size);
-    throwError("Initialize", "kernel source " + path + " is not embedded in this build");
-}
-
-int bitsFor(uint64_t n) {
-    int b = 1;
-    while (b < 64 && (uint64_t(1) << b) <= n) b++;
-    return b;
-}
-
-// One contact set on the device.
-struct DeviceContacts {
-    DeviceBuffer<bodyID_t> geomA, geomB;
-    DeviceBuffer<uint8_t> type, meshState;
-    DeviceBuffer<float> wildcards;
-    DeviceBuffer<float3> force, torqueA, torqueB;
-    DeviceBuffer<uint8_t> persistent;
-    void resize(size_t n, unsigned int W) {
-        geomA.resize(n);
-        geomB.resize(n);
-        type.resize(n);
-        meshState.resize(n);
-        wildcards.resize(n * W);
-        force.resize(n);
-        torqueA.resize(n);
-        torqueB.resize(n);
-        persistent.resize(n);
-    }
-};
-
-// Items registered in bins (spheres or triangles) on the device.
-struct DeviceBins {
-    DeviceBuffer<int> lo, hi;
-    DeviceBuffer<unsigned int> count, offset, keys, items, sortedKeys, sortedItems, start;
-};
-
 template <class T>
-void put(DeviceBuffer<T>& d, const std::vector<T>& h) {
-    d.resize(h.size());
-    if (!h.empty()) d.uploadAsync(h.data(), h.size(), nullptr);
+void put(DeviceBuffer<T>& d, const std::vector<T>& h, Stream stream) {
+    d.resizeDiscarding(h.size());
+    if (!h.empty()) d.uploadAsync(h.data(), h.size(), stream);
 }
 
 template <class T>
-void get(const DeviceBuffer<T>& d, std::vector<T>& h, size_t n) {
+void get(const DeviceBuffer<T>& d, std::vector<T>& h, size_t n, Stream stream) {
     h.resize(n);
-    if (n) d.downloadAsync(h.data(), n, nullptr);
+    if (n) d.downloadAsync(h.data(), n, stream);
 }
 
 }  // namespace
@@ -88,10 +52,10 @@ void get(const DeviceBuffer<T>& d, std::vector<T>& h, size_t n) {
 struct DeviceSimulation::Impl {
     int device = 0;
     std::string name;
-    CudaModule dynamics, detection;
+    Stream stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
+    CudaModule dynamics, history, exchange;
     CudaKernel kResetReduction, kCopyDoubles, kClearLoads, kResolveMesh, kIntegrate, kLargeRot, kPlaceSpheres,
-        kPlaceTris, kAnalytical;
-    CudaKernel kSphereBoxes, kTriBoxes, kBinEntries, kBinStarts, kPairSearch, kMapHistory;
+        kPlaceTris, kAnalytical, kMapHistory, kMaxTravelSince;
     // The families' prescriptions, compiled from the user's expressions (recompiled when they change).
     CudaModule familyModule;
     CudaKernel kFamilyMotion;
@@ -100,9 +64,12 @@ struct DeviceSimulation::Impl {
     bool fromCache = true;
     // DEME_CUDA_PROFILE_FROM_STEP: the step at which a profiler's capture starts (docs/gpu-tests.md).
     unsigned long long profileFromStep = ~0ull;
-    DevicePrimitives prim;
+    // The contact force model's kernel and data, and the persistent-contact rules of each new set.
     DeviceForceModel model;
     DevicePersistentContacts persistence;
+    DevicePrimitives prim;
+    // The kinematics side: its own thread and stream, on this GPU or a second one.
+    std::unique_ptr<DeviceKinematics> kinematics;
 
     // State (SimState's arrays).
     DeviceBuffer<voxelID_t> voxel;
@@ -114,7 +81,9 @@ struct DeviceSimulation::Impl {
     DeviceBuffer<uint8_t> ownerType, dynamic, anaType, anaInside, flags;
     DeviceBuffer<inertiaID_t> inertia;
     DeviceBuffer<float> extent, mass, radius, anaRadius;
-    DeviceBuffer<double> travel, baseline;
+    // Owners' travel, and its value at the snapshot of the set in use (baseline) and of the order in
+    // flight (orderBaseline).
+    DeviceBuffer<double> travel, baseline, orderBaseline;
     DeviceBuffer<bodyID_t> sphereOwner, anaOwner, triOwner;
     DeviceBuffer<materialID_t> sphereMat, anaMat, triMat;
     DeviceBuffer<uint32_t> triVertIds, vertTriStart, vertTris;
@@ -124,52 +93,54 @@ struct DeviceSimulation::Impl {
     uint32_t numContacts = 0;
     // Rules, materials, per-step inputs and results.
     DeviceBuffer<FamilyStepMotion> motion;
-    DeviceBuffer<uint8_t> familyMask;
-    DeviceBuffer<float> familyExtraMargin;
     DeviceBuffer<StepReduction> reduction;
-    // Detection scratch.
-    DeviceBins sphereBins, triBins;
-    DeviceBuffer<double3> triLo, triHi;
-    DeviceBuffer<unsigned int> pairCount, pairOffset;
+    DeviceBuffer<unsigned long long> maxTravelBits;
 
     // Host-side copies of what the loop needs.
     StateView view{};
-    BinGridView grid{};
-    size_t numBins = 0;
     unsigned int numMaterials = 0, W = 0;
     uint32_t numClumps = 0, numAnalyticalOwners = 0;
     double domainDiagonal = 0.0;
-    UpdateFrequency freq;
-    double marginNow = 0.0;
-    unsigned long long acsStep = 0;
-    bool needDetection = true, expired = false, freqConfigured = false;
+    DetectionSchedule schedule;
+    bool scheduleConfigured = false;
     float lastMaxSpeed = 0.f;
-    // Counters at the last detection, and what it cost (for the adaptive n_max).
-    struct CostMark {
-        unsigned long long steps = 0;
-        double forceSeconds = 0.0, pairs = 0.0, real = 0.0, detectSeconds = 0.0;
-    } costMark;
 
-    void compileKernels(const Settings& settings, const ModelLayout& layout);
+    void select() const { useDevice(CALL, device); }
+    void compileKernels(const ModelLayout& layout);
     void prepareFamilyMotion(const FamilyRules& families);
     void refreshView();
-    void detect(const Settings& settings, const FamilyRules& families, TimingStats& timing);
-    unsigned int readCount(const DeviceBuffer<unsigned int>& offsets, size_t at);
+    // The kinematics side's order: the snapshot of the current state.
+    void submit(const Settings& settings, unsigned long long step, TimingStats& timing);
+    // A result arrived: installed if it may serve (DetectionSchedule::accept).
+    void consider(const DeviceDetectionResult& r, unsigned long long step, TimingStats& timing,
+                  CollaborationStats& collab);
+    void install(const DeviceDetectionResult& r, TimingStats& timing, CollaborationStats& collab);
+    double maxTravelSinceOrder();
+    // Detection from the current state, waited for (synchronous mode, the first step, after edits).
+    void detectNow(const Settings& settings, unsigned long long step, TimingStats& timing, CollaborationStats& collab);
+    // Takes the result in flight, if any (before host edits and at DoDynamicsThenSync).
+    void finishOrder(unsigned long long step, TimingStats& timing, CollaborationStats& collab);
+    // Before each step: makes the set in use valid for it.
+    void prepareStep(const Settings& settings, unsigned long long step, TimingStats& timing,
+                     CollaborationStats& collab);
 };
 
-void DeviceSimulation::Impl::compileKernels(const Settings& settings, const ModelLayout& layout) {
-    (void)settings;
+void DeviceSimulation::Impl::compileKernels(const ModelLayout& layout) {
     const DeviceInfo& info = useDevice("Initialize", device);
     name = info.name;
     CudaCompileOptions opt;
     opt.architecture = info.architecture();
-    const std::string dynPath = "backend/cuda/kernels/Dynamics.cu", detPath = "backend/cuda/kernels/Detection.cu";
-    const CudaCompileResult d = compileCudaSource("Initialize", dynPath, embeddedText(dynPath), opt);
-    const CudaCompileResult k = compileCudaSource("Initialize", detPath, embeddedText(detPath), opt);
-    compileSeconds = d.compileSeconds + k.compileSeconds;
-    fromCache = d.cacheHit && k.cacheHit;
+    const std::string dynPath = "backend/cuda/kernels/Dynamics.cu", detPath = "backend/cuda/kernels/Detection.cu",
+                      exPath = "backend/cuda/kernels/Exchange.cu";
+    const CudaCompileResult d = compileCudaSource("Initialize", dynPath, embeddedKernelText(dynPath), opt);
+    const CudaCompileResult k = compileCudaSource("Initialize", detPath, embeddedKernelText(detPath), opt);
+    const CudaCompileResult x = compileCudaSource("Initialize", exPath, embeddedKernelText(exPath), opt);
+    compileSeconds = d.compileSeconds + k.compileSeconds + x.compileSeconds;
+    fromCache = d.cacheHit && k.cacheHit && x.cacheHit;
     dynamics = CudaModule("Initialize", d.image);
-    detection = CudaModule("Initialize", k.image);
+    // dT needs only the history mapping of Detection.cu; kT loads its own copy on its GPU.
+    history = CudaModule("Initialize", k.image);
+    exchange = CudaModule("Initialize", x.image);
     kResetReduction = dynamics.kernel("deme_reset_reduction");
     kCopyDoubles = dynamics.kernel("deme_copy_doubles");
     kClearLoads = dynamics.kernel("deme_clear_owner_loads");
@@ -179,16 +150,16 @@ void DeviceSimulation::Impl::compileKernels(const Settings& settings, const Mode
     kPlaceSpheres = dynamics.kernel("deme_place_spheres");
     kPlaceTris = dynamics.kernel("deme_place_triangles");
     kAnalytical = dynamics.kernel("deme_analytical_step");
-    kSphereBoxes = detection.kernel("deme_sphere_bin_boxes");
-    kTriBoxes = detection.kernel("deme_triangle_bin_boxes");
-    kBinEntries = detection.kernel("deme_bin_entries");
-    kBinStarts = detection.kernel("deme_bin_starts");
-    kPairSearch = detection.kernel("deme_pair_search");
-    kMapHistory = detection.kernel("deme_map_history");
+    kMapHistory = history.kernel("deme_map_history");
+    kMaxTravelSince = exchange.kernel("deme_max_travel_since");
     model.load("Initialize (contact force model)", layout, dynamics, opt);
     persistence.load("Initialize", opt);
     compileSeconds += model.compileSeconds() + persistence.compileSeconds();
     fromCache = fromCache && model.fromCache() && persistence.fromCache();
+    // Non-blocking: the legacy default stream would serialise with kT's stream on a shared GPU.
+    cudaStream_t st = nullptr;
+    DEME_CUDA_CHECK("Initialize", cudaStreamCreateWithFlags(&st, cudaStreamNonBlocking));
+    stream = st;
 }
 
 void DeviceSimulation::Impl::prepareFamilyMotion(const FamilyRules& families) {
@@ -226,198 +197,229 @@ void DeviceSimulation::Impl::refreshView() {
     v.numContacts = numContacts;
 }
 
-unsigned int DeviceSimulation::Impl::readCount(const DeviceBuffer<unsigned int>& offsets, size_t at) {
-    unsigned int n = 0;
-    offsets.downloadAsync(&n, 1, nullptr, at);
-    synchronize(nullptr);
-    return n;
+void DeviceSimulation::Impl::submit(const Settings& settings, unsigned long long step, TimingStats& timing) {
+    const double t0 = now();
+    // The owners' travel now: the set this order yields serves while nobody travels its margin
+    // beyond it.
+    launch(kCopyDoubles, blocksFor(view.numOwners, THREADS), THREADS, 0, stream, orderBaseline.data(),
+           (const double*)travel.data(), view.numOwners);
+    const KinematicsSource src{&spherePos, &triVert, &analPos, &analDir, &family};
+    kinematics->submit(src, stream, step, schedule.generation(), schedule.marginFor(settings, lastMaxSpeed));
+    timing.seconds[(int)Phase::EXCHANGE] += now() - t0;
 }
 
-// Contact detection with the current margin, then the new set takes over the old one's history.
-void DeviceSimulation::Impl::detect(const Settings& settings, const FamilyRules& families, TimingStats& timing) {
+double DeviceSimulation::Impl::maxTravelSinceOrder() {
+    maxTravelBits.zeroAsync(stream);
+    launch(kMaxTravelSince, blocksFor(view.numOwners, THREADS), THREADS, 0, stream, (const double*)travel.data(),
+           (const double*)orderBaseline.data(), view.numOwners, maxTravelBits.data());
+    unsigned long long bits = 0;
+    maxTravelBits.downloadAsync(&bits, 1, stream);
+    synchronize(stream);
+    double t;
+    std::memcpy(&t, &bits, sizeof(double));
+    return t;
+}
+
+// History mapping from the set in use (with its up-to-date wildcards) into the fresh one, then the
+// fresh one serves.
+void DeviceSimulation::Impl::install(const DeviceDetectionResult& r, TimingStats& timing, CollaborationStats& collab) {
     const double t0 = now();
-    const unsigned int nS = view.numSpheres, nT = view.numTriangles;
-    // 1. Bins of every geometry enlarged by its margin.
-    auto binItems = [&](DeviceBins& b, unsigned int n, auto&& boxes) {
-        b.lo.resize(3 * (size_t)n);
-        b.hi.resize(3 * (size_t)n);
-        b.count.resize(n + 1);
-        b.offset.resize(n + 1);
-        b.count.zeroAsync(nullptr);
-        if (n) boxes();
-        prim.exclusiveSum(b.count.data(), b.offset.data(), n + 1, nullptr);
-        const unsigned int entries = readCount(b.offset, n);
-        b.keys.resize(entries);
-        b.items.resize(entries);
-        b.sortedKeys.resize(entries);
-        b.sortedItems.resize(entries);
-        if (entries) {
-            launch(kBinEntries, blocksFor(n, THREADS), THREADS, 0, nullptr, grid, n, (const int*)b.lo.data(),
-                   (const int*)b.hi.data(), (const unsigned int*)b.offset.data(), b.keys.data(), b.items.data());
-            prim.sortPairs(b.keys.data(), b.sortedKeys.data(), b.items.data(), b.sortedItems.data(), entries, nullptr,
-                           0, bitsFor(numBins));
-        }
-        b.start.resize(numBins + 1);
-        launch(kBinStarts, blocksFor((uint64_t)entries + 1, THREADS), THREADS, 0, nullptr,
-               (const unsigned int*)b.sortedKeys.data(), entries, (unsigned int)numBins, b.start.data());
-    };
-    const float* fem = familyExtraMargin.data();
-    binItems(sphereBins, nS, [&] {
-        launch(kSphereBoxes, blocksFor(nS, THREADS), THREADS, 0, nullptr, view, grid, marginNow, fem,
-               sphereBins.lo.data(), sphereBins.hi.data(), sphereBins.count.data());
-    });
-    triLo.resize(nT);
-    triHi.resize(nT);
-    binItems(triBins, nT, [&] {
-        launch(kTriBoxes, blocksFor(nT, THREADS), THREADS, 0, nullptr, view, grid, marginNow, fem, triLo.data(),
-               triHi.data(), triBins.lo.data(), triBins.hi.data(), triBins.count.data());
-    });
-    synchronize(nullptr);
-    const double t1 = now();
-    timing.seconds[(int)Phase::BINNING] += t1 - t0;
-
-    // 2. Pair search: count, offsets, fill.
-    PairSearchArgs args{grid,
-                        marginNow,
-                        fem,
-                        familyMask.data(),
-                        sphereBins.lo.data(),
-                        sphereBins.hi.data(),
-                        sphereBins.start.data(),
-                        sphereBins.sortedItems.data(),
-                        triBins.start.data(),
-                        triBins.sortedItems.data(),
-                        triLo.data(),
-                        triHi.data()};
-    pairCount.resize(nS + 1);
-    pairOffset.resize(nS + 1);
-    pairCount.zeroAsync(nullptr);
-    launch(kPairSearch, blocksFor(nS, THREADS), THREADS, 0, nullptr, view, args, pairCount.data(),
-           (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr, (uint8_t*)nullptr);
-    prim.exclusiveSum(pairCount.data(), pairOffset.data(), nS + 1, nullptr);
-    unsigned int total = readCount(pairOffset, nS);
-    DeviceContacts& fresh = contacts[1 - current];
-    fresh.resize(total, W);
-    if (total)
-        launch(kPairSearch, blocksFor(nS, THREADS), THREADS, 0, nullptr, view, args, pairCount.data(),
-               (const unsigned int*)pairOffset.data(), fresh.geomA.data(), fresh.geomB.data(), fresh.type.data());
-    synchronize(nullptr);
-    const double t2 = now();
-    timing.seconds[(int)Phase::PAIR_SEARCH] += t2 - t1;
-
-    // 3. History: pairs found again keep their wildcards.
     DeviceContacts& old = contacts[current];
+    DeviceContacts& fresh = contacts[1 - current];
+    // The outbox's buffers become the fresh set's pairs; the fresh set's former ones (unused since
+    // the set before) become the outbox, which kT resizes before it writes.
+    KinematicsOutbox& out = kinematics->outbox();
+    std::swap(fresh.geomA, out.geomA);
+    std::swap(fresh.geomB, out.geomB);
+    std::swap(fresh.type, out.type);
     // Persistent pairs the detection missed stay in the set (DevicePersistentContacts.h).
     const ContactKeys oldKeys{old.geomA.data(), old.geomB.data(), numContacts};
-    const unsigned int detected = total;
-    total = persistence.merge(fresh.geomA, fresh.geomB, fresh.type, total, oldKeys, old.type.data(),
-                              old.persistent.data(), prim, nullptr);
-    if (total != detected) fresh.resize(total, W);
-    if (total)
-        launch(kMapHistory, blocksFor(total, THREADS), THREADS, 0, nullptr, (const bodyID_t*)fresh.geomA.data(),
-               (const bodyID_t*)fresh.geomB.data(), total, (const bodyID_t*)old.geomA.data(),
-               (const bodyID_t*)old.geomB.data(), numContacts, (const float*)old.wildcards.data(),
-               (const uint8_t*)old.meshState.data(), W, fresh.wildcards.data(), fresh.meshState.data());
+    const unsigned int total = persistence.merge(fresh.geomA, fresh.geomB, fresh.type, r.numPairs, oldKeys,
+                                                 old.type.data(), old.persistent.data(), prim, stream);
+    fresh.resizeState(total, W);
+    mapContactHistory(kMapHistory, old, numContacts, fresh, total, W, stream);
     persistence.carryOver(view, ContactKeys{fresh.geomA.data(), fresh.geomB.data(), total}, fresh.type.data(),
-                          fresh.persistent.data(), fresh.wildcards.data(), W, oldKeys, old.persistent.data(), nullptr);
+                          fresh.persistent.data(), fresh.wildcards.data(), W, oldKeys, old.persistent.data(), stream);
     current = 1 - current;
     numContacts = total;
     refreshView();
-    launch(kCopyDoubles, blocksFor(view.numOwners, THREADS), THREADS, 0, nullptr, baseline.data(),
-           (const double*)travel.data(), view.numOwners);
-    synchronize(nullptr);
-    timing.seconds[(int)Phase::HISTORY_MAPPING] += now() - t2;
+    // The set's snapshot is the order's: travel is measured from there.
+    std::swap(baseline, orderBaseline);
+    synchronize(stream);
+    timing.seconds[(int)Phase::HISTORY_MAPPING] += now() - t0;
+    timing.seconds[(int)Phase::BINNING] += r.binningSeconds;
+    timing.seconds[(int)Phase::PAIR_SEARCH] += r.searchSeconds;
+    schedule.installed(r.orderStep, r.margin, collab);
+}
+
+void DeviceSimulation::Impl::consider(const DeviceDetectionResult& r, unsigned long long step, TimingStats& timing,
+                                      CollaborationStats& collab) {
+    if (schedule.accept(r.orderStep, r.generation, r.margin, step, collab, [&] { return maxTravelSinceOrder(); }))
+        install(r, timing, collab);
+}
+
+void DeviceSimulation::Impl::finishOrder(unsigned long long step, TimingStats& timing, CollaborationStats& collab) {
+    if (!schedule.orderInFlight()) return;
+    DeviceDetectionResult r;
+    kinematics->waitAndTake(r);
+    consider(r, step, timing, collab);
+}
+
+void DeviceSimulation::Impl::detectNow(const Settings& settings, unsigned long long step, TimingStats& timing,
+                                       CollaborationStats& collab) {
+    finishOrder(step, timing, collab);  // kT takes one order at a time
+    const double t0 = now();
+    schedule.beforeSyncDetection(settings.asyncDetection, step, collab, timing.seconds[(int)Phase::FORCE]);
+    submit(settings, step, timing);
+    DeviceDetectionResult r;
+    kinematics->waitAndTake(r);
+    // From the current state: valid by construction.
+    install(r, timing, collab);
+    schedule.afterSyncDetection(collab, timing.seconds[(int)Phase::FORCE], now() - t0);
+}
+
+// The CPU's schedule (ContactSetManager::prepareStep) with kT on its own stream: take a finished
+// result; if the set in use may serve no longer, wait for the one in flight (or detect now); order
+// the next set when kT is idle and the set in use is old enough.
+void DeviceSimulation::Impl::prepareStep(const Settings& settings, unsigned long long step, TimingStats& timing,
+                                         CollaborationStats& collab) {
+    if (!settings.asyncDetection) {
+        finishOrder(step, timing, collab);  // left from an asynchronous call before a switch
+        if (schedule.due(step)) detectNow(settings, step, timing, collab);
+        return;
+    }
+    if (schedule.needsDetection()) detectNow(settings, step, timing, collab);
+    if (schedule.orderInFlight()) {
+        DeviceDetectionResult r;
+        if (kinematics->tryTake(r)) consider(r, step, timing, collab);
+    }
+    if (schedule.due(step)) {
+        const double t0 = now();
+        collab.dynamicsWaits++;
+        finishOrder(step, timing, collab);
+        if (schedule.due(step)) detectNow(settings, step, timing, collab);
+        collab.dynamicsWaitSeconds += now() - t0;
+    }
+    if (schedule.shouldOrder(step)) {
+        submit(settings, step, timing);
+        schedule.ordered(collab);
+    }
+}
+
+DeviceSimulation::DeviceSimulation(int device, int kinematicsDevice, const Settings& settings,
+                                   const ModelLayout& model)
+    : m(new Impl()) {
     (void)settings;
-    (void)families;
-}
-
-DeviceSimulation::DeviceSimulation(int device, const Settings& settings, const ModelLayout& model) : m(new Impl()) {
     m->device = device;
-    m->compileKernels(settings, model);
+    m->compileKernels(model);
     if (const char* p = std::getenv("DEME_CUDA_PROFILE_FROM_STEP")) m->profileFromStep = std::strtoull(p, nullptr, 10);
+    // kT starts with dT's GPU current: the exchange buffers and the event go there.
+    m->kinematics.reset(new DeviceKinematics(kinematicsDevice, device));
+    m->compileSeconds += m->kinematics->compileSeconds();
+    m->fromCache = m->fromCache && m->kinematics->kernelsFromCache();
 }
 
-DeviceSimulation::~DeviceSimulation() = default;
+DeviceSimulation::~DeviceSimulation() {
+    // kT first: its thread may still be writing into the exchange buffers.
+    m->kinematics.reset();
+    if (m->stream && cudaStreamDestroy(static_cast<cudaStream_t>(m->stream)) != cudaSuccess) cudaGetLastError();
+}
 
 void DeviceSimulation::upload(const SimState& s, const BinGrid& g, const Settings& settings,
-                              const FamilyRules& families) {
+                              const FamilyRules& families, CollaborationStats& collab) {
     Impl& d = *m;
+    d.select();
+    // The order in flight was detected from the state being replaced: let it finish unseen, so kT
+    // is idle while its geometry changes.
+    if (d.schedule.orderInFlight()) {
+        DeviceDetectionResult r;
+        d.kinematics->waitAndTake(r);
+        d.schedule.dropped();
+        collab.discardedResults++;
+    }
+    const Stream st = d.stream;
     const OwnerArrays& ow = s.owners;
-    put(d.voxel, ow.voxel);
-    put(d.subX, ow.subX);
-    put(d.subY, ow.subY);
-    put(d.subZ, ow.subZ);
-    put(d.oriQ, ow.oriQ);
-    put(d.vel, ow.vel);
-    put(d.angVel, ow.angVel);
-    put(d.family, ow.family);
-    put(d.ownerType, ow.type);
-    put(d.dynamic, ow.dynamic);
-    put(d.inertia, ow.inertia);
-    put(d.extent, ow.extent);
-    put(d.contactForce, ow.contactForce);
-    put(d.contactTorque, ow.contactTorque);
-    put(d.extraAcc, ow.extraAcc);
-    put(d.extraAngAcc, ow.extraAngAcc);
-    put(d.travel, ow.travel);
-    put(d.baseline, ow.travel);
-    put(d.mass, s.massProps.mass);
-    put(d.moi, s.massProps.moi);
-    put(d.sphereOwner, s.spheres.owner);
-    put(d.relPos, s.spheres.relPos);
-    put(d.radius, s.spheres.radius);
-    put(d.sphereMat, s.spheres.material);
-    put(d.anaOwner, s.analytical.owner);
-    put(d.anaType, s.analytical.type);
-    put(d.relPosA, s.analytical.relPos);
-    put(d.relDirA, s.analytical.relDir);
-    put(d.anaRadius, s.analytical.radius);
-    put(d.anaInside, s.analytical.inside);
-    put(d.anaMat, s.analytical.material);
-    put(d.triOwner, s.triangles.owner);
-    put(d.v0, s.triangles.v0);
-    put(d.v1, s.triangles.v1);
-    put(d.v2, s.triangles.v2);
-    put(d.triMat, s.triangles.material);
-    put(d.triVertIds, s.triangles.vert);
-    put(d.vertTriStart, s.triangles.vertTriStart);
-    put(d.vertTris, s.triangles.vertTris);
-    put(d.ownerPos, s.cache.ownerPos);
-    put(d.angVelG, s.cache.ownerAngVelGlobal);
-    put(d.spherePos, s.cache.spherePos);
-    put(d.sphereArm, s.cache.sphereArm);
-    put(d.analPos, s.cache.analPos);
-    put(d.analDir, s.cache.analDir);
-    put(d.triVert, s.cache.triVert);
-    d.flags.resize(ow.size());
-    d.midAngVel.resize(ow.size());
+    put(d.voxel, ow.voxel, st);
+    put(d.subX, ow.subX, st);
+    put(d.subY, ow.subY, st);
+    put(d.subZ, ow.subZ, st);
+    put(d.oriQ, ow.oriQ, st);
+    put(d.vel, ow.vel, st);
+    put(d.angVel, ow.angVel, st);
+    put(d.family, ow.family, st);
+    put(d.ownerType, ow.type, st);
+    put(d.dynamic, ow.dynamic, st);
+    put(d.inertia, ow.inertia, st);
+    put(d.extent, ow.extent, st);
+    put(d.contactForce, ow.contactForce, st);
+    put(d.contactTorque, ow.contactTorque, st);
+    put(d.extraAcc, ow.extraAcc, st);
+    put(d.extraAngAcc, ow.extraAngAcc, st);
+    put(d.travel, ow.travel, st);
+    put(d.baseline, ow.travel, st);
+    put(d.mass, s.massProps.mass, st);
+    put(d.moi, s.massProps.moi, st);
+    put(d.sphereOwner, s.spheres.owner, st);
+    put(d.relPos, s.spheres.relPos, st);
+    put(d.radius, s.spheres.radius, st);
+    put(d.sphereMat, s.spheres.material, st);
+    put(d.anaOwner, s.analytical.owner, st);
+    put(d.anaType, s.analytical.type, st);
+    put(d.relPosA, s.analytical.relPos, st);
+    put(d.relDirA, s.analytical.relDir, st);
+    put(d.anaRadius, s.analytical.radius, st);
+    put(d.anaInside, s.analytical.inside, st);
+    put(d.anaMat, s.analytical.material, st);
+    put(d.triOwner, s.triangles.owner, st);
+    put(d.v0, s.triangles.v0, st);
+    put(d.v1, s.triangles.v1, st);
+    put(d.v2, s.triangles.v2, st);
+    put(d.triMat, s.triangles.material, st);
+    put(d.triVertIds, s.triangles.vert, st);
+    put(d.vertTriStart, s.triangles.vertTriStart, st);
+    put(d.vertTris, s.triangles.vertTris, st);
+    put(d.ownerPos, s.cache.ownerPos, st);
+    put(d.angVelG, s.cache.ownerAngVelGlobal, st);
+    put(d.spherePos, s.cache.spherePos, st);
+    put(d.sphereArm, s.cache.sphereArm, st);
+    put(d.analPos, s.cache.analPos, st);
+    put(d.analDir, s.cache.analDir, st);
+    put(d.triVert, s.cache.triVert, st);
+    // Scratch whose contents the steps overwrite: no copy of the old contents when it grows (a copy
+    // would go on the legacy default stream, unordered with dT's).
+    d.flags.resizeDiscarding(ow.size());
+    d.midAngVel.resizeDiscarding(ow.size());
+    d.orderBaseline.resizeDiscarding(ow.size());
     // The contact set the host has (history included).
     d.W = s.numWildcards;
     d.current = 0;
     d.numContacts = (uint32_t)s.contacts.size();
     DeviceContacts& c = d.contacts[0];
-    put(c.geomA, s.contacts.geomA);
-    put(c.geomB, s.contacts.geomB);
-    put(c.type, s.contacts.type);
-    put(c.meshState, s.contacts.meshState);
-    put(c.wildcards, s.contacts.wildcards);
-    put(c.persistent, s.contacts.persistent);
+    put(c.geomA, s.contacts.geomA, st);
+    put(c.geomB, s.contacts.geomB, st);
+    put(c.type, s.contacts.type, st);
+    put(c.meshState, s.contacts.meshState, st);
+    put(c.wildcards, s.contacts.wildcards, st);
+    put(c.persistent, s.contacts.persistent, st);
     if (c.persistent.size() != d.numContacts) {  // not kept by the host yet: none is persistent
-        c.persistent.resize(d.numContacts);
-        c.persistent.zeroAsync(nullptr);
+        c.persistent.resizeDiscarding(d.numContacts);
+        c.persistent.zeroAsync(st);
     }
-    c.force.resize(d.numContacts);
-    c.torqueA.resize(d.numContacts);
-    c.torqueB.resize(d.numContacts);
-    // Rules and materials.
-    put(d.familyMask, std::vector<uint8_t>(families.contactMask(), families.contactMask() + NUM_FAMILIES * NUM_FAMILIES));
-    put(d.familyExtraMargin, std::vector<float>(settings.familyExtraMargin, settings.familyExtraMargin + NUM_FAMILIES));
+    c.force.resizeDiscarding(d.numContacts);
+    c.torqueA.resizeDiscarding(d.numContacts);
+    c.torqueB.resizeDiscarding(d.numContacts);
     d.numMaterials = s.materials.count;
+    d.motion.resizeDiscarding(NUM_FAMILIES);
+    d.reduction.resizeDiscarding(1);
+    d.maxTravelBits.resizeDiscarding(1);
+    synchronize(st);
+    // The model's tables and wildcards and the persistence rules (copied on the legacy stream and
+    // waited for, so dT's stream finds them in place).
     d.model.upload(s);
     d.persistence.uploadRules(s.wildcards.contactInit);
-    d.motion.resize(NUM_FAMILIES);
-    d.reduction.resize(1);
     synchronize(nullptr);
+    // What detection reads and never changes during a run, including the family rules.
+    d.kinematics->setGeometry(s, g, families, settings);
 
     d.view.frame = s.frame;
     d.view.domainSize = s.domainSize;
@@ -429,27 +431,33 @@ void DeviceSimulation::upload(const SimState& s, const BinGrid& g, const Setting
     d.numClumps = (uint32_t)s.numClumps;
     d.numAnalyticalOwners = (uint32_t)s.numAnalyticalOwners;
     d.domainDiagonal = length(s.domainSize);
-    d.grid = BinGridView{g.origin, g.size, (int)g.nx, (int)g.ny, (int)g.nz};
-    d.numBins = g.numBins();
     d.refreshView();
     // n_max is configured once; later uploads (after host-side edits) keep what it adapted to.
-    if (!d.freqConfigured)
-        d.freq.configure(settings.updateFreq, std::max(settings.maxUpdateFreq, settings.updateFreq),
-                         settings.adaptiveUpdateFreq);
-    d.freqConfigured = true;
-    d.needDetection = true;
+    if (!d.scheduleConfigured) d.schedule.configure(settings);
+    d.scheduleConfigured = true;
+    d.schedule.invalidate();
 }
 
 void DeviceSimulation::uploadTrackerLoads(const SimState& s) {
-    m->extraAcc.uploadAsync(s.owners.extraAcc.data(), s.owners.extraAcc.size(), nullptr);
-    m->extraAngAcc.uploadAsync(s.owners.extraAngAcc.data(), s.owners.extraAngAcc.size(), nullptr);
+    m->select();
+    m->extraAcc.uploadAsync(s.owners.extraAcc.data(), s.owners.extraAcc.size(), m->stream);
+    m->extraAngAcc.uploadAsync(s.owners.extraAngAcc.data(), s.owners.extraAngAcc.size(), m->stream);
+    // The host vectors may change before the next step reads them.
+    synchronize(m->stream);
+}
+
+void DeviceSimulation::finishDetection(unsigned long long step, TimingStats& timing, CollaborationStats& collab) {
+    m->select();
+    m->finishOrder(step, timing, collab);
 }
 
 DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& settings, FamilyRules& families,
                                       double& time, unsigned long long& step, TimingStats& timing,
                                       CollaborationStats& collab, DeviceStepTotals& totals) {
     Impl& d = *m;
+    d.select();
     DeviceFault fault;
+    const Stream st = d.stream;
     const unsigned int nO = d.view.numOwners, nS = d.view.numSpheres, nT = d.view.numTriangles;
     d.prepareFamilyMotion(families);
     const StepConstants consts{settings.gravity, (float)settings.dt, settings.dt,
@@ -457,52 +465,30 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
                                d.view.domainSize};
     for (unsigned long long k = 0; k < n; k++) {
         // A contact set serves at most n_max steps, and only while nobody has travelled its margin.
-        if (d.needDetection || d.expired || step - d.acsStep >= d.freq.nMax()) {
-            if (!d.needDetection && step > d.acsStep) {
-                // n_max from what detection costs against the force pass's false positives (as on the CPU).
-                const Impl::CostMark& c = d.costMark;
-                const double steps = (double)(collab.steps - c.steps);
-                const double force = (timing.seconds[(int)Phase::FORCE] - c.forceSeconds) / steps;
-                const double pairs = collab.contactSetSizeSum - c.pairs;
-                const double fp = pairs > 0.0 ? 1.0 - (collab.realContactSum - c.real) / pairs : 0.0;
-                d.freq.observeSyncCost(c.detectSeconds, force, fp);
-            }
-            const double tDetect = now();
-            const double vNow = std::max<double>(d.lastMaxSpeed, settings.maxVelocity);
-            const double nmax = (double)d.freq.nMax();
-            const double vBound = vNow + length(settings.gravity) * nmax * settings.dt;
-            d.marginNow = settings.safetyMultiplier * vBound * settings.dt * nmax + settings.safetyAdder;
-            d.detect(settings, families, timing);
-            d.acsStep = step;
-            d.expired = d.needDetection = false;
-            collab.acsUpdates++;
-            collab.syncDetections++;
-            d.costMark = Impl::CostMark{collab.steps, timing.seconds[(int)Phase::FORCE], collab.contactSetSizeSum,
-                                        collab.realContactSum, now() - tDetect};
-        }
+        d.prepareStep(settings, step, timing, collab);
         if (step == d.profileFromStep) startProfilerCapture();
         const double t0 = now();
-        launch(d.kFamilyMotion, 1, NUM_FAMILIES, 0, nullptr, time + settings.dt, d.motion.data());
+        launch(d.kFamilyMotion, 1, NUM_FAMILIES, 0, st, time + settings.dt, d.motion.data());
         StepReduction* red = d.reduction.data();
-        launch(d.kResetReduction, 1, 32, 0, nullptr, red);
+        launch(d.kResetReduction, 1, 32, 0, st, red);
         if (nT && d.numContacts)
-            launch(d.kResolveMesh, blocksFor(d.numContacts, THREADS), THREADS, 0, nullptr, d.view, red);
-        launch(d.kClearLoads, blocksFor(nO, THREADS), THREADS, 0, nullptr, d.view);
-        d.model.launch(d.view, (float)time, (float)settings.dt, d.numClumps, nO - d.numClumps, red, nullptr);
-        synchronize(nullptr);
+            launch(d.kResolveMesh, blocksFor(d.numContacts, THREADS), THREADS, 0, st, d.view, red);
+        launch(d.kClearLoads, blocksFor(nO, THREADS), THREADS, 0, st, d.view);
+        d.model.launch(d.view, (float)time, (float)settings.dt, d.numClumps, nO - d.numClumps, red, st);
+        synchronize(st);
         const double t1 = now();
         timing.seconds[(int)Phase::FORCE] += t1 - t0;
-        launch(d.kIntegrate, blocksFor(nO, THREADS), THREADS, 0, nullptr, d.view,
+        launch(d.kIntegrate, blocksFor(nO, THREADS), THREADS, 0, st, d.view,
                (const FamilyStepMotion*)d.motion.data(), consts, (const double*)d.baseline.data(), red);
-        launch(d.kLargeRot, blocksFor(nO, THREADS), THREADS, 0, nullptr, d.view, (float)settings.dt);
-        launch(d.kPlaceSpheres, blocksFor(nS, THREADS), THREADS, 0, nullptr, d.view);
-        if (nT) launch(d.kPlaceTris, blocksFor(nT, THREADS), THREADS, 0, nullptr, d.view);
+        launch(d.kLargeRot, blocksFor(nO, THREADS), THREADS, 0, st, d.view, (float)settings.dt);
+        launch(d.kPlaceSpheres, blocksFor(nS, THREADS), THREADS, 0, st, d.view);
+        if (nT) launch(d.kPlaceTris, blocksFor(nT, THREADS), THREADS, 0, st, d.view);
         if (d.numAnalyticalOwners)
-            launch(d.kAnalytical, blocksFor(d.numAnalyticalOwners, THREADS), THREADS, 0, nullptr, d.view, d.numClumps,
+            launch(d.kAnalytical, blocksFor(d.numAnalyticalOwners, THREADS), THREADS, 0, st, d.view, d.numClumps,
                    d.numAnalyticalOwners, (float)settings.dt, d.domainDiagonal, (const double*)d.baseline.data(), red);
         StepReduction r;
-        d.reduction.downloadAsync(&r, 1, nullptr);
-        synchronize(nullptr);
+        d.reduction.downloadAsync(&r, 1, st);
+        synchronize(st);
         timing.seconds[(int)Phase::INTEGRATION] += now() - t1;
 
         time += settings.dt;
@@ -519,15 +505,15 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
         std::memcpy(&maxTravel, &r.maxTravelBits, sizeof(double));
         d.lastMaxSpeed = maxSpeed;
         totals.maxSpeed = maxSpeed;
-        if (maxTravel > d.marginNow) d.expired = true;
+        d.schedule.afterStep(maxTravel);
         if (r.errorFlags || r.firstFault != 0xFFFFFFFFu) {
             fault.any = true;
             fault.kernelError = r.errorFlags;
             fault.kernelErrorItem = r.errorItem;
             if (r.firstFault != 0xFFFFFFFFu) {
                 fault.owner = r.firstFault;
-                d.flags.downloadAsync(&fault.flags, 1, nullptr, r.firstFault);
-                synchronize(nullptr);
+                d.flags.downloadAsync(&fault.flags, 1, st, r.firstFault);
+                synchronize(st);
             }
             return fault;
         }
@@ -537,46 +523,51 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
 
 void DeviceSimulation::download(SimState& s) const {
     const Impl& d = *m;
+    d.select();
     OwnerArrays& ow = s.owners;
     const size_t nO = ow.size();
-    get(d.voxel, ow.voxel, nO);
-    get(d.subX, ow.subX, nO);
-    get(d.subY, ow.subY, nO);
-    get(d.subZ, ow.subZ, nO);
-    get(d.oriQ, ow.oriQ, nO);
-    get(d.vel, ow.vel, nO);
-    get(d.angVel, ow.angVel, nO);
-    get(d.contactForce, ow.contactForce, nO);
-    get(d.contactTorque, ow.contactTorque, nO);
-    get(d.travel, ow.travel, nO);
-    get(d.ownerPos, s.cache.ownerPos, nO);
-    get(d.angVelG, s.cache.ownerAngVelGlobal, nO);
-    get(d.spherePos, s.cache.spherePos, s.spheres.size());
-    get(d.sphereArm, s.cache.sphereArm, s.spheres.size());
-    get(d.analPos, s.cache.analPos, s.analytical.size());
-    get(d.analDir, s.cache.analDir, s.analytical.size());
-    get(d.triVert, s.cache.triVert, 3 * s.triangles.size());
+    get(d.voxel, ow.voxel, nO, d.stream);
+    get(d.subX, ow.subX, nO, d.stream);
+    get(d.subY, ow.subY, nO, d.stream);
+    get(d.subZ, ow.subZ, nO, d.stream);
+    get(d.oriQ, ow.oriQ, nO, d.stream);
+    get(d.vel, ow.vel, nO, d.stream);
+    get(d.angVel, ow.angVel, nO, d.stream);
+    get(d.contactForce, ow.contactForce, nO, d.stream);
+    get(d.contactTorque, ow.contactTorque, nO, d.stream);
+    get(d.travel, ow.travel, nO, d.stream);
+    get(d.ownerPos, s.cache.ownerPos, nO, d.stream);
+    get(d.angVelG, s.cache.ownerAngVelGlobal, nO, d.stream);
+    get(d.spherePos, s.cache.spherePos, s.spheres.size(), d.stream);
+    get(d.sphereArm, s.cache.sphereArm, s.spheres.size(), d.stream);
+    get(d.analPos, s.cache.analPos, s.analytical.size(), d.stream);
+    get(d.analDir, s.cache.analDir, s.analytical.size(), d.stream);
+    get(d.triVert, s.cache.triVert, 3 * s.triangles.size(), d.stream);
     const DeviceContacts& c = d.contacts[d.current];
     const size_t nc = d.numContacts;
     ContactArrays& hc = s.contacts;
-    get(c.geomA, hc.geomA, nc);
-    get(c.geomB, hc.geomB, nc);
-    get(c.type, hc.type, nc);
-    get(c.meshState, hc.meshState, nc);
-    get(c.wildcards, hc.wildcards, nc * d.W);
-    get(c.force, hc.force, nc);
-    get(c.torqueA, hc.torqueA, nc);
-    get(c.torqueB, hc.torqueB, nc);
-    get(c.persistent, hc.persistent, nc);
-    synchronize(nullptr);
+    get(c.geomA, hc.geomA, nc, d.stream);
+    get(c.geomB, hc.geomB, nc, d.stream);
+    get(c.type, hc.type, nc, d.stream);
+    get(c.meshState, hc.meshState, nc, d.stream);
+    get(c.wildcards, hc.wildcards, nc * d.W, d.stream);
+    get(c.force, hc.force, nc, d.stream);
+    get(c.torqueA, hc.torqueA, nc, d.stream);
+    get(c.torqueB, hc.torqueB, nc, d.stream);
+    get(c.persistent, hc.persistent, nc, d.stream);
+    synchronize(d.stream);
     d.model.download(s);
 }
 
-unsigned int DeviceSimulation::nMax() const { return m->freq.nMax(); }
-double DeviceSimulation::margin() const { return m->marginNow; }
+unsigned int DeviceSimulation::nMax() const { return m->schedule.nMax(); }
+double DeviceSimulation::margin() const { return m->schedule.margin(); }
+bool DeviceSimulation::adaptiveUpdateFreq() const { return m->schedule.frequency().adaptive(); }
 double DeviceSimulation::kernelCompileSeconds() const { return m->compileSeconds; }
 bool DeviceSimulation::kernelsFromCache() const { return m->fromCache; }
 size_t DeviceSimulation::numContacts() const { return m->numContacts; }
 std::string DeviceSimulation::deviceName() const { return m->name; }
+std::string DeviceSimulation::kinematicsDeviceName() const { return m->kinematics->deviceName(); }
+int DeviceSimulation::kinematicsDevice() const { return m->kinematics->device(); }
+bool DeviceSimulation::kinematicsPeerAccess() const { return m->kinematics->peerAccess(); }
 
 }  // namespace deme::cuda

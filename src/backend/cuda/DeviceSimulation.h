@@ -1,11 +1,13 @@
-// The step loop on one GPU: the state lives in device memory while DoDynamics runs; contact
-// detection, history mapping, the force pass and integration all run as kernels compiled at run time
-// by NVRTC from the same per-item code the CPU sweeps use (see docs/cuda-backend.md).
+// The dynamics side (dT) of the CUDA backend: the state lives in device memory while DoDynamics runs;
+// history mapping, the force pass and integration run as kernels compiled at run time by NVRTC from
+// the same per-item code the CPU sweeps use (see docs/cuda-backend.md), on dT's own stream. Contact
+// detection is the kinematics side's (DeviceKinematics: its own thread and stream, on this GPU or a
+// second one), scheduled as on the CPU (runtime/DetectionSchedule.h): asynchronously beside the
+// steps, or synchronously (dT waits for every detection) where the settings say so.
 //
 // The host SimState stays the record between calls: upload() copies it to the device after
 // Initialize and after host-side edits, download() copies the evolved state back when the host needs
-// it. Detection here is synchronous with the step loop (every n_max steps, or sooner if an owner
-// travelled its margin), with the CPU's adaptive n_max.
+// it.
 #pragma once
 
 #include <memory>
@@ -37,14 +39,17 @@ struct DeviceStepTotals {
 
 class DeviceSimulation {
   public:
-    // Compiles (or loads from the cache) the kernels for GPU `device`, the force model's included.
-    DeviceSimulation(int device, const Settings& settings, const ModelLayout& model);
+    // Compiles (or loads from the cache) the kernels for GPU `device` (dynamics), the force model's
+    // included, and starts the kinematics side on GPU `kinematicsDevice` (the same one, or a second GPU).
+    DeviceSimulation(int device, int kinematicsDevice, const Settings& settings, const ModelLayout& model);
     ~DeviceSimulation();
     DeviceSimulation(const DeviceSimulation&) = delete;
     DeviceSimulation& operator=(const DeviceSimulation&) = delete;
 
-    // Copies the whole host state (and its contact set) to the device; the next step re-detects.
-    void upload(const SimState& s, const BinGrid& grid, const Settings& settings, const FamilyRules& families);
+    // Copies the whole host state (and its contact set) to the device; the next step re-detects. A
+    // detection in flight (from the state being replaced) is waited for and dropped.
+    void upload(const SimState& s, const BinGrid& grid, const Settings& settings, const FamilyRules& families,
+                CollaborationStats& collab);
     // Advances n steps of settings.dt. Stops at the first step with a fault and reports it.
     DeviceFault advance(unsigned long long n, const Settings& settings, FamilyRules& families, double& time,
                         unsigned long long& step, TimingStats& timing, CollaborationStats& collab,
@@ -53,13 +58,20 @@ class DeviceSimulation {
     void download(SimState& s) const;
     // Tracker loads (AddAcc) for the coming call, or zeros.
     void uploadTrackerLoads(const SimState& s);
+    // Waits for the detection in flight, if any, and installs its result if it may serve
+    // (DoDynamicsThenSync).
+    void finishDetection(unsigned long long step, TimingStats& timing, CollaborationStats& collab);
 
     unsigned int nMax() const;
+    bool adaptiveUpdateFreq() const;
     double margin() const;
     double kernelCompileSeconds() const;
     bool kernelsFromCache() const;
     size_t numContacts() const;
     std::string deviceName() const;
+    std::string kinematicsDeviceName() const;
+    int kinematicsDevice() const;
+    bool kinematicsPeerAccess() const;  // kT on a second GPU reaches dT's peer to peer
 
   private:
     struct Impl;

@@ -1,0 +1,126 @@
+// The dynamics side's decisions about contact sets (paper §2.1), apart from how detection runs (a
+// CPU thread, a GPU stream, a second GPU): when the set in use may serve no longer, when to send the
+// kinematics side an order, how large a margin a detection gets, whether a result that arrives may
+// serve, and how n_max adapts. Plain host logic, shared by the CPU's ContactSetManager and the CUDA
+// backend's DeviceSimulation so that both schedule alike, and tested without either.
+//
+// A contact set detected from a snapshot with margin m serves while no owner has travelled more
+// than m since that snapshot, and at most n_max steps (ARCHITECTURE.md invariant 5).
+#pragma once
+
+#include <algorithm>
+
+#include "runtime/CollaborationStats.h"
+#include "runtime/Settings.h"
+#include "runtime/UpdateFrequency.h"
+
+namespace deme {
+
+class DetectionSchedule {
+  public:
+    void configure(const Settings& s) {
+        m_freq.configure(s.updateFreq, std::max(s.maxUpdateFreq, s.updateFreq), s.adaptiveUpdateFreq);
+    }
+
+    // The margin for a detection from the current state: the fastest geometry now (or the user's
+    // bound), plus what gravity can add over the n_max steps the set may serve. A bound that proves
+    // too small costs an extra detection (the set expires), never a missed contact.
+    double marginFor(const Settings& s, float maxSpeed) const {
+        const double n = (double)m_freq.nMax();
+        const double vNow = std::max<double>(maxSpeed, s.maxVelocity);
+        const double vBound = vNow + length(s.gravity) * n * s.dt;
+        return s.safetyMultiplier * vBound * s.dt * n + s.safetyAdder;
+    }
+
+    // Whether the set in use may not serve step `step`: a host edit, a travel beyond its margin, or
+    // n_max steps since its snapshot.
+    bool due(unsigned long long step) const {
+        return m_needDetection || m_expired || step - m_acsStep >= m_freq.nMax();
+    }
+    bool needsDetection() const { return m_needDetection; }
+    bool expired() const { return m_expired; }
+    // Asynchronous mode: with no order in flight, the set in use is old enough for its successor
+    // to be ordered now (just in time: about one latency before it runs out).
+    bool shouldOrder(unsigned long long step) const {
+        return !m_orderInFlight && step - m_acsStep >= m_freq.orderAge();
+    }
+    bool orderInFlight() const { return m_orderInFlight; }
+    void ordered(CollaborationStats& stats) {
+        m_orderInFlight = true;
+        stats.ordersSent++;
+    }
+
+    // The result of the order sent at `orderStep` reached the dynamics side before step `step`.
+    // Counts its latency (n_max adapts to it) and says whether it may be installed: not if a host
+    // edit came after its snapshot (generation), nor if some owner has travelled more than its
+    // margin since the snapshot; `maxTravelSinceOrder()` is asked only when it matters.
+    template <class MaxTravel>
+    bool accept(unsigned long long orderStep, unsigned long long generation, double margin, unsigned long long step,
+                CollaborationStats& stats, MaxTravel&& maxTravelSinceOrder) {
+        m_orderInFlight = false;
+        stats.latencyStepsSum += (double)(step - orderStep);
+        m_freq.observeLatency((unsigned int)(step - orderStep));
+        if (generation != m_generation || maxTravelSinceOrder() > margin) {
+            stats.discardedResults++;
+            return false;
+        }
+        return true;
+    }
+    // An order was dropped unseen (e.g. the kinematics side was drained before a host edit).
+    void dropped() { m_orderInFlight = false; }
+
+    // A set detected from the snapshot of step `snapshotStep` with `margin` now serves.
+    void installed(unsigned long long snapshotStep, double margin, CollaborationStats& stats) {
+        m_acsStep = snapshotStep;
+        m_margin = margin;
+        m_expired = m_needDetection = false;
+        stats.acsUpdates++;
+    }
+    // After each step: the largest travel of any owner since the set's snapshot.
+    void afterStep(double maxTravel) {
+        if (maxTravel > m_margin) m_expired = true;
+    }
+    // A host-side edit of the state: detect afresh before the next step; results in flight are stale.
+    void invalidate() {
+        m_needDetection = true;
+        m_generation++;
+    }
+
+    // Synchronous mode: before a detection on the dynamics side, n_max moves towards the balance of
+    // detection cost and false positives measured since the previous one (UpdateFrequency).
+    void beforeSyncDetection(bool async, unsigned long long step, const CollaborationStats& stats,
+                             double forceSeconds) {
+        if (async || step <= m_acsStep) return;
+        const CostMark& c = m_costMark;
+        const double steps = (double)(stats.steps - c.steps);
+        if (!(steps > 0.0)) return;
+        const double force = (forceSeconds - c.forceSeconds) / steps;
+        const double pairs = stats.contactSetSizeSum - c.pairs;
+        const double fp = pairs > 0.0 ? 1.0 - (stats.realContactSum - c.real) / pairs : 0.0;
+        m_freq.observeSyncCost(c.detectSeconds, force, fp);
+    }
+    // After it: what it cost, and the counters it is measured against next time.
+    void afterSyncDetection(CollaborationStats& stats, double forceSeconds, double detectSeconds) {
+        stats.syncDetections++;
+        m_costMark = CostMark{stats.steps, forceSeconds, stats.contactSetSizeSum, stats.realContactSum, detectSeconds};
+    }
+
+    unsigned int nMax() const { return m_freq.nMax(); }
+    double margin() const { return m_margin; }
+    unsigned long long generation() const { return m_generation; }
+    unsigned long long acsStep() const { return m_acsStep; }
+    const UpdateFrequency& frequency() const { return m_freq; }
+
+  private:
+    struct CostMark {
+        unsigned long long steps = 0;
+        double forceSeconds = 0.0, pairs = 0.0, real = 0.0, detectSeconds = 0.0;
+    };
+    UpdateFrequency m_freq;
+    CostMark m_costMark;
+    double m_margin = 0.0;
+    unsigned long long m_acsStep = 0, m_generation = 0;
+    bool m_orderInFlight = false, m_expired = false, m_needDetection = true;
+};
+
+}  // namespace deme

@@ -1,0 +1,204 @@
+// The dynamics side's contact-set schedule (runtime/DetectionSchedule.h), shared by the CPU's
+// kinematics thread and the GPU's kinematics stream: checked here without either, against a model
+// kinematics side that delivers each order a fixed number of steps after it was sent.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "runtime/DetectionSchedule.h"
+
+using namespace deme;
+
+namespace {
+
+Settings settingsWith(unsigned int n, bool adaptive) {
+    Settings s;
+    s.dt = 1e-5;
+    s.gravity = make_float3(0.f, 0.f, -9.81f);
+    s.updateFreq = n;
+    s.maxUpdateFreq = 200;
+    s.adaptiveUpdateFreq = adaptive;
+    return s;
+}
+
+// The dynamics loop of ContactSetManager::prepareStep / DeviceSimulation's prepareStep with a model
+// kinematics side of fixed latency, and owners that travel `travelPerStep` each step.
+struct LoopModel {
+    DetectionSchedule sched;
+    CollaborationStats stats;
+    Settings settings;
+    unsigned int latency = 3;
+    double travelPerStep = 0.0;
+    // The order in flight.
+    bool inFlight = false;
+    unsigned long long orderStep = 0, orderGeneration = 0, readyAt = 0;
+    double orderMargin = 0.0, orderTravel = 0.0;
+    // State.
+    double travel = 0.0, setTravel = 0.0;
+    unsigned long long inlineDetections = 0, stepsOnExpiredSet = 0;
+
+    void detectNow(unsigned long long step) {
+        sched.beforeSyncDetection(settings.asyncDetection, step, stats, 0.0);
+        sched.installed(step, sched.marginFor(settings, 0.f), stats);
+        setTravel = travel;
+        sched.afterSyncDetection(stats, 0.0, 0.0);
+        inlineDetections++;
+    }
+    void take(unsigned long long step) {
+        inFlight = false;
+        if (sched.accept(orderStep, orderGeneration, orderMargin, step, stats,
+                         [&] { return travel - orderTravel; })) {
+            sched.installed(orderStep, orderMargin, stats);
+            setTravel = orderTravel;
+        }
+    }
+    void run(unsigned long long from, unsigned long long to) {
+        for (unsigned long long step = from; step < to; step++) {
+            if (sched.needsDetection()) detectNow(step);
+            if (inFlight && step >= readyAt) take(step);
+            if (sched.due(step)) {
+                stats.dynamicsWaits++;
+                if (inFlight) take(step);  // waits for it
+                if (sched.due(step)) detectNow(step);
+            }
+            if (sched.shouldOrder(step)) {
+                inFlight = true;
+                orderStep = step;
+                orderGeneration = sched.generation();
+                orderMargin = sched.marginFor(settings, 0.f);
+                orderTravel = travel;
+                readyAt = step + latency;
+                sched.ordered(stats);
+            }
+            // The step itself: it must run on a set that is still valid.
+            if (travel - setTravel > sched.margin() || step - sched.acsStep() > sched.nMax()) stepsOnExpiredSet++;
+            travel += travelPerStep;
+            stats.steps++;
+            sched.afterStep(travel - setTravel);
+        }
+    }
+};
+
+}  // namespace
+
+TEST(DetectionSchedule, MarginCoversTheSpeedBoundOverNmaxSteps) {
+    DetectionSchedule s;
+    Settings set = settingsWith(20, false);
+    set.maxVelocity = 2.f;
+    set.safetyMultiplier = 1.1f;
+    set.safetyAdder = 1e-4f;
+    s.configure(set);
+    // (2 m/s + 9.81 x 20 dt) x 20 dt x 1.1 + adder; a measured speed above the bound takes over.
+    const double vBound = 2.0 + std::sqrt(9.81 * 9.81) * 20 * 1e-5;
+    EXPECT_NEAR(s.marginFor(set, 0.f), 1.1 * vBound * 20 * 1e-5 + 1e-4, 1e-9);
+    EXPECT_NEAR(s.marginFor(set, 5.f), 1.1 * (5.0 + 9.81 * 20 * 1e-5) * 20 * 1e-5 + 1e-4, 1e-9);
+}
+
+TEST(DetectionSchedule, SetExpiresAfterNmaxStepsOrBeyondItsMargin) {
+    DetectionSchedule s;
+    s.configure(settingsWith(10, false));
+    CollaborationStats stats;
+    EXPECT_TRUE(s.due(0));  // nothing detected yet
+    s.installed(0, 1e-3, stats);
+    EXPECT_EQ(stats.acsUpdates, 1u);
+    EXPECT_FALSE(s.due(9));
+    EXPECT_TRUE(s.due(10));
+    s.afterStep(0.9e-3);
+    EXPECT_FALSE(s.due(5));
+    s.afterStep(1.1e-3);  // an owner travelled beyond the margin
+    EXPECT_TRUE(s.due(5));
+    s.installed(5, 1e-3, stats);
+    EXPECT_FALSE(s.due(5));
+    s.invalidate();  // a host edit
+    EXPECT_TRUE(s.due(5));
+    EXPECT_TRUE(s.needsDetection());
+}
+
+TEST(DetectionSchedule, ResultsAreRejectedWhenStaleOrTravelledTooFar) {
+    DetectionSchedule s;
+    s.configure(settingsWith(10, true));
+    CollaborationStats stats;
+    s.installed(0, 1e-3, stats);
+    s.ordered(stats);
+    EXPECT_TRUE(s.orderInFlight());
+    EXPECT_FALSE(s.shouldOrder(100));  // one order at a time
+    bool asked = false;
+    EXPECT_TRUE(s.accept(2, s.generation(), 1e-3, 5, stats, [&] {
+        asked = true;
+        return 0.5e-3;
+    }));
+    EXPECT_TRUE(asked);
+    EXPECT_FALSE(s.orderInFlight());
+    EXPECT_EQ(stats.latencyStepsSum, 3.0);
+    // Travelled beyond the order's margin since its snapshot.
+    s.ordered(stats);
+    EXPECT_FALSE(s.accept(5, s.generation(), 1e-3, 8, stats, [] { return 2e-3; }));
+    EXPECT_EQ(stats.discardedResults, 1u);
+    // Ordered before a host edit: stale, and the travel is not even looked at.
+    s.ordered(stats);
+    const unsigned long long before = s.generation();
+    s.invalidate();
+    asked = false;
+    EXPECT_FALSE(s.accept(8, before, 1e-3, 9, stats, [&] {
+        asked = true;
+        return 0.0;
+    }));
+    EXPECT_FALSE(asked);
+    EXPECT_EQ(stats.discardedResults, 2u);
+    EXPECT_EQ(stats.ordersSent, 3u);
+}
+
+// With a kinematics side of latency L, every step runs on a valid set, the dynamics side waits only
+// while n_max adapts (towards 2.25 L + 2) and then no more, and every set after the first arrives
+// from an order, none from a detection the dynamics side ran in line.
+TEST(DetectionSchedule, AsyncLoopNeverStepsOnAnExpiredSetAndStopsWaiting) {
+    LoopModel m;
+    m.settings = settingsWith(2, true);
+    m.settings.asyncDetection = true;
+    m.settings.maxVelocity = 1.f;
+    m.sched.configure(m.settings);
+    m.latency = 6;
+    m.travelPerStep = 1e-6;  // well inside the margin: sets run out by age only
+    m.run(0, 1000);
+    const unsigned long long earlyWaits = m.stats.dynamicsWaits;
+    EXPECT_GT(earlyWaits, 0u);  // n_max 2 is shorter than the latency at first
+    m.run(1000, 3000);
+    EXPECT_EQ(m.stats.dynamicsWaits, earlyWaits);
+    EXPECT_EQ(m.stepsOnExpiredSet, 0u);
+    EXPECT_GE(m.sched.nMax(), 6u + 2u);
+    EXPECT_LE(m.sched.nMax(), (unsigned int)std::ceil(2.25 * 6) + 2);
+    EXPECT_EQ(m.inlineDetections, 1u);  // the first set only
+    EXPECT_GT(m.stats.acsUpdates, 3000u / m.sched.nMax());
+    EXPECT_EQ(m.stats.discardedResults, 0u);
+}
+
+// Fast owners: sets expire by travel before n_max; a result whose snapshot is too far behind is
+// dropped, and the loop still never steps on an expired set.
+TEST(DetectionSchedule, AsyncLoopWithFastOwnersStaysSafe) {
+    LoopModel m;
+    m.settings = settingsWith(20, true);
+    m.settings.asyncDetection = true;
+    m.settings.maxVelocity = 0.01f;  // the bound is far too small: the sets expire by travel
+    m.sched.configure(m.settings);
+    m.latency = 4;
+    m.travelPerStep = 5e-7;  // the margin (about 2.6e-6) is used up in 6 steps
+    m.run(0, 3000);
+    EXPECT_EQ(m.stepsOnExpiredSet, 0u);
+    EXPECT_GT(m.stats.dynamicsWaits, 0u);
+}
+
+// Synchronous mode: detections only, every n_max steps; n_max follows the cost balance.
+TEST(DetectionSchedule, SyncLoopDetectsEveryNmaxSteps) {
+    LoopModel m;
+    m.settings = settingsWith(10, false);
+    m.settings.asyncDetection = false;
+    m.sched.configure(m.settings);
+    for (unsigned long long step = 0; step < 100; step++) {
+        if (m.sched.due(step)) m.detectNow(step);
+        m.stats.steps++;
+        m.sched.afterStep(0.0);
+    }
+    EXPECT_EQ(m.inlineDetections, 10u);
+    EXPECT_EQ(m.stats.syncDetections, 10u);
+    EXPECT_EQ(m.stats.ordersSent, 0u);
+}
