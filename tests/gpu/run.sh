@@ -2,7 +2,7 @@
 # GPU test run (on a machine with an NVIDIA GPU; see docs/gpu-tests.md): builds with the CUDA backend,
 # runs the CUDA unit tests, the whole suite with DEME_BACKEND=cuda, and the CPU/GPU parity tests.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|unit|suite|bench|settled|profile|filter ...]   (default: build unit suite)
+#   tests/gpu/run.sh [build|unit|suite|bench|gpus|settled|profile|filter ...]   (default: build unit suite)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 OUT="${OUT:-$PWD/gpu-test-out}"
@@ -29,7 +29,7 @@ for step in "${steps[@]}"; do
         grep -E '^\[  FAILED|^\[  SKIPPED' "$OUT/unit.log" | head -20
         ;;
     suite)
-        DEME_BACKEND=cuda ctest --test-dir build-gpu -j4 -E 'tsan|package' --timeout 300 >"$OUT/suite.log" 2>&1
+        DEME_BACKEND=cuda ctest --test-dir build-gpu -j6 -E 'tsan|package' --timeout 300 >"$OUT/suite.log" 2>&1
         echo "suite (DEME_BACKEND=cuda): rc $?"
         grep -E 'tests passed|\(Failed\)|\(Timeout\)|\(SEGFAULT\)|Exception' "$OUT/suite.log" | head -40
         ;;
@@ -39,6 +39,20 @@ for step in "${steps[@]}"; do
             for kind in spheres clumps; do
                 timeout 300 ./build-gpu/bench/mixer "$obj" "$r" "$kind" 2000 2000 2>&1 | tee -a "$OUT/bench.jsonl" | tail -n 3
             done
+        done
+        ;;
+    gpus)
+        # One GPU against two (detection on the second), asynchronous detection, MIXER-BENCH at r = 4 mm:
+        # fresh (2000 + 2000 steps) spheres and clumps, then the settled spheres.
+        for g in 1 2; do
+            for kind in spheres clumps; do
+                timeout 120 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 $kind 2000 2000 5e-7 $g async 2>&1 |
+                    tee -a "$OUT/gpus.jsonl" | tail -n 2
+            done
+        done
+        for g in 1 2; do
+            timeout 200 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 spheres 125000 2000 2e-6 $g async 2>&1 |
+                tee -a "$OUT/gpus.jsonl" | tail -n 2
         done
         ;;
     settled)
