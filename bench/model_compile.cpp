@@ -1,9 +1,13 @@
-// MODEL-COMPILE: how long Initialize() takes to compile a custom contact force model on the CPU (the
-// default Hertz-Mindlin model written out as a snippet), with an empty kernel cache ("cold"), with the
-// model in the cache from earlier in the same program ("cached"), and in a new program run
+// MODEL-COMPILE: how long Initialize() takes to compile a custom contact force model (the default
+// Hertz-Mindlin model written out as a snippet), with an empty kernel cache ("cold"), with the model
+// in the cache from earlier in the same program ("cached"), and in a new program run
 // ("cached-new-process", this program run again). model_s is the Initialize time minus that of the same
 // scene with the built-in model (fastest of 3 cold, 5 other runs). One JSON line per case.
-//   usage: model_compile [cache_dir]   (default: a fresh directory under /tmp, removed at the end)
+// On the CUDA backend Initialize compiles the snippet twice, for the host and with NVRTC for the GPU;
+// there "cold" means the model alone is not cached (the library's kernels are, as after any earlier
+// run), so model_s is what a new model costs.
+//   usage: model_compile [cache_dir|-] [cpu|cuda]   (default: a fresh directory under /tmp, removed at
+//   the end; the CPU backend)
 #include <unistd.h>
 
 #include <algorithm>
@@ -37,9 +41,12 @@ std::string defaultModelSnippet() {
 }
 
 // Seconds Initialize() takes on a small bed, with the built-in model or the snippet.
+std::string g_backend = "cpu";
+
 double initializeSeconds(bool custom) {
     DEMSolver sim;
     sim.SetVerbosity("ERROR");
+    sim.SetBackend(g_backend);
     auto mat = sim.LoadMaterial({{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}, {"Crr", 0.01}});
     if (custom) {
         auto m = sim.DefineContactForceModel(defaultModelSnippet());
@@ -69,7 +76,7 @@ void report(const std::string& variant, double custom, double builtIn) {
     JsonLine j;
     j.add("case", "MODEL-COMPILE")
         .add("variant", variant)
-        .add("backend", "cpu")
+        .add("backend", g_backend)
         .add("device", cpuName() + " x " + std::to_string(std::thread::hardware_concurrency()) + " threads")
         .add("model", "Hertz-Mindlin as a snippet")
         .add("initialize_s", custom)
@@ -82,7 +89,8 @@ void report(const std::string& variant, double custom, double builtIn) {
 
 int main(int argc, char** argv) {
     const bool child = argc > 2 && std::string(argv[1]) == "--cached-run";
-    const bool ownDir = argc < 2;
+    if (argc > (child ? 3 : 2)) g_backend = argv[child ? 3 : 2];
+    const bool ownDir = argc < 2 || std::string(argv[1]) == "-";
     const fs::path dir = child    ? fs::path(argv[2])
                          : ownDir ? fs::temp_directory_path() / ("deme_model_compile_" + std::to_string(getpid()))
                                   : fs::path(argv[1]);
@@ -100,12 +108,14 @@ int main(int argc, char** argv) {
     // Cold: nothing compiled yet, not even the embedded headers written out.
     const double cold = fastest(3, [&] {
         fs::remove_all(dir, ec);
+        if (g_backend == "cuda") initializeSeconds(false);  // the library's kernels, cached
         return initializeSeconds(true);
     });
     report("cold", cold, builtIn);
     report("cached", fastest(5, [] { return initializeSeconds(true); }), builtIn);
     std::cout.flush();
-    const std::string again = "\"" + std::string(argv[0]) + "\" --cached-run \"" + dir.string() + "\"";
+    const std::string again =
+        "\"" + std::string(argv[0]) + "\" --cached-run \"" + dir.string() + "\" " + g_backend;
     const int rc = std::system(again.c_str());
     if (ownDir) fs::remove_all(dir, ec);
     return rc == 0 ? 0 : 1;

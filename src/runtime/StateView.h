@@ -57,7 +57,11 @@ struct ContactView {
     uint8_t* type;
     float* wildcards;
     uint8_t* meshState;
-    float3 *force, *torqueA, *torqueB;
+    // Force on A per contact, for the host's contact output. Null in the steps whose forces nobody
+    // reads (all but the last of a DoDynamics call): the GPU adds loads to the owners directly, so
+    // per-contact forces and torques are not otherwise needed, and not writing them saves a third
+    // of the force pass's memory traffic.
+    float3* force;
     uint8_t* persistent;  // ContactArrays::persistent; read and written by models that write it
 };
 

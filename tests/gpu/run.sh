@@ -2,7 +2,7 @@
 # GPU test run (on a machine with an NVIDIA GPU; see docs/gpu-tests.md): builds with the CUDA backend,
 # runs the CUDA unit tests, the whole suite with DEME_BACKEND=cuda, and the CPU/GPU parity tests.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|unit|suite|bench|gpus|settled|profile|filter ...]   (default: build unit suite)
+#   tests/gpu/run.sh [build|unit|suite|bench|gpus|settled|profile|compile|filter ...]   (default: build unit suite)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 OUT="${OUT:-$PWD/gpu-test-out}"
@@ -71,6 +71,10 @@ for step in "${steps[@]}"; do
             ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 spheres 125000 4 2e-6 >"$OUT/ncu.csv" 2>"$OUT/ncu.err"
         echo "profile: rc $? ($(wc -l <"$OUT/ncu.csv") lines)"
         tail -n 5 "$OUT/ncu.err"
+        ;;
+    compile)
+        # A custom force model's Initialize cost on the GPU backend (NVRTC plus the host build).
+        ./build-gpu/bench/model_compile - cuda 2>&1 | tee -a "$OUT/compile.jsonl" | tail -n 3
         ;;
     filter)
         # DEME_BACKEND=cuda on the gtest filter in FILTER.

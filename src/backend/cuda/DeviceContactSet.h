@@ -19,7 +19,7 @@ struct DeviceContacts {
     DeviceBuffer<bodyID_t> geomA, geomB;
     DeviceBuffer<uint8_t> type, meshState;
     DeviceBuffer<float> wildcards;
-    DeviceBuffer<float3> force, torqueA, torqueB;
+    DeviceBuffer<float3> force;  // per-contact torques are the CPU's reduction scratch only
     DeviceBuffer<uint8_t> persistent;  // per pair: kept when detection no longer finds it
     // Sizes the per-contact state for n pairs of W wildcards each (the pairs themselves are set by
     // whoever fills geomA, geomB, type).
@@ -27,8 +27,6 @@ struct DeviceContacts {
         meshState.resizeDiscarding(n);
         wildcards.resizeDiscarding(n * W);
         force.resizeDiscarding(n);
-        torqueA.resizeDiscarding(n);
-        torqueB.resizeDiscarding(n);
         persistent.resizeDiscarding(n);
     }
 };

@@ -189,8 +189,7 @@ void DeviceSimulation::Impl::refreshView() {
                                vertTriStart.data(), vertTris.data()};
     DeviceContacts& c = contacts[current];
     v.contacts = ContactView{c.geomA.data(), c.geomB.data(), c.type.data(),   c.wildcards.data(),
-                             c.meshState.data(), c.force.data(), c.torqueA.data(), c.torqueB.data(),
-                             c.persistent.data()};
+                             c.meshState.data(), c.force.data(), c.persistent.data()};
     v.cache = CacheView{ownerPos.data(), angVelG.data(), spherePos.data(), sphereArm.data(),
                         analPos.data(),  analDir.data(), triVert.data()};
     v.integrationScratch = IntegrationScratchView{flags.data(), midAngVel.data()};
@@ -406,8 +405,6 @@ void DeviceSimulation::upload(const SimState& s, const BinGrid& g, const Setting
         c.persistent.zeroAsync(st);
     }
     c.force.resizeDiscarding(d.numContacts);
-    c.torqueA.resizeDiscarding(d.numContacts);
-    c.torqueB.resizeDiscarding(d.numContacts);
     d.numMaterials = s.materials.count;
     d.motion.resizeDiscarding(NUM_FAMILIES);
     d.reduction.resizeDiscarding(1);
@@ -474,7 +471,10 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
         if (nT && d.numContacts)
             launch(d.kResolveMesh, blocksFor(d.numContacts, THREADS), THREADS, 0, st, d.view, red);
         launch(d.kClearLoads, blocksFor(nO, THREADS), THREADS, 0, st, d.view);
-        d.model.launch(d.view, (float)time, (float)settings.dt, d.numClumps, nO - d.numClumps, red, st);
+        // Per-contact forces are stored only in the last step of the call, the one the host can read.
+        StateView stepView = d.view;
+        if (k + 1 < n) stepView.contacts.force = nullptr;
+        d.model.launch(stepView, (float)time, (float)settings.dt, d.numClumps, nO - d.numClumps, red, st);
         synchronize(st);
         const double t1 = now();
         timing.seconds[(int)Phase::FORCE] += t1 - t0;
@@ -552,8 +552,9 @@ void DeviceSimulation::download(SimState& s) const {
     get(c.meshState, hc.meshState, nc, d.stream);
     get(c.wildcards, hc.wildcards, nc * d.W, d.stream);
     get(c.force, hc.force, nc, d.stream);
-    get(c.torqueA, hc.torqueA, nc, d.stream);
-    get(c.torqueB, hc.torqueB, nc, d.stream);
+    // Per-contact torques exist on the CPU only (its per-owner reduction); the GPU has none to give.
+    hc.torqueA.assign(nc, make_float3(0.f));
+    hc.torqueB.assign(nc, make_float3(0.f));
     get(c.persistent, hc.persistent, nc, d.stream);
     synchronize(d.stream);
     d.model.download(s);

@@ -1,6 +1,7 @@
 // The GPU force pass as a template over the contact force model, the device twin of
 // dynamics/ForcePassLoop.h: for every contact of the set, gather the model's inputs, run the model,
-// store the force on A and the torques about both owners, and add them to both owners' loads.
+// add the force and the torques about both owners to the owners' loads, and store the force on A
+// where the view asks for it (ContactView::force).
 // Dynamics.cu instantiates it for the built-in models; the code generated for a user's model
 // (forcemodel/CudaCodeGen.cpp) instantiates it for that model. The rules are the CPU loop's:
 //   - a model that does not see apart pairs gets no call for them: zero force, wildcards cleared;
@@ -65,7 +66,7 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, f
         if (!(Model::kSeesApartPairs ? gather : touching)) {
             // No call: no force, and the contact's history ends.
             for (unsigned int w = 0; w < W; w++) wc[w] = 0.f;
-            c.force[i] = c.torqueA[i] = c.torqueB[i] = make_float3(0.f);
+            if (c.force) c.force[i] = make_float3(0.f);
         } else {
             float3 force = make_float3(0.f), torque_only_force = make_float3(0.f);
             bool persistent = Model::kWritesPersistent && c.persistent[i] != 0;
@@ -73,9 +74,7 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, f
             if (Model::kWritesPersistent) c.persistent[i] = persistent ? 1 : 0;
             const float3 total = force + torque_only_force;
             const float3 tA = cross(in.armA, total), tB = cross(in.armB, -total);
-            c.force[i] = force;
-            c.torqueA[i] = tA;
-            c.torqueB[i] = tB;
+            if (c.force) c.force[i] = force;
             atomicAdd3(&s.owners.contactForce[in.AOwner], force);
             atomicAdd3(&s.owners.contactTorque[in.AOwner], tA);
             const unsigned int slot = in.BOwner - firstNonClump;
