@@ -110,10 +110,69 @@ TEST(GpuParity, DefaultModelAsSnippetMatchesBuiltInOnGpu) {
     SettlingBed cpu(false, "cpu"), builtIn(false, "cuda"), custom(true, "cuda");
     ASSERT_EQ(custom.sim.GetBackend(), "cuda");
     for (SettlingBed* b : {&cpu, &builtIn, &custom}) b->sim.DoDynamics(0.24);
+    // Loads are summed with atomics on the GPU, in no fixed order, so a bed of 1,000 tumbling grains
+    // takes a different path on every run: its mean height agrees (to 0.1 radius), the contact count
+    // fluctuates with the path. The exact check is the few-body test below; contact counts against
+    // the CPU are GpuParity.SettledBedAgreesWithTheCpu's (3 % on 9,700 settled spheres).
     const double r = 0.002, zCpu = meanHeight(cpu);
     EXPECT_NEAR(meanHeight(builtIn), zCpu, 0.1 * r);
     EXPECT_NEAR(meanHeight(custom), meanHeight(builtIn), 0.1 * r);
-    const double nCpu = (double)cpu.sim.GetNumContacts();
-    EXPECT_NEAR((double)builtIn.sim.GetNumContacts(), nCpu, 0.05 * nCpu);
-    EXPECT_NEAR((double)custom.sim.GetNumContacts(), (double)builtIn.sim.GetNumContacts(), 0.05 * nCpu);
+    EXPECT_GT(custom.sim.GetNumContacts(), custom.sim.GetNumClumps());  // a contact network formed
+}
+
+namespace {
+
+// A sphere sliding on the floor (friction turns its slide into rolling: v -> 5/7 v0, a textbook
+// result) and two spheres meeting obliquely in the air, with the default model built in or written
+// as a snippet. No owner has more than two contacts, and float addition of two terms does not depend
+// on their order, so the GPU's atomics add no run-to-run noise here: both models must follow the same
+// trajectories to rounding.
+struct FewBodies {
+    DEMSolver sim;
+    std::shared_ptr<DEMTracker> balls;
+    FewBodies(bool customModel, const std::string& backend) {
+        sim.SetVerbosity("QUIET");
+        sim.SetBackend(backend);
+        auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.5));
+        if (customModel) declareHertzMindlinInputs(*sim.DefineContactForceModel(hertzMindlinSnippet()));
+        sim.InstructBoxDomainDimension(1, 1, 1);
+        sim.InstructBoxDomainBoundingBC("all", mat);
+        const float r = 0.01f;
+        auto ball = sim.LoadSphereType((float)sphereMass(r, 2500), r, mat);
+        auto batch = sim.AddClumps(ball, {make_float3(-0.3f, 0, -0.5f + r), make_float3(0.2f, 0.2f, 0.2f),
+                                          make_float3(0.f, 0.215f, 0.2f)});
+        batch->SetVel({make_float3(1, 0, 0), make_float3(-0.5f, 0, 0), make_float3(0.5f, 0, 0)});
+        sim.SetInitTimeStep(1e-5);
+        sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+        sim.Initialize();
+        balls = sim.Track(batch);
+    }
+};
+
+// Built-in and snippet on `backend`, and the CPU's built-in as the reference.
+void expectFewBodiesAgree(const std::string& backend) {
+    FewBodies builtIn(false, backend), custom(true, backend), cpu(false, "cpu");
+    ASSERT_EQ(custom.sim.GetBackend(), backend);
+    for (FewBodies* b : {&builtIn, &custom, &cpu}) b->sim.DoDynamics(0.3);
+    for (size_t i = 0; i < 3; i++) {
+        SCOPED_TRACE(i);
+        for (FewBodies* b : {&custom, &cpu}) {
+            EXPECT_LT(length(b->balls->Pos(i) - builtIn.balls->Pos(i)), 1e-5f);
+            EXPECT_LT(length(b->balls->Vel(i) - builtIn.balls->Vel(i)), 1e-4f);
+            EXPECT_LT(length(b->balls->AngVelGlobal(i) - builtIn.balls->AngVelGlobal(i)), 1e-2f);
+        }
+    }
+    // The slider rolls at 5/7 of its initial speed (rolling resistance is zero), within 1 %.
+    EXPECT_NEAR(custom.balls->Vel(0).x, 5.0 / 7.0, 0.01 * 5.0 / 7.0);
+    // The pair met: their velocities turned (an oblique impact gives both a y component).
+    EXPECT_GT(std::fabs(custom.balls->Vel(1).y), 0.05f);
+}
+
+}  // namespace
+
+TEST(ForceModelFewBodies, SnippetFollowsBuiltInTrajectories) { expectFewBodiesAgree("cpu"); }
+
+TEST(GpuParity, DefaultModelAsSnippetFollowsBuiltInTrajectoriesOnGpu) {
+    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    expectFewBodiesAgree("cuda");
 }

@@ -154,6 +154,16 @@ TEST_F(JitKernelCache, FailedProducerLeavesNothingBehind) {
     EXPECT_TRUE(entries(dir).empty());
 }
 
+// A cache directory removed while the program runs (a user clearing the cache) comes back on the
+// next publish instead of failing every compile from then on.
+TEST_F(JitKernelCache, DirectoryRemovedWhileRunningIsRecreated) {
+    KernelCache cache(dir.string());
+    std::filesystem::remove_all(dir);
+    const std::string path = cache.publish("k", ".bin", [](const std::string& temp) { std::ofstream(temp) << "x"; });
+    EXPECT_TRUE(std::filesystem::is_regular_file(path));
+    EXPECT_TRUE(cache.lookup("k", ".bin"));
+}
+
 // Several threads produce the same artifact at once, slowly, while a reader polls for it: the reader
 // only ever sees the whole file, and in the end there is exactly that one file.
 TEST_F(JitKernelCache, ConcurrentPublishersLeaveOneCompleteFile) {

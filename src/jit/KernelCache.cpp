@@ -115,6 +115,8 @@ std::string KernelCache::publish(const std::string& key, const std::string& suff
     const std::string temp = temporaryPath(suffix);
     const std::string final = artifactPath(key, suffix);
     std::error_code ec;
+    // The directory may have been removed since (a user clearing the cache while a program runs).
+    fs::create_directories(directory_, ec);
     try {
         producer(temp);
     } catch (...) {
