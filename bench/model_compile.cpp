@@ -21,24 +21,13 @@
 #include <deme/deme.h>
 
 #include "BenchUtil.h"
+#include "HertzMindlinSnippet.h"
 
 using namespace deme;
 using namespace deme_bench;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string defaultModelSnippet() {
-    std::ifstream in(DEME_SOURCE_DIR "/src/physics/models/HertzMindlin.inl");
-    if (!in) throw Error("model_compile: cannot read HertzMindlin.inl from " DEME_SOURCE_DIR);
-    std::ostringstream s;
-    s << "if (!(overlapDepth > 0.0)) {\n"
-         "    delta_tan_x = delta_tan_y = delta_tan_z = delta_time = 0.f;\n"
-         "    return;\n"
-         "}\n"
-      << in.rdbuf();
-    return s.str();
-}
 
 // Seconds Initialize() takes on a small bed, with the built-in model or the snippet.
 std::string g_backend = "cpu";
@@ -49,7 +38,7 @@ double initializeSeconds(bool custom) {
     sim.SetBackend(g_backend);
     auto mat = sim.LoadMaterial({{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}, {"Crr", 0.01}});
     if (custom) {
-        auto m = sim.DefineContactForceModel(defaultModelSnippet());
+        auto m = sim.DefineContactForceModel(hertzMindlinSnippet());
         m->SetMustHaveMatProp({"E", "nu", "CoR", "mu", "Crr"});
         m->SetMustPairwiseMatProp({"CoR", "mu", "Crr"});
         m->SetPerContactWildcards({"delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time"});

@@ -8,13 +8,12 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include <deme/Error.h>
 
 #include "BenchUtil.h"
+#include "HertzMindlinSnippet.h"
 #include "backend/cuda/Device.h"
 #include "backend/cuda/EmbeddedKernel.h"
 #include "backend/cuda/NvrtcCompiler.h"
@@ -28,17 +27,9 @@ namespace {
 
 // The layout model_compile's snippet declares (bench/model_compile.cpp).
 ModelLayout hertzMindlinLayout() {
-    std::ifstream in(DEME_SOURCE_DIR "/src/physics/models/HertzMindlin.inl");
-    if (!in) throw Error("nvrtc_compile: cannot read HertzMindlin.inl from " DEME_SOURCE_DIR);
-    std::ostringstream s;
-    s << "if (!(overlapDepth > 0.0)) {\n"
-         "    delta_tan_x = delta_tan_y = delta_tan_z = delta_time = 0.f;\n"
-         "    return;\n"
-         "}\n"
-      << in.rdbuf();
     ModelLayout L;
     L.kind = DEMForceModel::Kind::CUSTOM;
-    L.source = s.str();
+    L.source = deme_bench::hertzMindlinSnippet();
     L.origin = "force_model";
     L.materialProps = {"E", "nu"};  // the pairwise ones are read per pair only (resolveModelLayout)
     L.pairProps = {"CoR", "mu", "Crr"};

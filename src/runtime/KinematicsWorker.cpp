@@ -3,6 +3,7 @@
 #include <deme/Error.h>
 
 #include "backend/cpu/Parallel.h"
+#include "runtime/WorkerFailure.h"
 
 namespace deme {
 
@@ -51,16 +52,7 @@ void KinematicsWorker::submit(const SimState& s, unsigned long long step, unsign
     m_wake.notify_all();
 }
 
-void KinematicsWorker::rethrowFailure() {
-    if (!m_failure) return;
-    std::exception_ptr f = m_failure;
-    m_failure = nullptr;
-    try {
-        std::rethrow_exception(f);
-    } catch (const std::exception& e) {
-        throwError("DoDynamics", std::string("the kinematics thread failed: ") + e.what());
-    }
-}
+void KinematicsWorker::rethrowFailure() { rethrowWorkerFailure(m_failure, "DoDynamics", "the kinematics thread"); }
 
 bool KinematicsWorker::tryTake(DetectionResult& out) {
     std::lock_guard<std::mutex> lock(m_mutex);

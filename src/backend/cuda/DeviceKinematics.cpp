@@ -13,6 +13,7 @@
 #include "backend/cuda/EmbeddedKernel.h"
 #include "backend/cuda/NvrtcCompiler.h"
 #include "runtime/StateView.h"
+#include "runtime/WorkerFailure.h"
 
 namespace deme::cuda {
 
@@ -336,16 +337,7 @@ void DeviceKinematics::submit(const KinematicsSource& src, Stream dtStream, unsi
     m_wake.notify_all();
 }
 
-void DeviceKinematics::rethrowFailure() {
-    if (!m_failure) return;
-    std::exception_ptr f = m_failure;
-    m_failure = nullptr;
-    try {
-        std::rethrow_exception(f);
-    } catch (const std::exception& e) {
-        throwError(CALL, std::string("the GPU kinematics thread failed: ") + e.what());
-    }
-}
+void DeviceKinematics::rethrowFailure() { rethrowWorkerFailure(m_failure, CALL, "the GPU kinematics thread"); }
 
 bool DeviceKinematics::tryTake(DeviceDetectionResult& out) {
     std::lock_guard<std::mutex> lock(m_mutex);

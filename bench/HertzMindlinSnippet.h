@@ -1,0 +1,25 @@
+// The default Hertz-Mindlin model written out as a custom model's code (its history cleared when a
+// pair is apart, as the built-in model does), for the model-compile benchmarks. Needs DEME_SOURCE_DIR.
+#pragma once
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <deme/Error.h>
+
+namespace deme_bench {
+
+inline std::string hertzMindlinSnippet() {
+    std::ifstream in(DEME_SOURCE_DIR "/src/physics/models/HertzMindlin.inl");
+    if (!in) throw deme::Error("cannot read HertzMindlin.inl from " DEME_SOURCE_DIR);
+    std::ostringstream s;
+    s << "if (!(overlapDepth > 0.0)) {\n"
+         "    delta_tan_x = delta_tan_y = delta_tan_z = delta_time = 0.f;\n"
+         "    return;\n"
+         "}\n"
+      << in.rdbuf();
+    return s.str();
+}
+
+}  // namespace deme_bench
