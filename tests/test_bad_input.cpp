@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "ScratchDirTest.h"
+#include "backend/cuda/Device.h"
 
 #include <chrono>
 #include <filesystem>
@@ -502,6 +503,21 @@ TEST(BadInputRegression, FailedPrescriptionChangesNothing) {
     s.sim.DoDynamics(0.01);
     auto tr = s.sim.Track(s.batch);
     EXPECT_EQ(tr->Vel().x, 0.f);
+}
+
+// An Initialize that fails to start (here: SetBackend("cuda") on a machine without a usable GPU)
+// leaves the scene as it was: its objects stay editable, and Initialize can be called again.
+TEST(BadInputRegression, FailedInitializeCanBeRetried) {
+    if (!deme::cuda::usableDevices().empty()) GTEST_SKIP() << "a GPU is present: the CUDA backend starts";
+    Scene1 s;
+    s.sim.SetBackend("cuda");
+    EXPECT_DEME_ERROR([&] { s.sim.Initialize(); }, {"Initialize"});
+    s.batch->SetVel(make_float3(1, 0, 0));  // still editable: not marked initialized
+    s.sim.SetBackend("cpu");
+    s.sim.Initialize();
+    s.sim.DoDynamics(0.01);
+    auto tr = s.sim.Track(s.batch);
+    EXPECT_NEAR(tr->Pos().x, 0.01, 1e-6);  // the velocity set after the failed call moved it
 }
 
 // The domain is the box the user gave, also along its short axes (not just the encodable range).

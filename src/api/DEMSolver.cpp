@@ -214,6 +214,10 @@ void DEMSolver::Initialize() {
     applyWildcardValuesGivenEarly(*m_scene, layout, state);
     // A custom model is compiled here (or found in the cache); a compile error leaves the solver as it was.
     ActiveForceModel model = loadForceModel(layout, "Initialize (contact force model)");
+    // So does a failure to start (no usable GPU for SetBackend("cuda"), a model NVRTC rejects): the
+    // scene's objects are marked initialized only once the simulation runs, so the user may fix the
+    // cause and call Initialize again.
+    m_sim->start(std::move(state), std::move(model));
     m_scene->forceModel->m_locked = true;
     size_t offset = 0;
     for (auto& b : m_scene->batches) {
@@ -230,7 +234,6 @@ void DEMSolver::Initialize() {
         m->m_ownerID = offset++;
         m->m_initialized = true;
     }
-    m_sim->start(std::move(state), std::move(model));
 }
 
 void DEMSolver::DoDynamics(double duration) {
