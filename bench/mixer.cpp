@@ -7,7 +7,7 @@
 // gpus: 1 (default) runs dynamics and contact detection on one GPU, 2 puts detection on a second
 // GPU (DEMSolver(2)); the last argument selects the contact detection mode (default auto:
 // asynchronous where the CPU has 8 or more cores).
-// Prints one JSON line: sphere-steps/s over the timed steps, contacts per sphere, n_max, dynamics
+// DEME_BENCH_TIMING=1 adds the timing and collaboration reports. Prints one JSON line: sphere-steps/s over the timed steps, contacts per sphere, n_max, dynamics
 // wait share, device bytes per sphere, and how long Initialize() took (run twice for cold and warm:
 // the second run finds the kernels in the cache).
 #include <deme/deme.h>
@@ -117,5 +117,11 @@ int main(int argc, char** argv) {
         .add("peak_host_mem_mib", deme_bench::peakMemoryMiB())
         .add("initialize_s", initSeconds);
     std::printf("%s\n", j.str().c_str());
+    // The phases (binning and pair search are kT's, history mapping and the force pass dT's) and the
+    // collaboration counters, for a case whose wait share needs explaining.
+    if (std::getenv("DEME_BENCH_TIMING")) {
+        sim.ShowTimingStats();
+        sim.ShowThreadCollaborationStats();
+    }
     return 0;
 }
