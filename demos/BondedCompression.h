@@ -103,6 +103,14 @@ inline double measuredElasticSlope(const Result& r, double lo, double hi) {
     return n < 2 ? 0.0 : (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+// Makes kBondedModel the solver's contact force model, with the properties and wildcards it reads.
+inline void useBondedModel(DEMSolver& sim) {
+    auto model = sim.DefineContactForceModel(kBondedModel);
+    model->SetMustHaveMatProp({"kb", "cb"});
+    model->SetPerContactWildcards({"bonded", "overlap0"});
+    model->SetPerGeometryWildcards({"strength"});
+}
+
 inline Result run(const Params& p) {
     Result res;
     const double a = 2.0 * p.radius;
@@ -113,10 +121,7 @@ inline Result run(const Params& p) {
     // Critical damping of a bond between two spheres of mass m: 2 sqrt(k m / 2).
     const double cb = p.dampingRatio * 2.0 * std::sqrt(p.kb * mass / 2.0);
     auto rock = sim.LoadMaterial({{"kb", p.kb}, {"cb", cb}});
-    auto model = sim.DefineContactForceModel(kBondedModel);
-    model->SetMustHaveMatProp({"kb", "cb"});
-    model->SetPerContactWildcards({"bonded", "overlap0"});
-    model->SetPerGeometryWildcards({"strength"});
+    useBondedModel(sim);
 
     const std::vector<float3> pts = HCPSampler((float)a).SampleBox(make_float3(0, 0, 0), p.halfDims);
     res.spheres = pts.size();

@@ -59,10 +59,7 @@ TEST(ForceModelBonded, BrokenBondNeverFormsAgain) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial({{"kb", k}, {"cb", 0.0}});
-    auto model = sim.DefineContactForceModel(bonded_demo::kBondedModel);
-    model->SetMustHaveMatProp({"kb", "cb"});
-    model->SetPerContactWildcards({"bonded", "overlap0"});
-    model->SetPerGeometryWildcards({"strength"});
+    bonded_demo::useBondedModel(sim);
     sim.InstructBoxDomainDimension(0.1f, 0.1f, 0.1f);
     auto tmpl = sim.LoadSphereType(1e-5f, r, mat);
     auto held = sim.AddClumps(tmpl, {make_float3(0, 0, 0)});

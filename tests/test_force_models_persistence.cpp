@@ -84,10 +84,7 @@ void checkPersistentPairSurvives(bool async, const std::string& backend = "cpu")
     sim.SetVerbosity("QUIET");
     sim.SetBackend(backend);
     auto mat = sim.LoadMaterial({{"kb", k}, {"cb", 0.0}});
-    auto model = sim.DefineContactForceModel(bonded_demo::kBondedModel);
-    model->SetMustHaveMatProp({"kb", "cb"});
-    model->SetPerContactWildcards({"bonded", "overlap0"});
-    model->SetPerGeometryWildcards({"strength"});
+    bonded_demo::useBondedModel(sim);
     sim.InstructBoxDomainDimension(0.1f, 0.1f, 0.1f);
     auto tmpl = sim.LoadSphereType(1e-5f, r, mat);
     // A few unbonded spheres around, so that detected pairs surround the re-inserted one.

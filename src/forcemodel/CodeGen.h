@@ -5,6 +5,7 @@
 
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "forcemodel/ModelLayout.h"
 
@@ -15,12 +16,14 @@ constexpr const char* kGeneratedForcePassSymbol = "deme_force_pass";
 
 std::string generateForceModelSource(const ModelLayout& layout);
 
-// The model functor `UserForceModel` shared by the CPU's and the GPU's generated code (CudaCodeGen.h):
-// its constants, members (material tables, wildcard arrays), `constructor` (the text that fills the
-// members, which differs per backend) and its call operator, which declares the inputs and holds the
-// user's code under `#line 1 "<origin>"`; after it, numbering returns to `generatedName`. Written at
-// the end of `out`, whose earlier lines count for that numbering.
-void writeUserForceModel(std::ostringstream& out, const ModelLayout& layout, const std::string& constructor,
-                         const std::string& generatedName);
+// The whole generated translation unit, shared by the CPU's and the GPU's generated code
+// (CudaCodeGen.h): `banner` and the `includes`, then in namespace deme the model functor
+// `UserForceModel` with its constants, members (material tables, wildcard arrays), `constructor` (the
+// text that fills the members, which differs per backend) and its call operator, which declares the
+// inputs and holds the user's code under `#line 1 "<origin>"` (after it, numbering returns to
+// `generatedName`); last, outside the namespace, `entry` (the exported force pass).
+std::string userForceModelSource(const ModelLayout& layout, const std::string& banner,
+                                 const std::vector<std::string>& includes, const std::string& constructor,
+                                 const std::string& generatedName, const std::string& entry);
 
 }  // namespace deme

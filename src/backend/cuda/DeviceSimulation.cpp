@@ -53,6 +53,10 @@ struct DeviceSimulation::Impl {
     int device = 0;
     std::string name;
     Stream stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
+    // Around each step's force phase on dT's stream: its GPU time, read after the step's one host
+    // synchronisation, splits the step between the force and integration phases (the timing report
+    // and synchronous n_max adaptation use it) without a synchronisation of its own.
+    cudaEvent_t forceStart = nullptr, forceEnd = nullptr;
     CudaModule dynamics, history, exchange;
     CudaKernel kResetReduction, kCopyDoubles, kClearLoads, kResolveMesh, kIntegrate, kLargeRot, kPlaceSpheres,
         kPlaceTris, kAnalytical, kMapHistory, kMaxTravelSince;
@@ -160,6 +164,8 @@ void DeviceSimulation::Impl::compileKernels(const ModelLayout& layout) {
     cudaStream_t st = nullptr;
     DEME_CUDA_CHECK("Initialize", cudaStreamCreateWithFlags(&st, cudaStreamNonBlocking));
     stream = st;
+    DEME_CUDA_CHECK("Initialize", cudaEventCreate(&forceStart));
+    DEME_CUDA_CHECK("Initialize", cudaEventCreate(&forceEnd));
 }
 
 void DeviceSimulation::Impl::prepareFamilyMotion(const FamilyRules& families) {
@@ -322,6 +328,8 @@ DeviceSimulation::~DeviceSimulation() {
     // kT first: its thread may still be writing into the exchange buffers.
     m->kinematics.reset();
     if (m->stream && cudaStreamDestroy(static_cast<cudaStream_t>(m->stream)) != cudaSuccess) cudaGetLastError();
+    for (cudaEvent_t e : {m->forceStart, m->forceEnd})
+        if (e && cudaEventDestroy(e) != cudaSuccess) cudaGetLastError();
 }
 
 void DeviceSimulation::upload(const SimState& s, const BinGrid& g, const Settings& settings,
@@ -465,6 +473,7 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
         d.prepareStep(settings, step, timing, collab);
         if (step == d.profileFromStep) startProfilerCapture();
         const double t0 = now();
+        DEME_CUDA_CHECK(CALL, cudaEventRecord(d.forceStart, static_cast<cudaStream_t>(st)));
         launch(d.kFamilyMotion, 1, NUM_FAMILIES, 0, st, time + settings.dt, d.motion.data());
         StepReduction* red = d.reduction.data();
         launch(d.kResetReduction, 1, 32, 0, st, red);
@@ -475,9 +484,7 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
         StateView stepView = d.view;
         if (k + 1 < n) stepView.contacts.force = nullptr;
         d.model.launch(stepView, (float)time, (float)settings.dt, d.numClumps, nO - d.numClumps, red, st);
-        synchronize(st);
-        const double t1 = now();
-        timing.seconds[(int)Phase::FORCE] += t1 - t0;
+        DEME_CUDA_CHECK(CALL, cudaEventRecord(d.forceEnd, static_cast<cudaStream_t>(st)));
         launch(d.kIntegrate, blocksFor(nO, THREADS), THREADS, 0, st, d.view,
                (const FamilyStepMotion*)d.motion.data(), consts, (const double*)d.baseline.data(), red);
         launch(d.kLargeRot, blocksFor(nO, THREADS), THREADS, 0, st, d.view, (float)settings.dt);
@@ -489,7 +496,11 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
         StepReduction r;
         d.reduction.downloadAsync(&r, 1, st);
         synchronize(st);
-        timing.seconds[(int)Phase::INTEGRATION] += now() - t1;
+        float forceMs = 0.f;
+        DEME_CUDA_CHECK(CALL, cudaEventElapsedTime(&forceMs, d.forceStart, d.forceEnd));
+        const double stepSeconds = now() - t0, forceSeconds = std::min(stepSeconds, 1e-3 * (double)forceMs);
+        timing.seconds[(int)Phase::FORCE] += forceSeconds;
+        timing.seconds[(int)Phase::INTEGRATION] += stepSeconds - forceSeconds;
 
         time += settings.dt;
         step++;
