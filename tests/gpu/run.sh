@@ -2,7 +2,7 @@
 # GPU test run (on a machine with an NVIDIA GPU; see docs/gpu-tests.md): builds with the CUDA backend,
 # runs the CUDA unit tests, the whole suite with DEME_BACKEND=cuda, and the CPU/GPU parity tests.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|unit|suite|bench|gpus|settled|profile|compile|filter ...]   (default: build unit suite)
+#   tests/gpu/run.sh [build|unit|suite|bench|timing|gpus|settled|profile|compile|filter ...]   (default: build unit suite)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 OUT="${OUT:-$PWD/gpu-test-out}"
@@ -40,7 +40,7 @@ for step in "${steps[@]}"; do
         obj=.benchdata/internal_mixer.obj
         for r in 0.004 0.0025 0.0015; do
             for kind in spheres clumps; do
-                timeout 300 ./build-gpu/bench/mixer "$obj" "$r" "$kind" 2000 2000 2>&1 | tee -a "$OUT/bench.jsonl" | tail -n 3
+                timeout "${BENCH_TIMEOUT:-300}" ./build-gpu/bench/mixer "$obj" "$r" "$kind" 2000 2000 2>&1 | tee -a "$OUT/bench.jsonl" | tail -n 3
             done
         done
         ;;
@@ -57,6 +57,18 @@ for step in "${steps[@]}"; do
             timeout 200 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 spheres 125000 2000 2e-6 $g async 2>&1 |
                 tee -a "$OUT/gpus.jsonl" | tail -n 2
         done
+        ;;
+    timing)
+        # The phase timings (kinematics' binning and pair search, dynamics' force pass...) and the
+        # collaboration counters of the early mixer at r = 4 mm, asynchronous and synchronous.
+        for kind in ${TIMING_KINDS:-spheres clumps}; do
+            for mode in async sync; do
+                DEME_BENCH_TIMING=1 timeout 120 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 $kind 2000 2000 5e-7 1 $mode \
+                    >>"$OUT/timing.log" 2>&1
+                echo "timing $kind $mode: rc $?"
+            done
+        done
+        grep -E '^\{' "$OUT/timing.log" | cut -c1-400
         ;;
     settled)
         # The settled variant: 0.25 s of mixing as 125000 warm-up steps of 2e-6 s (the grains land on

@@ -70,7 +70,7 @@ struct DeviceKinematics::Work {
     bool staged = false;  // kT on another GPU than dT: copy the snapshot in and the contact list out
     Stream stream = nullptr;
     CudaModule module;
-    CudaKernel kSphereBoxes, kTriBoxes, kBinEntries, kBinStarts, kPairSearch;
+    CudaKernel kSphereBoxes, kTriBoxes, kBinEntries, kBinCounts, kPairSearch;
     DevicePrimitives prim;
     // Static geometry (a copy of Geometry).
     DeviceBuffer<bodyID_t> sphereOwner, anaOwner, triOwner;
@@ -186,9 +186,13 @@ void DeviceKinematics::Work::detect(const Order& o, void* submitted, KinematicsI
             prim.sortPairs(b.keys.data(), b.sortedKeys.data(), b.items.data(), b.sortedItems.data(), entries, stream,
                            0, bitsFor(numBins));
         }
+        // Each bin's first entry in the sorted order: the entries per bin, summed (in place).
         b.start.resizeDiscarding(numBins + 1);
-        launch(kBinStarts, blocksFor((uint64_t)entries + 1, THREADS), THREADS, 0, stream,
-               (const unsigned int*)b.sortedKeys.data(), entries, (unsigned int)numBins, b.start.data());
+        b.start.zeroAsync(stream);
+        if (entries)
+            launch(kBinCounts, blocksFor(entries, THREADS), THREADS, 0, stream, (const unsigned int*)b.keys.data(),
+                   entries, b.start.data());
+        prim.exclusiveSum(b.start.data(), b.start.data(), numBins + 1, stream);
     };
     const float* fem = familyExtraMargin.data();
     binItems(sphereBins, nS, [&] {
@@ -394,7 +398,7 @@ void DeviceKinematics::run() {
         w->kSphereBoxes = w->module.kernel("deme_sphere_bin_boxes");
         w->kTriBoxes = w->module.kernel("deme_triangle_bin_boxes");
         w->kBinEntries = w->module.kernel("deme_bin_entries");
-        w->kBinStarts = w->module.kernel("deme_bin_starts");
+        w->kBinCounts = w->module.kernel("deme_bin_counts");
         w->kPairSearch = w->module.kernel("deme_pair_search");
         std::lock_guard<std::mutex> lock(m_mutex);
         m_deviceName = info.name;

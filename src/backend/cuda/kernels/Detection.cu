@@ -114,14 +114,15 @@ extern "C" __global__ void deme_bin_entries(BinGridView g, unsigned int n, const
             }
 }
 
-// start[b] = first entry of bin b in the bin-sorted keys; start[numBins] = n.
-extern "C" __global__ void deme_bin_starts(const unsigned int* sortedKeys, unsigned int n, unsigned int numBins,
-                                           unsigned int* start) {
+// count[key]++ for every (bin, item) entry. The exclusive sum of count[0, numBins] is then the first
+// entry of each bin in bin-sorted order (and count[numBins], left 0, gives the total). One thread per
+// entry: a bin's start must not be found by walking the gaps between occupied bins, because a grid
+// that grains fill only in part (a mixer's grains sit in one third of its box) leaves gaps of
+// millions of bins, and one thread writing those serially took most of a detection.
+extern "C" __global__ void deme_bin_counts(const unsigned int* keys, unsigned int n, unsigned int* count) {
     const size_t i = globalIndex();
-    if (i > n) return;
-    const long long prev = i == 0 ? -1 : (long long)sortedKeys[i - 1];
-    const long long cur = i == n ? (long long)numBins : (long long)sortedKeys[i];
-    for (long long b = prev + 1; b <= cur; b++) start[b] = (unsigned int)i;
+    if (i >= n) return;
+    atomicAdd(&count[keys[i]], 1u);
 }
 
 // Per sphere A: its partners. With `outB` null, counts them into count[A]; otherwise writes them
