@@ -141,6 +141,33 @@ TEST(Async, UpdateFrequencyAdaptsToLatency) {
     EXPECT_EQ(fixed.nMax(), 7u);
 }
 
+// Detection on the dynamics' device (one GPU, two streams): the cost balance of the synchronous mode
+// takes the floor's place, and the latency bound ceil(2.25 L) + 2 stays the lower limit. Same
+// figures as the synchronous test below: D = 54 ms, F = 6.7 ms per step, 6.6 % false positives at
+// n = 20 give the optimum 70, in doublings.
+TEST(Async, SharedDeviceUpdateFrequencyBalancesCostAboveTheLatencyBound) {
+    UpdateFrequency f;
+    f.configure(20, 200, true, true);
+    for (int i = 0; i < 60; i++) f.observeLatency(4);
+    EXPECT_EQ(f.nMax(), 20u);  // the cost balance starts at the user's value
+    f.observeSharedCost(0.054, 0.0067, 0.066);
+    EXPECT_EQ(f.nMax(), 40u);
+    f.observeSharedCost(0.054, 0.0067, 0.066 * 40 / 20);
+    EXPECT_EQ(f.nMax(), 70u);
+    // Detection becomes cheap: n_max halves per result down to the latency bound, not the floor.
+    for (int i = 0; i < 10; i++) f.observeSharedCost(1e-6, 0.0067, 0.066 * f.nMax() / 20);
+    EXPECT_EQ(f.nMax(), 11u);  // ceil(2.25 x 4) + 2
+    for (int i = 0; i < 60; i++) f.observeLatency(40);
+    EXPECT_EQ(f.nMax(), 92u);  // the latency needs more than the balance
+    // kT on its own device (or the CPU): the cost is not weighed, the floor holds.
+    UpdateFrequency own;
+    own.configure(20, 200, true, false);
+    own.observeSharedCost(0.054, 0.0067, 0.066);
+    EXPECT_EQ(own.nMax(), 20u);
+    for (int i = 0; i < 60; i++) own.observeLatency(4);
+    EXPECT_EQ(own.nMax(), 20u);
+}
+
 // Repeated solvers: threads start and stop cleanly, also when a run ends in an error.
 TEST(Async, WorkerShutsDownAfterErrors) {
     for (int i = 0; i < 20; i++) {

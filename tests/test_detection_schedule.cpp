@@ -3,6 +3,7 @@
 // kinematics side that delivers each order a fixed number of steps after it was sent.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "runtime/DetectionSchedule.h"
@@ -36,6 +37,9 @@ struct LoopModel {
     // State.
     double travel = 0.0, setTravel = 0.0;
     unsigned long long inlineDetections = 0, stepsOnExpiredSet = 0;
+    // Costs, for a kinematics side on the dynamics' device: a detection's time, the force pass per
+    // step, and false positives growing with the margin, i.e. with n_max.
+    double detectSeconds = 0.0, forcePerStep = 0.0, forceSeconds = 0.0, falsePositivesPer20 = 0.0;
 
     void detectNow(unsigned long long step) {
         sched.beforeSyncDetection(settings.asyncDetection, step, stats, 0.0);
@@ -49,6 +53,7 @@ struct LoopModel {
         if (sched.accept(orderStep, orderGeneration, orderMargin, step, stats,
                          [&] { return travel - orderTravel; })) {
             sched.installed(orderStep, orderMargin, stats);
+            sched.afterAsyncResult(stats, forceSeconds, detectSeconds);
             setTravel = orderTravel;
         }
     }
@@ -73,6 +78,9 @@ struct LoopModel {
             // The step itself: it must run on a set that is still valid.
             if (travel - setTravel > sched.margin() || step - sched.acsStep() > sched.nMax()) stepsOnExpiredSet++;
             travel += travelPerStep;
+            forceSeconds += forcePerStep;
+            stats.contactSetSizeSum += 1.0;
+            stats.realContactSum += 1.0 - std::min(1.0, falsePositivesPer20 * sched.nMax() / 20.0);
             stats.steps++;
             sched.afterStep(travel - setTravel);
         }
@@ -185,6 +193,39 @@ TEST(DetectionSchedule, AsyncLoopWithFastOwnersStaysSafe) {
     m.run(0, 3000);
     EXPECT_EQ(m.stepsOnExpiredSet, 0u);
     EXPECT_GT(m.stats.dynamicsWaits, 0u);
+}
+
+// kT on dT's GPU: n_max settles where D/n^2 = F/2 c, the minimum of D/n + F/2 phi(n) with
+// phi(n) = c n, i.e. sqrt(2 D / (F c)) = sqrt(2 x 0.02 / (0.004 x 0.05 / 20)) = 63 steps, well above
+// the latency bound (2.25 x 5 + 2), with every step still on a valid set and no more waiting once it
+// has adapted.
+TEST(DetectionSchedule, AsyncLoopOnTheDynamicsDeviceBalancesDetectionCost) {
+    LoopModel m;
+    m.settings = settingsWith(20, true);
+    m.settings.asyncDetection = true;
+    m.settings.maxVelocity = 1.f;
+    m.sched.configure(m.settings, true);
+    m.latency = 5;
+    m.travelPerStep = 1e-7;
+    m.detectSeconds = 0.02;
+    m.forcePerStep = 0.004;
+    m.falsePositivesPer20 = 0.05;
+    m.run(0, 4000);
+    const unsigned long long waits = m.stats.dynamicsWaits, updates = m.stats.acsUpdates;
+    m.run(4000, 8000);
+    EXPECT_EQ(m.stepsOnExpiredSet, 0u);
+    EXPECT_EQ(m.stats.dynamicsWaits, waits);
+    EXPECT_NEAR((double)m.sched.nMax(), 63.0, 3.0);
+    // About every 63 - (1.25 x 5 + 1) = 55 steps. The same loop with kT on its own device keeps
+    // the floor and detects about every 20 - 8 = 12 steps.
+    EXPECT_NEAR((double)(m.stats.acsUpdates - updates), 4000.0 / 55.0, 8.0);
+    LoopModel own = m;
+    own.sched = DetectionSchedule();
+    own.sched.configure(own.settings, false);
+    own.stats = CollaborationStats();
+    own.run(0, 4000);
+    EXPECT_EQ(own.sched.nMax(), 20u);
+    EXPECT_GT(own.stats.acsUpdates, 4 * (m.stats.acsUpdates - updates));
 }
 
 // Synchronous mode: detections only, every n_max steps; n_max follows the cost balance.

@@ -18,8 +18,12 @@ namespace deme {
 
 class DetectionSchedule {
   public:
-    void configure(const Settings& s) {
-        m_freq.configure(s.updateFreq, std::max(s.maxUpdateFreq, s.updateFreq), s.adaptiveUpdateFreq);
+    // detectionSharesDynamics: the kinematics side runs on the dynamics side's device (UpdateFrequency).
+    void configure(const Settings& s, bool detectionSharesDynamics = false) {
+        m_freq.configure(s.updateFreq, std::max(s.maxUpdateFreq, s.updateFreq), s.adaptiveUpdateFreq,
+                         detectionSharesDynamics);
+        m_asyncMark = CostMark{};
+        m_asyncMarked = false;
     }
 
     // The margin for a detection from the current state: the fastest geometry now (or the user's
@@ -65,6 +69,21 @@ class DetectionSchedule {
             return false;
         }
         return true;
+    }
+    // Asynchronous mode, a result accepted: where detection shares the dynamics side's device, n_max
+    // also balances what this detection took (`detectSeconds`, the kinematics side's time) against
+    // the force pass and false positives measured since the previous accepted result.
+    void afterAsyncResult(const CollaborationStats& stats, double forceSeconds, double detectSeconds) {
+        if (!m_freq.detectionSharesDynamics()) return;
+        const CostMark& c = m_asyncMark;
+        const double steps = (double)(stats.steps - c.steps);
+        if (m_asyncMarked && steps > 0.0) {
+            const double pairs = stats.contactSetSizeSum - c.pairs;
+            const double fp = pairs > 0.0 ? 1.0 - (stats.realContactSum - c.real) / pairs : 0.0;
+            m_freq.observeSharedCost(detectSeconds, (forceSeconds - c.forceSeconds) / steps, fp);
+        }
+        m_asyncMark = CostMark{stats.steps, forceSeconds, stats.contactSetSizeSum, stats.realContactSum, 0.0};
+        m_asyncMarked = true;
     }
     // An order was dropped unseen (e.g. the kinematics side was drained before a host edit).
     void dropped() { m_orderInFlight = false; }
@@ -117,7 +136,8 @@ class DetectionSchedule {
         double forceSeconds = 0.0, pairs = 0.0, real = 0.0, detectSeconds = 0.0;
     };
     UpdateFrequency m_freq;
-    CostMark m_costMark;
+    CostMark m_costMark, m_asyncMark;
+    bool m_asyncMarked = false;
     double m_margin = 0.0;
     unsigned long long m_acsStep = 0, m_generation = 0;
     bool m_orderInFlight = false, m_expired = false, m_needDetection = true;

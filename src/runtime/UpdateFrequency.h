@@ -10,12 +10,18 @@ namespace deme {
 
 class UpdateFrequency {
   public:
-    void configure(unsigned int initial, unsigned int maximum, bool adaptive) {
+    // detectionSharesDynamics: the kinematics side runs on the dynamics side's device (one GPU, two
+    // streams), so its kernels take the dynamics' multiprocessors and memory bandwidth: asynchronous
+    // detection is not free there, and n_max also balances its cost (observeSharedCost).
+    void configure(unsigned int initial, unsigned int maximum, bool adaptive, bool detectionSharesDynamics = false) {
         m_max = std::max(1u, maximum);
-        m_floor = m_n = std::min(std::max(1u, initial), m_max);
+        m_floor = m_n = m_costN = std::min(std::max(1u, initial), m_max);
+        m_latencyN = 0;
         m_adaptive = adaptive;
+        m_shared = detectionSharesDynamics;
         m_latency = -1.0;
     }
+    bool detectionSharesDynamics() const { return m_shared; }
     unsigned int nMax() const { return m_n; }
     bool adaptive() const { return m_adaptive; }
 
@@ -26,13 +32,14 @@ class UpdateFrequency {
     // kinematics thread shares the cores with the dynamics team, so detecting more often than the
     // user's n_max would only slow the dynamics down: that value stays the floor, and n_max rises
     // above it only when kinematics cannot keep up. The latency is smoothed, so one slow detection
-    // does not swing the margin.
+    // does not swing the margin. Where detection shares the dynamics' device, the cost balance
+    // (observeSharedCost) takes the floor's place.
     void observeLatency(unsigned int latencySteps) {
         const double l = (double)latencySteps;
         m_latency = m_latency < 0.0 ? l : 0.8 * m_latency + 0.2 * l;
         if (!m_adaptive) return;
-        const double target = std::ceil(2.25 * m_latency - 1e-6) + 2.0;
-        m_n = (unsigned int)std::min<double>(std::max(target, (double)m_floor), (double)m_max);
+        m_latencyN = (unsigned int)std::min<double>(std::ceil(2.25 * m_latency - 1e-6) + 2.0, (double)m_max);
+        combine();
     }
     // Synchronous detection: one detection cost `detectSeconds`; since the previous one, a step's
     // force pass took `forceSecondsPerStep` on average with a share `falsePositives` of the set not
@@ -42,11 +49,17 @@ class UpdateFrequency {
     // factor 2 per detection.
     void observeSyncCost(double detectSeconds, double forceSecondsPerStep, double falsePositives) {
         if (!m_adaptive || !(forceSecondsPerStep > 0.0) || !(detectSeconds > 0.0)) return;
-        const double phi = std::max(falsePositives, 1e-3);
-        const double n = (double)m_n;
-        double target = std::sqrt(detectSeconds * n / (0.5 * forceSecondsPerStep * phi));
-        target = std::min(std::max(target, 0.5 * n), 2.0 * n);
-        m_n = (unsigned int)std::min(std::max(std::round(target), 1.0), (double)m_max);
+        m_n = m_costN = costBalance(detectSeconds, forceSecondsPerStep, falsePositives);
+    }
+    // Asynchronous detection on the dynamics' device: the same balance, with the kinematics side's
+    // time for one detection as its cost (an upper bound of what it took from the dynamics, since
+    // the two streams overlap), but n_max never below what the latency needs (observeLatency).
+    // Measured on one H200 (BENCHMARKS.md): without it, a detection of a few steps' latency was
+    // ordered every dozen steps and the step rate fell below the synchronous mode's.
+    void observeSharedCost(double detectSeconds, double forceSecondsPerStep, double falsePositives) {
+        if (!m_adaptive || !m_shared || !(forceSecondsPerStep > 0.0) || !(detectSeconds > 0.0)) return;
+        m_costN = costBalance(detectSeconds, forceSecondsPerStep, falsePositives);
+        combine();
     }
 
     // Age (steps since its snapshot) at which the current set's successor should be ordered.
@@ -58,8 +71,20 @@ class UpdateFrequency {
     double smoothedLatency() const { return m_latency; }
 
   private:
-    unsigned int m_n = 20, m_max = 1000, m_floor = 1;
-    bool m_adaptive = true;
+    // The n minimising D/n + F/2 phi n / n_now, moved by at most a factor 2 from n_now = m_n.
+    unsigned int costBalance(double detectSeconds, double forceSecondsPerStep, double falsePositives) const {
+        const double phi = std::max(falsePositives, 1e-3);
+        const double n = (double)m_n;
+        double target = std::sqrt(detectSeconds * n / (0.5 * forceSecondsPerStep * phi));
+        target = std::min(std::max(target, 0.5 * n), 2.0 * n);
+        return (unsigned int)std::min(std::max(std::round(target), 1.0), (double)m_max);
+    }
+    // Asynchronous mode: what the latency needs, and no less than the floor or, where detection
+    // shares the dynamics' device, the cost balance.
+    void combine() { m_n = std::min(std::max(m_latencyN, m_shared ? m_costN : m_floor), m_max); }
+
+    unsigned int m_n = 20, m_max = 1000, m_floor = 1, m_costN = 20, m_latencyN = 0;
+    bool m_adaptive = true, m_shared = false;
     double m_latency = -1.0;
 };
 

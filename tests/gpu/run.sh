@@ -72,9 +72,11 @@ for step in "${steps[@]}"; do
         ;;
     settled)
         # The settled variant: 0.25 s of mixing as 125000 warm-up steps of 2e-6 s (the grains land on
-        # the floor), then 2000 timed steps of 5e-7 s. SETTLED="r:kind ..." picks the cases.
+        # the floor), then 2000 timed steps of 5e-7 s. SETTLED="r:kind[:mode] ..." picks the cases
+        # (mode auto, sync or async; auto by default).
         for spec in ${SETTLED:-0.004:spheres 0.004:clumps}; do
-            timeout 550 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj "${spec%%:*}" "${spec##*:}" 125000 2000 2e-6 2>&1 |
+            IFS=: read -r r kind mode <<<"$spec"
+            timeout "${SETTLED_TIMEOUT:-550}" ./build-gpu/bench/mixer .benchdata/internal_mixer.obj "$r" "$kind" 125000 2000 2e-6 1 "${mode:-auto}" 2>&1 |
                 tee -a "$OUT/settled.jsonl" | tail -n 3
         done
         ;;

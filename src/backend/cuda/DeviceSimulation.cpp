@@ -259,8 +259,10 @@ void DeviceSimulation::Impl::install(const DeviceDetectionResult& r, TimingStats
 
 void DeviceSimulation::Impl::consider(const DeviceDetectionResult& r, unsigned long long step, TimingStats& timing,
                                       CollaborationStats& collab) {
-    if (schedule.accept(r.orderStep, r.generation, r.margin, step, collab, [&] { return maxTravelSinceOrder(); }))
-        install(r, timing, collab);
+    if (!schedule.accept(r.orderStep, r.generation, r.margin, step, collab, [&] { return maxTravelSinceOrder(); }))
+        return;
+    install(r, timing, collab);
+    schedule.afterAsyncResult(collab, timing.seconds[(int)Phase::FORCE], r.binningSeconds + r.searchSeconds);
 }
 
 void DeviceSimulation::Impl::finishOrder(unsigned long long step, TimingStats& timing, CollaborationStats& collab) {
@@ -438,7 +440,8 @@ void DeviceSimulation::upload(const SimState& s, const BinGrid& g, const Setting
     d.domainDiagonal = length(s.domainSize);
     d.refreshView();
     // n_max is configured once; later uploads (after host-side edits) keep what it adapted to.
-    if (!d.scheduleConfigured) d.schedule.configure(settings);
+    // kT's kernels on dT's GPU take from dT's: n_max then weighs their cost too (UpdateFrequency).
+    if (!d.scheduleConfigured) d.schedule.configure(settings, d.kinematics->device() == d.device);
     d.scheduleConfigured = true;
     d.schedule.invalidate();
 }
