@@ -4,7 +4,7 @@
 // bin summed into bin starts, pair count, offsets, pair fill), and the result compared with the CPU's
 // detector (kinematics/ContactDetection.h), which is itself checked against brute force: the same
 // bin registry and the same contact list, pair for pair and in the same order. The kernels use
-// nothing of CUDA but the thread index and one atomic add, so the emulation is a few lines.
+// nothing of CUDA but the thread index and one atomic add (tests/HostKernelEmulation.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,37 +18,14 @@
 #include "kinematics/ContactDetection.h"
 #include "runtime/FamilyRules.h"
 
-namespace {
-struct EmulatedIndex {
-    unsigned int x = 0, y = 0, z = 0;
-};
-EmulatedIndex blockIdx, threadIdx, blockDim{1, 1, 1};
-// One thread at a time: the atomic is a plain add.
-unsigned int atomicAdd(unsigned int* at, unsigned int v) {
-    const unsigned int old = *at;
-    *at = old + v;
-    return old;
-}
-}  // namespace
-
-#define __global__
-#define __device__
+#include "HostKernelEmulation.h"
 #include "backend/cuda/kernels/Detection.cu"
-#undef __global__
-#undef __device__
+#include "HostKernelEmulationEnd.h"
 
 using namespace deme;
 using namespace deme_test;
 
 namespace {
-
-template <class Kernel>
-void runThreads(size_t n, Kernel k) {
-    for (size_t i = 0; i < n; i++) {
-        blockIdx.x = (unsigned int)i;
-        k();
-    }
-}
 
 void exclusiveSum(std::vector<unsigned int>& v) {
     unsigned int sum = 0;

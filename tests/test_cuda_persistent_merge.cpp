@@ -2,8 +2,8 @@
 // a GPU: the kernel file is compiled here for the host, each kernel run as a loop over its threads,
 // and the result compared with the CPU's installDetectedContacts (kinematics/HistoryMapping.cpp) on
 // random contact sets: the same pairs in the same order, the same persistent flags, the same initial
-// wildcards of new pairs. The kernels use nothing of CUDA but the thread index, so the emulation is
-// three variables. (History mapping of wildcards is Detection.cu's, tested on the GPU.)
+// wildcards of new pairs. The kernels use nothing of CUDA but the thread index
+// (tests/HostKernelEmulation.h). (History mapping of wildcards is Detection.cu's, tested on the GPU.)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,30 +13,13 @@
 
 #include "kinematics/HistoryMapping.h"
 
-namespace {
-struct EmulatedIndex {
-    unsigned int x = 0, y = 0, z = 0;
-};
-EmulatedIndex blockIdx, threadIdx, blockDim{1, 1, 1};
-}  // namespace
-
-#define __global__
-#define __device__
+#include "HostKernelEmulation.h"
 #include "backend/cuda/kernels/PersistentMerge.cu"
-#undef __global__
-#undef __device__
+#include "HostKernelEmulationEnd.h"
 
 using namespace deme;
 
 namespace {
-
-template <class Kernel>
-void runThreads(size_t n, Kernel k) {
-    for (size_t i = 0; i < n; i++) {
-        blockIdx.x = (unsigned int)i;
-        k();
-    }
-}
 
 struct Pairs {
     std::vector<bodyID_t> a, b;

@@ -1,0 +1,3 @@
+// Ends the kernel include that HostKernelEmulation.h began.
+#undef __global__
+#undef __device__
