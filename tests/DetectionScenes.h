@@ -6,6 +6,9 @@
 #include <vector>
 
 #include "api/Scene.h"
+#include "api/SceneAssembly.h"
+#include "dynamics/KinematicCache.h"
+#include "runtime/FamilyRules.h"
 
 namespace deme_test {
 
@@ -53,5 +56,24 @@ inline Scene randomScene(unsigned seed, size_t nClumps) {
     sc.externObjs.push_back(walls);
     return sc;
 }
+
+// The scene as detection sees it: assembled with the default model, geometry positions computed.
+inline SimState detectionState(const Scene& scene, const char* call) {
+    SimState s = assembleScene(
+        scene, resolveModelLayout(DEMForceModel(DEMForceModel::Kind::FRICTIONAL_HERTZIAN), scene, call));
+    refreshKinematicCache(s);
+    return s;
+}
+
+// The family rules the detection tests use with randomScene: families 0 and 2 do not touch, and
+// family 1 (the walls, and meshes put in it) reaches 0.2 mm further (SetFamilyExtraMargin).
+struct DetectionRules {
+    FamilyRules rules;
+    float extra[NUM_FAMILIES] = {};
+    DetectionRules() {
+        rules.setContact(0, 2, false);
+        extra[1] = 2e-4f;
+    }
+};
 
 }  // namespace deme_test

@@ -60,16 +60,13 @@ std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, double mar
 }  // namespace
 
 TEST(ContactDetection, MatchesBruteForceExactly) {
-    FamilyRules rules;
-    rules.setContact(0, 2, false);  // one masked family pair
-    float extra[NUM_FAMILIES] = {};
-    extra[1] = 2e-4f;  // family 1 (and the walls) reach further (SetFamilyExtraMargin)
+    const DetectionRules dr;
+    const FamilyRules& rules = dr.rules;
+    const float* extra = dr.extra;
     int cases = 0;
     for (unsigned seed : {1u, 2u, 3u}) {
         const Scene scene = randomScene(seed, 1500);
-        SimState s = assembleScene(scene, resolveModelLayout(DEMForceModel(DEMForceModel::Kind::FRICTIONAL_HERTZIAN),
-                                                             scene, "ContactDetection"));
-        refreshKinematicCache(s);
+        SimState s = detectionState(scene, "ContactDetection");
         // Bins smaller than the largest spheres, so that many spheres span several bins.
         for (double binSize : {0.0015, 0.004, 0.0}) {
             const BinGrid grid = makeBinGrid(s, binSize);

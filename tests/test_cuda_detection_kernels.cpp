@@ -170,16 +170,13 @@ Scene sceneWithMeshes(unsigned seed, size_t nClumps) {
 }  // namespace
 
 TEST(CudaDetectionKernels, MatchTheCpuDetectorExactly) {
-    FamilyRules rules;
-    rules.setContact(0, 2, false);  // one masked family pair
-    float extra[NUM_FAMILIES] = {};
-    extra[1] = 2e-4f;  // family 1 (walls, the floor mesh) reaches further
+    const DetectionRules dr;
+    const FamilyRules& rules = dr.rules;
+    const float* extra = dr.extra;
     int cases = 0;
     for (unsigned seed : {4u, 5u}) {
         const Scene scene = sceneWithMeshes(seed, 1200);
-        SimState s = assembleScene(scene, resolveModelLayout(DEMForceModel(DEMForceModel::Kind::FRICTIONAL_HERTZIAN),
-                                                             scene, "CudaDetectionKernels"));
-        refreshKinematicCache(s);
+        SimState s = detectionState(scene, "CudaDetectionKernels");
         ASSERT_GT(s.triangles.size(), 500u);
         for (double binSize : {0.0015, 0.004, 0.0}) {
             const BinGrid grid = makeBinGrid(s, binSize);

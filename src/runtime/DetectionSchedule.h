@@ -23,7 +23,6 @@ class DetectionSchedule {
         m_freq.configure(s.updateFreq, std::max(s.maxUpdateFreq, s.updateFreq), s.adaptiveUpdateFreq,
                          detectionSharesDynamics);
         m_asyncMark = CostMark{};
-        m_asyncMarked = false;
     }
 
     // The margin for a detection from the current state: the fastest geometry now (or the user's
@@ -75,15 +74,9 @@ class DetectionSchedule {
     // the force pass and false positives measured since the previous accepted result.
     void afterAsyncResult(const CollaborationStats& stats, double forceSeconds, double detectSeconds) {
         if (!m_freq.detectionSharesDynamics()) return;
-        const CostMark& c = m_asyncMark;
-        const double steps = (double)(stats.steps - c.steps);
-        if (m_asyncMarked && steps > 0.0) {
-            const double pairs = stats.contactSetSizeSum - c.pairs;
-            const double fp = pairs > 0.0 ? 1.0 - (stats.realContactSum - c.real) / pairs : 0.0;
-            m_freq.observeSharedCost(detectSeconds, (forceSeconds - c.forceSeconds) / steps, fp);
-        }
-        m_asyncMark = CostMark{stats.steps, forceSeconds, stats.contactSetSizeSum, stats.realContactSum, 0.0};
-        m_asyncMarked = true;
+        double force, fp;
+        if (m_asyncMark.since(stats, forceSeconds, force, fp)) m_freq.observeSharedCost(detectSeconds, force, fp);
+        m_asyncMark = CostMark::at(stats, forceSeconds, 0.0);
     }
     // An order was dropped unseen (e.g. the kinematics side was drained before a host edit).
     void dropped() { m_orderInFlight = false; }
@@ -110,18 +103,13 @@ class DetectionSchedule {
     void beforeSyncDetection(bool async, unsigned long long step, const CollaborationStats& stats,
                              double forceSeconds) {
         if (async || step <= m_acsStep) return;
-        const CostMark& c = m_costMark;
-        const double steps = (double)(stats.steps - c.steps);
-        if (!(steps > 0.0)) return;
-        const double force = (forceSeconds - c.forceSeconds) / steps;
-        const double pairs = stats.contactSetSizeSum - c.pairs;
-        const double fp = pairs > 0.0 ? 1.0 - (stats.realContactSum - c.real) / pairs : 0.0;
-        m_freq.observeSyncCost(c.detectSeconds, force, fp);
+        double force, fp;
+        if (m_costMark.since(stats, forceSeconds, force, fp)) m_freq.observeSyncCost(m_costMark.detectSeconds, force, fp);
     }
     // After it: what it cost, and the counters it is measured against next time.
     void afterSyncDetection(CollaborationStats& stats, double forceSeconds, double detectSeconds) {
         stats.syncDetections++;
-        m_costMark = CostMark{stats.steps, forceSeconds, stats.contactSetSizeSum, stats.realContactSum, detectSeconds};
+        m_costMark = CostMark::at(stats, forceSeconds, detectSeconds);
     }
 
     unsigned int nMax() const { return m_freq.nMax(); }
@@ -131,13 +119,26 @@ class DetectionSchedule {
     const UpdateFrequency& frequency() const { return m_freq; }
 
   private:
+    // The counters at one detection, which the cost of the steps after it is measured against.
     struct CostMark {
         unsigned long long steps = 0;
         double forceSeconds = 0.0, pairs = 0.0, real = 0.0, detectSeconds = 0.0;
+        static CostMark at(const CollaborationStats& stats, double forceSeconds, double detectSeconds) {
+            return CostMark{stats.steps, forceSeconds, stats.contactSetSizeSum, stats.realContactSum, detectSeconds};
+        }
+        // Since this mark: the force pass's seconds per step and the false-positive share of the
+        // set; false if no step was taken.
+        bool since(const CollaborationStats& stats, double forceNow, double& forcePerStep, double& falsePositives) const {
+            const double n = (double)(stats.steps - steps);
+            if (!(n > 0.0)) return false;
+            forcePerStep = (forceNow - forceSeconds) / n;
+            const double p = stats.contactSetSizeSum - pairs;
+            falsePositives = p > 0.0 ? 1.0 - (stats.realContactSum - real) / p : 0.0;
+            return true;
+        }
     };
     UpdateFrequency m_freq;
     CostMark m_costMark, m_asyncMark;
-    bool m_asyncMarked = false;
     double m_margin = 0.0;
     unsigned long long m_acsStep = 0, m_generation = 0;
     bool m_orderInFlight = false, m_expired = false, m_needDetection = true;
