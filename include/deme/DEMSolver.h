@@ -3,6 +3,7 @@
 // Initialize) or to the running simulation.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -15,6 +16,7 @@
 #include "Inspector.h"
 #include "Materials.h"
 #include "Mesh.h"
+#include "RunProgress.h"
 #include "Tracker.h"
 #include "VariableTypes.h"
 
@@ -206,6 +208,13 @@ class DEMSolver {
     void DoDynamics(double duration);
     void DoDynamicsThenSync(double duration);
     void DoStepDynamics();
+    // A function polled between the steps of DoDynamics (at most every 50 ms of wall time):
+    // returning true stops the call after the current step, with the state consistent
+    // (GetSimTime says how far it got); the next call goes on from there. A GUI's stop button, or
+    // Ctrl-C in the Python module. An empty function removes it.
+    void SetInterruptCheck(std::function<bool()> check);
+    // Whether the last DoDynamics / DoStepDynamics call was stopped by the interrupt check.
+    bool WasInterrupted() const;
 
     // ---- Queries ----
     double GetSimTime() const;
@@ -242,6 +251,7 @@ class DEMSolver {
     std::shared_ptr<DEMForceModel> chooseForceModel(const char* call, std::shared_ptr<DEMForceModel> model);
     std::unique_ptr<Scene> m_scene;
     std::unique_ptr<Simulation> m_sim;
+    int m_interruptHook = -1;
 };
 
 }  // namespace deme

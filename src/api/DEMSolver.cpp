@@ -259,6 +259,15 @@ void DEMSolver::DoStepDynamics() {
     m_sim->advance(1);
 }
 
+void DEMSolver::SetInterruptCheck(std::function<bool()> check) {
+    RunMonitor& monitor = m_sim->monitor();
+    if (m_interruptHook >= 0) monitor.removeHook(m_interruptHook);
+    m_interruptHook = -1;
+    if (check) m_interruptHook = monitor.addHook([check](const RunProgress& p) { return !p.finished && check(); });
+}
+
+bool DEMSolver::WasInterrupted() const { return m_sim->monitor().stopped(); }
+
 // ---------------------------------------------------------------- queries
 double DEMSolver::GetSimTime() const { return m_sim->time(); }
 double DEMSolver::GetTimeStep() const { return m_sim->settings.dt; }

@@ -136,7 +136,7 @@ void Simulation::advanceOnDevice(unsigned long long n) {
     if (loads) m_device->uploadTrackerLoads(m_state);
     cuda::DeviceStepTotals totals;
     const cuda::DeviceFault fault =
-        m_device->advance(n, settings, families, m_time, m_step, m_timing, collab, totals);
+        m_device->advance(n, settings, families, m_time, m_step, m_timing, collab, totals, m_monitor);
     m_hostStale = true;
     m_realContacts = totals.realContacts;
     m_realSphereSphere = totals.realSphereSphere;
@@ -166,13 +166,16 @@ void Simulation::advanceOnDevice(unsigned long long n) {
 }
 
 void Simulation::advance(unsigned long long n) {
+    m_monitor.begin(n, m_time, settings.dt, m_state.spheres.size());
     if (m_device) {
         advanceOnDevice(n);
+        m_monitor.end(m_time);
         return;
     }
     CollaborationStats& collab = m_contacts.stats();
     const auto t0 = std::chrono::steady_clock::now();
     for (unsigned long long k = 0; k < n; k++) {
+        m_monitor.pollsAfterThisStep();
         m_contacts.prepareStep(m_state, settings, families, m_step, m_lastMaxSpeed, m_timing);
         {
             PhaseTimer t(m_timing, Phase::FORCE);
@@ -205,7 +208,9 @@ void Simulation::advance(unsigned long long n) {
             log(Verbosity::STEP_METRIC,
                 "t = " + std::to_string(m_time) + " s, contacts " + std::to_string(m_realContacts) + ", max speed " +
                     std::to_string(m_lastMaxSpeed) + " m/s, n_max " + std::to_string(m_contacts.nMax()));
+        if (m_monitor.afterStep(m_time)) break;
     }
+    m_monitor.end(m_time);
     collab.dynamicsSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     clearTrackerLoads();
 }

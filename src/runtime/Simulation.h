@@ -10,6 +10,7 @@
 #include "forcemodel/ActiveForceModel.h"
 #include "runtime/ContactSetManager.h"
 #include "runtime/FamilyRules.h"
+#include "runtime/RunMonitor.h"
 #include "runtime/Settings.h"
 #include "runtime/SimState.h"
 #include "runtime/TimingStats.h"
@@ -30,8 +31,11 @@ class Simulation {
     bool initialized() const { return m_initialized; }
     // Takes over an assembled state and the force model; the first step detects contacts.
     void start(SimState&& state, ActiveForceModel&& model);
-    // Advances n steps of settings.dt.
+    // Advances n steps of settings.dt, or fewer if a hook of monitor() stops the call (monitor().stopped()).
     void advance(unsigned long long n);
+    // Progress reports and interrupt requests polled between steps.
+    RunMonitor& monitor() { return m_monitor; }
+    const RunMonitor& monitor() const { return m_monitor; }
 
     double time() const { return m_time; }
     // The state for reading; on the GPU backend it is brought back from the device first if the
@@ -96,6 +100,7 @@ class Simulation {
     bool m_initialized = false;
     size_t m_realContacts = 0, m_realSphereSphere = 0;
     float m_lastMaxSpeed = 0.f;
+    RunMonitor m_monitor;
     ContactSetManager m_contacts;  // last: its worker thread stops before the state goes
 };
 

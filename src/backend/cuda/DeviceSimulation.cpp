@@ -461,7 +461,7 @@ void DeviceSimulation::finishDetection(unsigned long long step, TimingStats& tim
 
 DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& settings, FamilyRules& families,
                                       double& time, unsigned long long& step, TimingStats& timing,
-                                      CollaborationStats& collab, DeviceStepTotals& totals) {
+                                      CollaborationStats& collab, DeviceStepTotals& totals, RunMonitor& monitor) {
     Impl& d = *m;
     d.select();
     DeviceFault fault;
@@ -483,9 +483,11 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
         if (nT && d.numContacts)
             launch(d.kResolveMesh, blocksFor(d.numContacts, THREADS), THREADS, 0, st, d.view, red);
         launch(d.kClearLoads, blocksFor(nO, THREADS), THREADS, 0, st, d.view);
-        // Per-contact forces are stored only in the last step of the call, the one the host can read.
+        // Per-contact forces are stored only in a step the host can read them after: the call's
+        // last, or one after which the monitor may stop the call.
+        const bool polled = monitor.pollsAfterThisStep();
         StateView stepView = d.view;
-        if (k + 1 < n) stepView.contacts.force = nullptr;
+        if (k + 1 < n && !polled) stepView.contacts.force = nullptr;
         d.model.launch(stepView, (float)time, (float)settings.dt, d.numClumps, nO - d.numClumps, red, st);
         DEME_CUDA_CHECK(CALL, cudaEventRecord(d.forceEnd, static_cast<cudaStream_t>(st)));
         launch(d.kIntegrate, blocksFor(nO, THREADS), THREADS, 0, st, d.view,
@@ -531,6 +533,7 @@ DeviceFault DeviceSimulation::advance(unsigned long long n, const Settings& sett
             }
             return fault;
         }
+        if (monitor.afterStep(time)) break;
     }
     return fault;
 }

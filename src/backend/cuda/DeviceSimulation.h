@@ -17,6 +17,7 @@
 #include "kinematics/ContactDetection.h"
 #include "runtime/CollaborationStats.h"
 #include "runtime/FamilyRules.h"
+#include "runtime/RunMonitor.h"
 #include "runtime/Settings.h"
 #include "runtime/SimState.h"
 #include "runtime/TimingStats.h"
@@ -50,10 +51,11 @@ class DeviceSimulation {
     // detection in flight (from the state being replaced) is waited for and dropped.
     void upload(const SimState& s, const BinGrid& grid, const Settings& settings, const FamilyRules& families,
                 CollaborationStats& collab);
-    // Advances n steps of settings.dt. Stops at the first step with a fault and reports it.
+    // Advances n steps of settings.dt. Stops at the first step with a fault and reports it, or
+    // where a hook of `monitor` asks.
     DeviceFault advance(unsigned long long n, const Settings& settings, FamilyRules& families, double& time,
                         unsigned long long& step, TimingStats& timing, CollaborationStats& collab,
-                        DeviceStepTotals& totals);
+                        DeviceStepTotals& totals, RunMonitor& monitor);
     // Copies the evolved state and contact set back into `s` (the layout upload() took).
     void download(SimState& s) const;
     // Tracker loads (AddAcc) for the coming call, or zeros.
