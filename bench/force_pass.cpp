@@ -12,12 +12,14 @@
 
 #include "BenchUtil.h"
 #include "api/Scene.h"
+#include "api/ForceModelSetup.h"
 #include "api/SceneAssembly.h"
-#include "backend/cpu/Parallel.h"
+#include "parallel/Parallel.h"
 #include "dynamics/KinematicCache.h"
-#include "forcemodel/ActiveForceModel.h"
-#include "kinematics/ContactDetection.h"
-#include "kinematics/HistoryMapping.h"
+#include "backend/cpu/CpuForceModel.h"
+#include "backend/cpu/ContactDetector.h"
+#include "backend/cpu/HistoryMapping.h"
+#include "kinematics/BinGridSizing.h"
 #include "runtime/FamilyRules.h"
 
 using namespace deme;
@@ -81,7 +83,7 @@ std::shared_ptr<DEMForceModel> hertzMindlinAsSnippet() {
 void timeModel(const Scene& scene, const DEMForceModel& model, const char* name, int passes) {
     const ModelLayout layout = resolveModelLayout(model, scene, "force_pass");
     SimState s = assembleScene(scene, layout);
-    const ActiveForceModel active = loadForceModel(layout, "force_pass");
+    const CpuForceModel active = loadCpuForceModel(layout, "force_pass");
     refreshKinematicCache(s);
     // The contact set of a detection with a 20 um margin (about a fifth of its pairs apart).
     const BinGrid grid = makeBinGrid(s, 0.0);

@@ -100,30 +100,20 @@ endif()
 function(deme_embed_sources target)
   set(src ${PROJECT_SOURCE_DIR}/src)
   set(inc ${PROJECT_SOURCE_DIR}/include)
-  # The one list of embedded files: the physics models and the code a force loop is built from, and
-  # everything those include (the script above checks that nothing is missing).
-  file(GLOB physics_headers CONFIGURE_DEPENDS ${src}/physics/*.h)
-  file(GLOB physics_models CONFIGURE_DEPENDS ${src}/physics/models/*.inl)
-  # GPU kernels compiled by NVRTC at run time (embedded even without the CUDA backend, so that the
-  # embedded set, and with it the cache keys, is one per source tree).
-  file(GLOB cuda_kernels CONFIGURE_DEPENDS ${src}/backend/cuda/kernels/*.cuh ${src}/backend/cuda/kernels/*.cu)
-  set(files
-    ${physics_headers}
-    ${physics_models}
-    ${cuda_kernels}
+  # The one list of embedded files (the script above checks that everything they include is in it):
+  # the per-item code (physics, state, detection and dynamics rules), the CPU's force loop that a
+  # custom model is compiled into, and the GPU kernels NVRTC compiles at run time (embedded even
+  # without the CUDA backend, so that the embedded set, and with it the cache keys, is one per
+  # source tree).
+  file(GLOB files CONFIGURE_DEPENDS
+    ${src}/physics/*.h ${src}/physics/models/*.inl ${src}/state/*.h ${src}/parallel/*.h ${src}/kinematics/*.h
+    ${src}/dynamics/*.h ${src}/backend/cuda/kernels/*.cuh ${src}/backend/cuda/kernels/*.cu)
+  list(APPEND files
     ${inc}/deme/HostDevice.h
     ${inc}/deme/VectorTypes.h
     ${inc}/deme/VariableTypes.h
-    ${src}/runtime/SimState.h
-    ${src}/runtime/StateView.h
-    ${src}/runtime/FamilyStepMotion.h
-    ${src}/backend/cpu/Parallel.h
-    ${src}/dynamics/ContactInputsGather.h
-    ${src}/dynamics/ForcePassLoop.h
-    ${src}/dynamics/ForcePassResult.h
-    ${src}/dynamics/OwnerStep.h
-    ${src}/dynamics/MeshContactRule.h
-    ${src}/dynamics/KinematicCache.h)
+    ${src}/backend/cpu/ForcePassLoop.h
+    ${src}/backend/cpu/ForcePassResult.h)
 
   # Include paths are relative to include/ or src/, the roots the library itself compiles with, so
   # the files' own #include lines resolve unchanged.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "api/Scene.h"
+#include "api/ForceModelSetup.h"
 #include "api/SceneAssembly.h"
 #include "dynamics/KinematicCache.h"
 #include "runtime/FamilyRules.h"

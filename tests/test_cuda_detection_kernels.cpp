@@ -1,8 +1,8 @@
 // The GPU's contact-detection kernels (src/backend/cuda/kernels/Detection.cu) checked without a GPU:
 // the kernel file is compiled here for the host, each kernel run as a loop over its threads in the
-// order DeviceKinematics::detect launches them (bin boxes, entries, a stable sort by bin, entries per
+// order CudaKinematics::detect launches them (bin boxes, entries, a stable sort by bin, entries per
 // bin summed into bin starts, pair count, offsets, pair fill), and the result compared with the CPU's
-// detector (kinematics/ContactDetection.h), which is itself checked against brute force: the same
+// detector (backend/cpu/ContactDetector.h), which is itself checked against brute force: the same
 // bin registry and the same contact list, pair for pair and in the same order. The kernels use
 // nothing of CUDA but the thread index and one atomic add (tests/HostKernelEmulation.h).
 #include <gtest/gtest.h>
@@ -14,8 +14,9 @@
 #include "DetectionScenes.h"
 #include "MeshBuilders.h"
 #include "api/SceneAssembly.h"
+#include "kinematics/BinGridSizing.h"
 #include "dynamics/KinematicCache.h"
-#include "kinematics/ContactDetection.h"
+#include "backend/cpu/ContactDetector.h"
 #include "runtime/FamilyRules.h"
 
 #include "HostKernelEmulation.h"
@@ -42,9 +43,9 @@ struct EmulatedBins {
     std::vector<unsigned int> count, keys, items, sortedKeys, sortedItems, start;
 };
 
-// The binning of DeviceKinematics::detect, for n items whose boxes `boxes(lo, hi, count)` sets.
+// The binning of CudaKinematics::detect, for n items whose boxes `boxes(lo, hi, count)` sets.
 template <class Boxes>
-void emulateBinning(EmulatedBins& b, unsigned int n, const BinGridView& g, size_t numBins, Boxes&& boxes) {
+void emulateBinning(EmulatedBins& b, unsigned int n, const BinGrid& g, size_t numBins, Boxes&& boxes) {
     b.lo.assign(3 * (size_t)n, 0);
     b.hi.assign(3 * (size_t)n, 0);
     b.count.assign(n + 1, 0);
@@ -93,39 +94,35 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& grid, double margin,
     v.numSpheres = (uint32_t)s.spheres.size();
     v.numAnalytical = (uint32_t)s.analytical.size();
     v.numTriangles = (uint32_t)s.triangles.size();
-    const BinGridView g{grid.origin, grid.size, (int)grid.nx, (int)grid.ny, (int)grid.nz};
     const unsigned int nS = v.numSpheres, nT = v.numTriangles;
+    DetectionArgs args{grid, margin, extra, mask, {}, {}, nullptr, nullptr};
 
     EmulatedDetection r;
-    emulateBinning(r.spheres, nS, g, grid.numBins(), [&] {
+    emulateBinning(r.spheres, nS, grid, grid.numBins(), [&] {
         runThreads(nS, [&] {
-            deme_sphere_bin_boxes(v, g, margin, extra, r.spheres.lo.data(), r.spheres.hi.data(), r.spheres.count.data());
+            deme_sphere_bin_boxes(v, args, r.spheres.lo.data(), r.spheres.hi.data(), r.spheres.count.data());
         });
     });
     std::vector<double3> triLo(nT), triHi(nT);
-    emulateBinning(r.triangles, nT, g, grid.numBins(), [&] {
+    emulateBinning(r.triangles, nT, grid, grid.numBins(), [&] {
         runThreads(nT, [&] {
-            deme_triangle_bin_boxes(v, g, margin, extra, triLo.data(), triHi.data(), r.triangles.lo.data(),
-                                    r.triangles.hi.data(), r.triangles.count.data());
+            deme_triangle_bin_boxes(v, args, triLo.data(), triHi.data(), r.triangles.lo.data(), r.triangles.hi.data(),
+                                    r.triangles.count.data());
         });
     });
-    const PairSearchArgs args{g,
-                              margin,
-                              extra,
-                              mask,
-                              r.spheres.lo.data(),
-                              r.spheres.hi.data(),
-                              r.spheres.start.data(),
-                              r.spheres.sortedItems.data(),
-                              r.triangles.start.data(),
-                              r.triangles.sortedItems.data(),
-                              triLo.data(),
-                              triHi.data()};
-    std::vector<unsigned int> offset(nS + 1, 0);
+    args.sphereBins = BinsView{r.spheres.lo.data(), r.spheres.hi.data(), r.spheres.start.data(),
+                               r.spheres.sortedItems.data()};
+    if (nT)
+        args.triangleBins = BinsView{r.triangles.lo.data(), r.triangles.hi.data(), r.triangles.start.data(),
+                                     r.triangles.sortedItems.data()};
+    args.triLo = triLo.data();
+    args.triHi = triHi.data();
+    std::vector<unsigned int> count(nS + 1, 0);
     runThreads(nS, [&] {
-        deme_pair_search(v, args, offset.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr,
+        deme_pair_search(v, args, count.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr,
                          (uint8_t*)nullptr);
     });
+    std::vector<unsigned int> offset = count;
     exclusiveSum(offset);
     const unsigned int total = offset[nS];
     DetectedContacts& c = r.contacts;
@@ -133,12 +130,13 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& grid, double margin,
     c.geomB.assign(total, 0);
     c.type.assign(total, 0);
     runThreads(nS, [&] {
-        deme_pair_search(v, args, nullptr, offset.data(), c.geomA.data(), c.geomB.data(), c.type.data());
+        deme_pair_search(v, args, count.data(), offset.data(), c.geomA.data(), c.geomB.data(), c.type.data());
     });
     return r;
 }
 
-// The CPU's registry of the same items, for the bin starts and the entries in bin order.
+// The CPU's registry of the same items (its counting sort), for the bin starts and the entries in
+// bin order; the boxes are the shared rule's, with the margin written out here.
 BinRegistry cpuSphereBins(const SimState& s, const BinGrid& grid, double margin, const float* extra) {
     BinRegistry reg;
     const size_t n = s.spheres.size();
@@ -146,7 +144,8 @@ BinRegistry cpuSphereBins(const SimState& s, const BinGrid& grid, double margin,
     for (size_t i = 0; i < n; i++) {
         const double e = (double)s.spheres.radius[i] + margin + (double)extra[s.owners.family[s.spheres.owner[i]]];
         const double3 p = s.cache.spherePos[i];
-        reg.setBox(grid, i, make_double3(p.x - e, p.y - e, p.z - e), make_double3(p.x + e, p.y + e, p.z + e));
+        const BinBox b = binBox(grid, make_double3(p.x - e, p.y - e, p.z - e), make_double3(p.x + e, p.y + e, p.z + e));
+        storeBinBox(b, i, reg.lo.data(), reg.hi.data());
     }
     reg.build(grid, n);
     return reg;
@@ -208,7 +207,7 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorExactly) {
 // of bins below and above hold nothing. Every bin's start must still be the first entry at or after
 // it, and the last one the number of entries.
 TEST(CudaDetectionKernels, BinStartsOfAMostlyEmptyGrid) {
-    const BinGridView g{make_double3(0, 0, 0), 1.0, 4, 4, 50};
+    const BinGrid g{make_double3(0, 0, 0), 1.0, 4, 4, 50};
     const size_t numBins = 4 * 4 * 50;
     // Three unit boxes at z in [20, 22): items 0 and 1 share bins.
     std::vector<int> lo = {0, 0, 20, 1, 1, 20, 3, 3, 21}, hi = {1, 1, 21, 2, 2, 21, 3, 3, 21};

@@ -11,7 +11,7 @@
 #include <set>
 #include <vector>
 
-#include "kinematics/HistoryMapping.h"
+#include "backend/cpu/HistoryMapping.h"
 
 #include "HostKernelEmulation.h"
 #include "backend/cuda/kernels/PersistentMerge.cu"

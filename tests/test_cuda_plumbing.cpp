@@ -18,8 +18,9 @@
 #include "backend/cuda/DeviceBuffer.h"
 #include "backend/cuda/NvrtcCompiler.h"
 #include "jit/EmbeddedSources.h"
-#include "runtime/BackendSelection.h"
-#include "runtime/FamilyMotionSource.h"
+#include "backend/BackendSelection.h"
+#include "codegen/FamilyMotionSource.h"
+#include "runtime/FamilyRules.h"
 
 using namespace deme;
 using namespace deme::cuda;
@@ -147,7 +148,7 @@ TEST_F(CudaNvrtc, FamilyPrescriptionsCompile) {
         }
     }
     rules.motion(255).fixed = true;
-    const std::string source = familyMotionKernelSource(rules);
+    const std::string source = familyMotionKernelSource(rules.motions());
     EXPECT_NE(source.find("case 255:"), std::string::npos);
     EXPECT_NE(source.find("s.fixed = 1;"), std::string::npos);
     try {

@@ -1,5 +1,5 @@
 // Tests for deme::Expression, the prescribed-motion expression compiler.
-#include "api/Expression.h"
+#include "codegen/Expression.h"
 
 #include <deme/Error.h>
 #include <deme/VariableTypes.h>

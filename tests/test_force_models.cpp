@@ -71,7 +71,7 @@ class ForceModelBitIdentity : public ScratchDirTest {};
 
 }  // namespace
 
-// Test 1 of the issue. The same model text in the same loop template (dynamics/ForcePassLoop.h), built
+// Test 1 of the issue. The same model text in the same loop template (backend/cpu/ForcePassLoop.h), built
 // into the library or compiled at run time with the library's flags, must give the same bits: every
 // clump's position, orientation and velocities, written with %.9g (exact for floats), at every frame.
 TEST_F(ForceModelBitIdentity, DefaultModelAsSnippetMatchesBuiltIn) {

@@ -7,7 +7,7 @@
 
 #include "BondedCompression.h"
 #include "ForceModelTestUtil.h"
-#include "kinematics/HistoryMapping.h"
+#include "backend/cpu/HistoryMapping.h"
 
 using namespace deme;
 using namespace deme_test;

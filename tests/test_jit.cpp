@@ -27,7 +27,7 @@
 #include "jit/HostCompiler.h"
 #include "jit/KernelCache.h"
 #include "physics/Quaternion.h"
-#include "runtime/SimState.h"
+#include "state/SimState.h"
 
 using namespace deme;
 using namespace deme::jit;
@@ -223,8 +223,8 @@ TEST_F(JitEmbeddedSources, HoldTheForceLoopHeadersUnderTheirIncludePaths) {
         EXPECT_GT(f.size, 0u) << f.path;
     }
     for (const char* p : {"deme/HostDevice.h", "deme/VectorTypes.h", "deme/VariableTypes.h", "physics/Quaternion.h",
-                          "physics/BuiltInForceModels.h", "physics/models/HertzMindlin.inl", "runtime/SimState.h",
-                          "dynamics/ContactInputsGather.h", "dynamics/ForcePassLoop.h", "dynamics/KinematicCache.h"})
+                          "physics/BuiltInForceModels.h", "physics/models/HertzMindlin.inl", "state/SimState.h",
+                          "dynamics/ContactInputsGather.h", "backend/cpu/ForcePassLoop.h", "dynamics/KinematicCache.h"})
         EXPECT_TRUE(paths.count(p)) << p;
     EXPECT_TRUE(
         std::is_sorted(embeddedSources().begin(), embeddedSources().end(),
@@ -338,7 +338,7 @@ TEST_F(JitHostCompiler, ContactInputsGatherCompilesFromTheEmbeddedTree) {
     const char* source = R"(
 #include "dynamics/ContactInputsGather.h"
 #include "dynamics/KinematicCache.h"
-#include "runtime/SimState.h"
+#include "state/SimState.h"
 extern "C" size_t sizeOfContactInputs() { return sizeof(deme::ContactInputs); }
 extern "C" size_t sizeOfSimState() { return sizeof(deme::SimState); }
 extern "C" void gather(const deme::SimState* s, size_t c, float time, float ts, deme::ContactInputs* in) {

@@ -6,16 +6,17 @@
 #include <iostream>
 #include <sstream>
 
-#include "api/Expression.h"
+#include "codegen/Expression.h"
 #include "api/Scene.h"
+#include "api/ForceModelSetup.h"
 #include "api/SceneAssembly.h"
 #include "api/Validate.h"
-#include "backend/cpu/Parallel.h"
+#include "parallel/Parallel.h"
 #include "io/ClumpCsvReader.h"
 #include "io/ObjReader.h"
 #include "io/OutputWriters.h"
 #include "backend/cuda/DeviceBuffer.h"
-#include "runtime/BackendSelection.h"
+#include "backend/BackendSelection.h"
 #include "runtime/ContactEdits.h"
 #include "runtime/Simulation.h"
 #include "runtime/StatsReport.h"
@@ -212,12 +213,11 @@ void DEMSolver::Initialize() {
     const ModelLayout layout = resolveModelLayout(*m_scene->forceModel, *m_scene, call);
     SimState state = assembleScene(*m_scene, layout);
     applyWildcardValuesGivenEarly(*m_scene, layout, state);
-    // A custom model is compiled here (or found in the cache); a compile error leaves the solver as it was.
-    ActiveForceModel model = loadForceModel(layout, "Initialize (contact force model)");
-    // So does a failure to start (no usable GPU for SetBackend("cuda"), a model NVRTC rejects): the
-    // scene's objects are marked initialized only once the simulation runs, so the user may fix the
-    // cause and call Initialize again.
-    m_sim->start(std::move(state), std::move(model));
+    // The backend is chosen and a custom model compiled for it here (or found in the cache). A
+    // failure to start (a model the compiler rejects, no usable GPU for SetBackend("cuda")) leaves the
+    // solver as it was: the scene's objects are marked initialized only once the simulation runs, so
+    // the user may fix the cause and call Initialize again.
+    m_sim->start(std::move(state), layout);
     m_scene->forceModel->m_locked = true;
     size_t offset = 0;
     for (auto& b : m_scene->batches) {

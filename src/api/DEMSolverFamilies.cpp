@@ -7,11 +7,11 @@
 #include <iostream>
 #include <sstream>
 
-#include "api/Expression.h"
+#include "codegen/Expression.h"
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
 #include "api/Validate.h"
-#include "backend/cpu/Parallel.h"
+#include "parallel/Parallel.h"
 #include "io/ClumpCsvReader.h"
 #include "io/ObjReader.h"
 #include "io/OutputWriters.h"

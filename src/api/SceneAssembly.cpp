@@ -1,5 +1,7 @@
 #include "api/SceneAssembly.h"
 
+#include "api/ForceModelSetup.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>

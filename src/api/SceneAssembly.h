@@ -5,7 +5,7 @@
 
 #include "api/Scene.h"
 #include "forcemodel/ModelLayout.h"
-#include "runtime/SimState.h"
+#include "state/SimState.h"
 
 namespace deme {
 

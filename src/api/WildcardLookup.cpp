@@ -7,7 +7,7 @@
 namespace deme {
 
 unsigned int wildcardIndex(const Simulation& sim, const char* call, WildcardKind kind, const std::string& name) {
-    const ModelLayout& L = sim.forceModel().layout;
+    const ModelLayout& L = sim.forceModel();
     const std::vector<std::string>& list = kind == WildcardKind::CONTACT ? L.contactWildcards
                                            : kind == WildcardKind::OWNER ? L.ownerWildcards
                                                                          : L.geometryWildcards;

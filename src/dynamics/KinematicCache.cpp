@@ -1,6 +1,6 @@
 #include "dynamics/KinematicCache.h"
 
-#include "backend/cpu/Parallel.h"
+#include "parallel/Parallel.h"
 #include "dynamics/OwnerStep.h"
 
 namespace deme {

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "physics/RigidBody.h"
-#include "runtime/SimState.h"
+#include "state/SimState.h"
 
 namespace deme {
 

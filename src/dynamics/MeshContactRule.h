@@ -6,6 +6,10 @@
 
 namespace deme {
 
+// Most overlapping sphere-triangle contacts one sphere may have on the GPU, whose kernel sorts them
+// in a local array (a larger count stops the run with an error naming the sphere).
+constexpr unsigned int MAX_MESH_CANDIDATES = 64;
+
 // One sphere-triangle contact of the sphere being resolved.
 struct MeshCandidate {
     uint32_t contact;

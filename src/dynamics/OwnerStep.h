@@ -1,11 +1,11 @@
 // One integration step of one owner, and the cached poses of its spheres and triangles: the
 // per-item code of the integration sweeps, written once over the state type (SimState on the CPU, a
-// StateView of device memory on the GPU). See dynamics/Integration.h for the sweeps.
+// StateView of device memory on the GPU). See backend/cpu/Integration.h for the sweeps.
 #pragma once
 
 #include "physics/CompactPosition.h"
 #include "physics/RigidBody.h"
-#include "runtime/FamilyStepMotion.h"
+#include "state/FamilyStepMotion.h"
 
 namespace deme {
 

@@ -1,6 +1,6 @@
 // The translation unit compiled at run time for a custom force model: the user's code as the body of
 // a model functor that defines every variable the model may use (docs/force-models.md), instantiated
-// in the engine's own force loop (dynamics/ForcePassLoop.h) and exported as an extern "C" force pass.
+// in the engine's own force loop (backend/cpu/ForcePassLoop.h) and exported as an extern "C" force pass.
 #pragma once
 
 #include <sstream>
@@ -11,7 +11,7 @@
 
 namespace deme {
 
-// Name of the exported force pass, of type ForcePassFunction (dynamics/ForcePass.h).
+// Name of the exported force pass, of type ForcePassFunction (backend/cpu/ForcePass.h).
 constexpr const char* kGeneratedForcePassSymbol = "deme_force_pass";
 
 std::string generateForceModelSource(const ModelLayout& layout);

@@ -1,15 +1,13 @@
 // What a force model reads, laid out for the engine: the model's kind and source, the material
 // properties it sees per material and per pair, and its wildcards, in the order of the state's
-// tables (SimState::materials, SimState::wildcards, ContactArrays::wildcards).
+// tables (SimState::materials, SimState::wildcards, ContactArrays::wildcards). Resolved from the
+// user's scene by api/ForceModelSetup.h.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include <deme/ForceModel.h>
-
-#include "api/Scene.h"
-#include "runtime/SimState.h"
 
 namespace deme {
 
@@ -27,13 +25,5 @@ struct ModelLayout {
 
 // Index of `name` in `list`, or -1.
 int indexOf(const std::vector<std::string>& list, const std::string& name);
-
-// Checks the scene's materials against the model (every must-have property in every material, a
-// value for every pair of each pairwise property, no pair value the model does not read per pair)
-// and the model's names against each other; throws deme::Error naming `call` and the culprit.
-ModelLayout resolveModelLayout(const DEMForceModel& model, const Scene& scene, const char* call);
-
-// Fills `mt`: the standard and derived tables, and the model's properties by name.
-void buildMaterialTables(const Scene& scene, const ModelLayout& layout, MaterialTables& mt);
 
 }  // namespace deme

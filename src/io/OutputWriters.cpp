@@ -31,7 +31,7 @@ void finish(File& f, const std::string& path, const char* call) {
 // The owner wildcards' names as header columns, if EnableOwnerWildcardOutput asked for them.
 void ownerWildcardHeader(FILE* f, const Simulation& sim) {
     if (!sim.settings.outOwnerWildcards) return;
-    for (const std::string& name : sim.forceModel().layout.ownerWildcards) std::fprintf(f, ",%s", name.c_str());
+    for (const std::string& name : sim.forceModel().ownerWildcards) std::fprintf(f, ",%s", name.c_str());
 }
 
 void ownerWildcardColumns(FILE* f, const Simulation& sim, size_t owner) {

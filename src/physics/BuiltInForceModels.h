@@ -1,5 +1,5 @@
 // The built-in contact force models, compiled statically into the library (no compiler is needed at
-// run time for them). Each is a functor of the shape the force loop expects (dynamics/ForcePassLoop.h):
+// run time for them). Each is a functor of the shape the force loop expects (backend/cpu/ForcePassLoop.h):
 // it defines, as local variables, the inputs its model body refers to and includes that body, the
 // same text a user could hand to DefineContactForceModel (docs/force-models.md).
 #pragma once

@@ -3,7 +3,7 @@
 // their two owners, and the edits themselves.
 #pragma once
 
-#include "runtime/SimState.h"
+#include "state/SimState.h"
 
 namespace deme {
 

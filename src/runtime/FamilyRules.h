@@ -1,29 +1,15 @@
 // Per-family rules: fixed, prescribed velocities (expressions of time) and the contact mask.
 #pragma once
 
-#include "runtime/FamilyStepMotion.h"
-
 #include <array>
 #include <vector>
 
 #include <deme/VariableTypes.h>
 
-#include "api/Expression.h"
+#include "codegen/FamilyMotion.h"
+#include "state/FamilyStepMotion.h"
 
 namespace deme {
-
-struct FamilyMotion {
-    bool fixed = false;
-    bool linPrescribed[3] = {false, false, false};
-    bool angPrescribed[3] = {false, false, false};
-    Expression lin[3], ang[3];
-    bool hasAny() const {
-        return fixed || linPrescribed[0] || linPrescribed[1] || linPrescribed[2] || angPrescribed[0] ||
-               angPrescribed[1] || angPrescribed[2];
-    }
-};
-
-// What the integrator needs of a family in one step: the expressions evaluated at that step.
 
 class FamilyRules {
   public:
@@ -31,6 +17,7 @@ class FamilyRules {
 
     FamilyMotion& motion(unsigned int family) { return m_motion[family]; }
     const FamilyMotion& motion(unsigned int family) const { return m_motion[family]; }
+    const std::array<FamilyMotion, NUM_FAMILIES>& motions() const { return m_motion; }
     void setContact(unsigned int a, unsigned int b, bool enabled) {
         m_contactEnabled[a * NUM_FAMILIES + b] = enabled;
         m_contactEnabled[b * NUM_FAMILIES + a] = enabled;

@@ -1,25 +1,21 @@
-// The running simulation: owns the flat state and advances it step by step (the dynamics side);
-// the contact-set manager supplies valid contact sets, from the kinematics thread or synchronously.
+// The running simulation: owns the host state (the record between calls) and the backends, and runs
+// the engine's one step loop over them (advance) with the one contact-set schedule
+// (ContactSetManager). Which backend runs the steps (CPU or CUDA) is decided at start().
 #pragma once
 
-#include <array>
 #include <memory>
 
-#include "kinematics/ContactDetection.h"
-#include "dynamics/Integration.h"
-#include "forcemodel/ActiveForceModel.h"
+#include "forcemodel/ModelLayout.h"
+#include "kinematics/BinGrid.h"
+#include "runtime/Backends.h"
 #include "runtime/ContactSetManager.h"
 #include "runtime/FamilyRules.h"
 #include "runtime/RunMonitor.h"
 #include "runtime/Settings.h"
-#include "runtime/SimState.h"
 #include "runtime/TimingStats.h"
+#include "state/SimState.h"
 
 namespace deme {
-
-namespace cuda {
-class DeviceSimulation;
-}
 
 class Simulation {
   public:
@@ -29,8 +25,9 @@ class Simulation {
     FamilyRules families;
 
     bool initialized() const { return m_initialized; }
-    // Takes over an assembled state and the force model; the first step detects contacts.
-    void start(SimState&& state, ActiveForceModel&& model);
+    // Takes over an assembled state, chooses the backend and loads the force model for it; the first
+    // step detects contacts.
+    void start(SimState&& state, const ModelLayout& model);
     // Advances n steps of settings.dt, or fewer if a hook of monitor() stops the call (monitor().stopped()).
     void advance(unsigned long long n);
     // Progress reports and interrupt requests polled between steps.
@@ -41,10 +38,10 @@ class Simulation {
     // The state for reading; on the GPU backend it is brought back from the device first if the
     // device has moved on.
     const SimState& state() const;
-    // The state for editing (tracker setters, family changes): the device copy is replaced by it
-    // before the next step.
+    // The state for editing (tracker setters, family changes): the backend's copy is replaced by it
+    // before the next step, which re-detects contacts.
     SimState& editState();
-    // The state for adding tracker loads (AddAcc): they go to the device with the next call by
+    // The state for adding tracker loads (AddAcc): they go to the backend with the next call by
     // themselves, without replacing its state.
     SimState& trackerLoadState() {
         state();
@@ -53,19 +50,21 @@ class Simulation {
     const TimingStats& timing() const { return m_timing; }
     size_t numRealContacts() const { return m_realContacts; }
     size_t numSphereSphereContacts() const { return m_realSphereSphere; }
-    double currentMargin() const;
-    unsigned int updateFreq() const;  // the n_max in use
+    double currentMargin() const { return m_contacts.margin(); }
+    unsigned int updateFreq() const { return m_contacts.nMax(); }  // the n_max in use
     const ContactSetManager& contactSets() const { return m_contacts; }
-    const ActiveForceModel& forceModel() const { return m_model; }
-    // Makes s.contacts the set the next step would start from (waiting for the kinematics thread or
+    const ModelLayout& forceModel() const { return m_model; }
+    // Makes s.contacts the set the next step would start from (waiting for the kinematics side or
     // detecting now), for host-side edits of the contacts.
     void refreshContactSet();
     // Resolves settings.detectionMode into settings.asyncDetection and sizes the dynamics thread
     // team accordingly.
     void applyDetectionMode();
-    // Lets the kinematics thread finish its order and installs the result.
+    // Lets the kinematics side finish its order and installs the result.
     void syncContactDetection();
     const BinGrid& binGrid() const { return m_grid; }
+    // "CPU, 2 threads" or "GPU 0 (NVIDIA H200)".
+    std::string backendDescription() const { return m_backends.dynamics ? m_backends.dynamics->description() : ""; }
 
     // Host-side changes to the state (tracker setters, family changes) call this so that the next
     // step re-detects contacts instead of trusting the old margin.
@@ -80,28 +79,27 @@ class Simulation {
     void log(Verbosity level, const std::string& msg) const;
 
   private:
+    // Gives the backend the host state if the host edited it since (and re-detects then).
+    void uploadIfEdited();
     void clearTrackerLoads();
-    void startDevice();
-    void advanceOnDevice(unsigned long long n);
-    [[noreturn]] void reportFault(const IntegrationResult& ir) const;
+    [[noreturn]] void reportFault(const StepOutcome& out) const;
 
     mutable SimState m_state;
-    // GPU backend: the device step loop; whether the device's copy is behind the host's (needs an
-    // upload) or the host's behind the device's (needs a download).
-    std::unique_ptr<cuda::DeviceSimulation> m_device;
-    bool m_deviceStale = true;
+    ModelLayout m_model;
+    // Whether the backend's copy is behind the host's (needs an upload) or the host's behind the
+    // backend's (needs a download; never on the CPU, which steps the host state itself).
+    bool m_backendStale = true;
     mutable bool m_hostStale = false;
-    ActiveForceModel m_model;
     TimingStats m_timing;
-    BinGrid m_grid;
-    std::array<FamilyStepMotion, NUM_FAMILIES> m_stepMotion;
+    BinGrid m_grid{};
     double m_time = 0.0;
     unsigned long long m_step = 0;
     bool m_initialized = false;
     size_t m_realContacts = 0, m_realSphereSphere = 0;
     float m_lastMaxSpeed = 0.f;
     RunMonitor m_monitor;
-    ContactSetManager m_contacts;  // last: its worker thread stops before the state goes
+    ContactSetManager m_contacts;
+    Backends m_backends;  // last: the kinematics thread stops before the state goes
 };
 
 }  // namespace deme

@@ -4,6 +4,7 @@
 // file instead of the rest of src/backend/cuda/.
 #include <deme/Error.h>
 
+#include "backend/cuda/CudaBackends.h"
 #include "backend/cuda/CudaModule.h"
 #include "backend/cuda/Device.h"
 #include "backend/cuda/DeviceBuffer.h"
@@ -23,6 +24,11 @@ const DeviceInfo& useDevice(const std::string& call, int) { throwError(call, cud
 const DeviceQuery& queryDevices() {
     static const DeviceQuery none{{}, "the CUDA backend was not built into this library", {}};
     return none;
+}
+
+// ---- CudaBackends.h
+Backends makeCudaBackends(const ModelLayout&, const Settings&, int, const std::function<void(Verbosity, const std::string&)>&) {
+    notBuilt("Initialize");
 }
 
 // ---- CudaModule.h

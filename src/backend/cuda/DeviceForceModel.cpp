@@ -6,13 +6,11 @@
 
 #include "backend/cuda/kernels/KernelArgs.cuh"
 #include "forcemodel/CudaCodeGen.h"
-#include "runtime/StateView.h"
+#include "state/StateView.h"
 
 namespace deme::cuda {
 
 namespace {
-
-constexpr unsigned int THREADS = 256;
 
 // Rows of equal length, one after the other (ForceModelParams' layout); `rowLength` is checked.
 std::vector<float> flatten(const std::vector<std::vector<float>>& rows, size_t rowLength, const char* what) {
@@ -98,10 +96,11 @@ void DeviceForceModel::download(SimState& s) const {
 }
 
 void DeviceForceModel::launch(const StateView& view, float time, float dt, unsigned int firstNonClump,
-                              unsigned int numNonClump, StepReduction* red, Stream stream) const {
+                              unsigned int numNonClump, StepReduction* red, Stream stream,
+                              unsigned int threadsPerBlock) const {
     if (view.numContacts == 0) return;
-    cuda::launch(m_kernel, blocksFor(view.numContacts, THREADS), THREADS, 0, stream, view, time, dt, m_params,
-                 firstNonClump, numNonClump, red);
+    cuda::launch(m_kernel, blocksFor(view.numContacts, threadsPerBlock), threadsPerBlock, 0, stream, view, time, dt,
+                 m_params, firstNonClump, numNonClump, red);
 }
 
 }  // namespace deme::cuda

@@ -12,7 +12,7 @@
 #include "backend/cuda/NvrtcCompiler.h"
 #include "backend/cuda/kernels/ForceModelParams.cuh"
 #include "forcemodel/ModelLayout.h"
-#include "runtime/SimState.h"
+#include "state/SimState.h"
 
 namespace deme {
 struct StateView;
@@ -32,9 +32,10 @@ class DeviceForceModel {
     void upload(const SimState& s);
     // Owner and geometry wildcards back into `s` (the sizes upload() took).
     void download(SimState& s) const;
-    // The force pass over the view's contact set, on `stream`.
+    // The force pass over the view's contact set, on `stream`, in blocks of `threadsPerBlock`
+    // (SetForceCalcThreadsPerBlock; the kernel takes blocks of any size).
     void launch(const StateView& view, float time, float dt, unsigned int firstNonClump, unsigned int numNonClump,
-                StepReduction* red, Stream stream) const;
+                StepReduction* red, Stream stream, unsigned int threadsPerBlock) const;
 
     double compileSeconds() const { return m_compileSeconds; }
     bool fromCache() const { return m_fromCache; }

@@ -12,8 +12,8 @@
 #include "backend/cuda/DevicePrimitives.h"
 #include "backend/cuda/NvrtcCompiler.h"
 #include "backend/cuda/kernels/PersistentArgs.cuh"
-#include "runtime/SimState.h"
-#include "runtime/StateView.h"
+#include "state/SimState.h"
+#include "state/StateView.h"
 
 namespace deme::cuda {
 

@@ -8,7 +8,7 @@
 #include "dynamics/MeshContactRule.h"
 #include "dynamics/OwnerStep.h"
 #include "physics/BuiltInForceModels.h"
-#include "runtime/StateView.h"
+#include "state/StateView.h"
 
 namespace deme {
 

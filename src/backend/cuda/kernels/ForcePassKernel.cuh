@@ -1,5 +1,5 @@
 // The GPU force pass as a template over the contact force model, the device twin of
-// dynamics/ForcePassLoop.h: for every contact of the set, gather the model's inputs, run the model,
+// backend/cpu/ForcePassLoop.h: for every contact of the set, gather the model's inputs, run the model,
 // add the force and the torques about both owners to the owners' loads, and store the force on A
 // where the view asks for it (ContactView::force).
 // Dynamics.cu instantiates it for the built-in models; the code generated for a user's model
@@ -16,7 +16,7 @@
 
 #include "backend/cuda/kernels/KernelArgs.cuh"
 #include "dynamics/ContactInputsGather.h"
-#include "runtime/StateView.h"
+#include "state/StateView.h"
 
 namespace deme {
 namespace force_pass_detail {

@@ -23,31 +23,9 @@ enum KernelError : unsigned int {
     KERNEL_ERROR_MESH_CANDIDATES = 1,  // a sphere touches more triangles than a kernel can sort
 };
 
-// Most overlapping sphere-triangle contacts one sphere may have (the smooth-surface rule sorts them
-// in a local array).
-constexpr unsigned int MAX_MESH_CANDIDATES = 64;
 // Non-clump owners (walls, meshes) whose contact loads a block sums in shared memory before adding
 // them to device memory: all contacts of a floor land on one owner, and per-contact atomics on one
 // address would serialise.
 constexpr unsigned int SHARED_LOAD_SLOTS = 64;
-
-// The bin grid of contact detection, for kernels.
-struct BinGridView {
-    double3 origin;
-    double size;
-    int nx, ny, nz;
-};
-
-// What the pair search reads besides the state.
-struct PairSearchArgs {
-    BinGridView grid;
-    double margin;
-    const float* familyExtraMargin;
-    const uint8_t* familyMask;  // NUM_FAMILIES x NUM_FAMILIES
-    const int *sphereBinLo, *sphereBinHi;
-    const unsigned int *sphereBinStart, *sphereBinItems;
-    const unsigned int *triBinStart, *triBinItems;
-    const double3 *triLo, *triHi;
-};
 
 }  // namespace deme

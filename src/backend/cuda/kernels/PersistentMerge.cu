@@ -9,7 +9,7 @@
 // Compiled at run time by NVRTC.
 #include "backend/cuda/kernels/PersistentArgs.cuh"
 #include "dynamics/ContactInputsGather.h"
-#include "runtime/StateView.h"
+#include "state/StateView.h"
 
 namespace deme {
 

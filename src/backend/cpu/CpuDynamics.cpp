@@ -1,0 +1,69 @@
+#include "backend/cpu/CpuDynamics.h"
+
+#include <algorithm>
+
+#include "backend/cpu/CpuKinematics.h"
+#include "backend/cpu/ForcePass.h"
+#include "backend/cpu/HistoryMapping.h"
+#include "backend/cpu/Integration.h"
+#include "backend/cpu/MeshContacts.h"
+#include "parallel/Parallel.h"
+
+namespace deme {
+
+CpuDynamics::CpuDynamics(SimState& s, CpuForceModel model, CpuKinematics& kinematics)
+    : m_s(s), m_model(std::move(model)), m_kinematics(kinematics) {}
+
+void CpuDynamics::upload(const SimState& s, const Settings&, const FamilyRules&) {
+    // The steps run on the host state itself; travel is measured from now until the next set.
+    m_baseline = s.owners.travel;
+    m_orderBaseline = s.owners.travel;
+}
+
+StepOutcome CpuDynamics::step(double time, const Settings& settings, const FamilyRules& families,
+                              bool /*storeContactForces: the CPU stores them in every step*/, TimingStats& timing) {
+    StepOutcome out;
+    {
+        PhaseTimer t(timing, Phase::FORCE);
+        resolveMeshContacts(m_s);
+        const ForcePassResult r = m_model.pass(m_s, time, settings.dt);
+        out.realContacts = r.realContacts;
+        out.realSphereSphere = r.realSphereSphere;
+    }
+    {
+        PhaseTimer t(timing, Phase::REDUCTION);
+        reduceContactForces(m_s);
+    }
+    PhaseTimer t(timing, Phase::INTEGRATION);
+    families.evaluate(time + settings.dt, m_stepMotion);
+    const IntegrationResult ir = integrateOwners(m_s, m_stepMotion, settings.gravity, settings.dt,
+                                                 settings.errorOutVelocity, m_baseline);
+    out.maxSpeed = ir.maxSurfaceSpeed;
+    out.maxTravel = ir.maxTravel;
+    if (ir.fault != OwnerFault::NONE) {
+        out.fault = true;
+        out.faultOwner = ir.faultOwner;
+        out.faultFlags = m_s.integrationScratch.flags[ir.faultOwner];
+    }
+    return out;
+}
+
+void CpuDynamics::markOrderBaseline() { m_orderBaseline = m_s.owners.travel; }
+
+double CpuDynamics::maxTravelSinceOrder() {
+    const std::vector<double>& travel = m_s.owners.travel;
+    double m = 0.0;
+    for (size_t o = 0; o < travel.size(); o++) m = std::max(m, travel[o] - m_orderBaseline[o]);
+    return m;
+}
+
+void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
+    PhaseTimer t(timing, Phase::HISTORY_MAPPING);
+    installDetectedContacts(m_s, m_kinematics.takenPairs());
+    buildOwnerContactIndex(m_s);
+    m_baseline.swap(m_orderBaseline);
+}
+
+std::string CpuDynamics::description() const { return "CPU, " + std::to_string(cpuThreadCount()) + " threads"; }
+
+}  // namespace deme

@@ -1,0 +1,46 @@
+// The dynamics side (dT) of the CPU backend: steps the host state itself with OpenMP loops over the
+// per-item code (mesh contact rule, force pass, force reduction, integration) and installs the
+// contact sets its kinematics side detects. The step loop and the schedule above it are the
+// engine's one (runtime/Simulation, runtime/ContactSetManager).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "backend/cpu/CpuForceModel.h"
+#include "runtime/Backends.h"
+#include "state/FamilyStepMotion.h"
+
+namespace deme {
+
+class CpuKinematics;
+
+class CpuDynamics : public DynamicsBackend {
+  public:
+    // Steps `s` (the host state: nothing is copied) with `model`; installs what `kinematics` detects.
+    CpuDynamics(SimState& s, CpuForceModel model, CpuKinematics& kinematics);
+
+    void upload(const SimState& s, const Settings& settings, const FamilyRules& families) override;
+    void download(SimState&) override {}
+    void uploadTrackerLoads(const SimState&) override {}
+    StepOutcome step(double time, const Settings& settings, const FamilyRules& families, bool storeContactForces,
+                     TimingStats& timing) override;
+    void markOrderBaseline() override;
+    double maxTravelSinceOrder() override;
+    void install(const DetectionReport& report, TimingStats& timing) override;
+    size_t numContacts() const override { return m_s.contacts.size(); }
+    std::string description() const override;
+    bool onGpu() const override { return false; }
+
+    const CpuForceModel& model() const { return m_model; }
+
+  private:
+    SimState& m_s;
+    CpuForceModel m_model;
+    CpuKinematics& m_kinematics;
+    std::array<FamilyStepMotion, NUM_FAMILIES> m_stepMotion;
+    // Owners' travel at the snapshot of the set in use (baseline) and of the last order.
+    std::vector<double> m_baseline, m_orderBaseline;
+};
+
+}  // namespace deme

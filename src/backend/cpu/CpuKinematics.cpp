@@ -1,0 +1,93 @@
+#include "backend/cpu/CpuKinematics.h"
+
+#include <deme/Error.h>
+
+#include "parallel/Parallel.h"
+
+namespace deme {
+
+CpuKinematics::CpuKinematics(const SimState& live, int threads) : m_live(live), m_threads(threads) {}
+
+CpuKinematics::~CpuKinematics() {
+    m_mailbox.stop();
+    if (m_thread.joinable()) m_thread.join();
+}
+
+void CpuKinematics::setGeometry(const SimState& s, const BinGrid& grid, const FamilyRules& families,
+                                const Settings& settings) {
+    if (!m_mailbox.idle()) throwError("DoDynamics", "internal: the kinematics geometry changed while an order was in flight");
+    m_grid = grid;
+    m_familyMask.assign(families.contactMask(), families.contactMask() + NUM_FAMILIES * NUM_FAMILIES);
+    m_familyExtraMargin.assign(settings.familyExtraMargin, settings.familyExtraMargin + NUM_FAMILIES);
+    // What the worker's detection reads and never changes during a run (it is idle: no order is in
+    // flight, and its thread reads m_work only while it holds one).
+    m_work.frame = s.frame;
+    m_work.domainSize = s.domainSize;
+    m_work.spheres = s.spheres;
+    m_work.analytical = s.analytical;
+    m_work.triangles.owner = s.triangles.owner;
+    m_work.owners.family = s.owners.family;
+}
+
+void CpuKinematics::detectNow(const DetectionOrder& order, DetectionReport& report) {
+    report = DetectionReport{};
+    report.order = order;
+    m_detector.detect(m_live, m_grid, order.margin, m_familyMask.data(), m_familyExtraMargin.data(), m_taken,
+                      report.binningSeconds, report.searchSeconds);
+    report.numPairs = m_taken.size();
+}
+
+void CpuKinematics::submit(const DetectionOrder& order) {
+    if (!m_thread.joinable()) m_thread = std::thread([this] { run(); });
+    Order& o = m_order;
+    o.order = order;
+    o.spherePos = m_live.cache.spherePos;
+    o.analPos = m_live.cache.analPos;
+    o.analDir = m_live.cache.analDir;
+    o.triVert = m_live.cache.triVert;
+    o.ownerFamily = m_live.owners.family;
+    m_mailbox.post(o);
+}
+
+void CpuKinematics::take(Result& r, DetectionReport& report) {
+    report = r.report;
+    std::swap(m_taken, r.pairs);
+}
+
+bool CpuKinematics::tryTake(DetectionReport& report) {
+    if (!m_mailbox.tryTake(m_result)) return false;
+    take(m_result, report);
+    return true;
+}
+
+void CpuKinematics::waitAndTake(DetectionReport& report) {
+    m_mailbox.waitAndTake(m_result);
+    take(m_result, report);
+}
+
+void CpuKinematics::run() {
+    // This thread's own OpenMP team, sized so that it and the dynamics team share the cores.
+    setCpuThreadCount(m_threads);
+    Order order;
+    Result result;
+    while (m_mailbox.waitForOrder(order)) {
+        try {
+            m_work.cache.spherePos.swap(order.spherePos);
+            m_work.cache.analPos.swap(order.analPos);
+            m_work.cache.analDir.swap(order.analDir);
+            m_work.cache.triVert.swap(order.triVert);
+            m_work.owners.family.swap(order.ownerFamily);
+            result.report = DetectionReport{};
+            result.report.order = order.order;
+            m_workDetector.detect(m_work, m_grid, order.order.margin, m_familyMask.data(), m_familyExtraMargin.data(),
+                                  result.pairs, result.report.binningSeconds, result.report.searchSeconds);
+            result.report.numPairs = result.pairs.size();
+        } catch (...) {
+            m_mailbox.fail(std::current_exception());
+            continue;
+        }
+        m_mailbox.deliver(result);
+    }
+}
+
+}  // namespace deme

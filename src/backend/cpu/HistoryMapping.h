@@ -1,0 +1,15 @@
+// Contact history across re-detection (paper §3.2): a contact present before and after a detection
+// keeps its wildcards; a new contact starts at zero (or at the value set for its families).
+// Persistent contacts stay in the set even when detection no longer finds them.
+#pragma once
+
+#include "backend/cpu/ContactDetector.h"
+
+namespace deme {
+
+// Replaces s.contacts' pair list with `fresh` (sorted by key) plus the persistent pairs of the old
+// list that `fresh` lacks, carrying each surviving pair's wildcards and persistence over. Both lists
+// are sorted, so each new pair finds its old self by binary search, and the merge keeps the order.
+void installDetectedContacts(SimState& s, DetectedContacts& fresh);
+
+}  // namespace deme

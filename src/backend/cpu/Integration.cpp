@@ -1,0 +1,115 @@
+#include "backend/cpu/Integration.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "parallel/Parallel.h"
+#include "dynamics/KinematicCache.h"
+#include "dynamics/OwnerStep.h"
+#include "physics/RigidBody.h"
+
+namespace deme {
+
+void reduceContactForces(SimState& s) {
+    OwnerArrays& ow = s.owners;
+    const ContactArrays& c = s.contacts;
+    const size_t n = ow.size();
+#pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
+    for (size_t o = 0; o < n; o++) {
+        float3 F = make_float3(0.f), tau = make_float3(0.f);
+        for (uint32_t e = c.ownerStart[o]; e < c.ownerStart[o + 1]; e++) {
+            const uint32_t entry = c.ownerEntries[e];
+            const size_t ci = entry >> 1;
+            if (entry & 1u) {
+                F -= c.force[ci];
+                tau += c.torqueB[ci];
+            } else {
+                F += c.force[ci];
+                tau += c.torqueA[ci];
+            }
+        }
+        ow.contactForce[o] = F;
+        ow.contactTorque[o] = tau;
+    }
+}
+
+// Written as sweeps without calls so that the compiler vectorises them (the owner sweep is most of
+// the step's non-contact time): faults and rare large rotations are flagged per owner and handled
+// afterwards.
+IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,
+                                  const float3& gravity, double dt, float errorOutVelocity,
+                                  const std::vector<double>& travelBaseline) {
+    OwnerArrays& ow = s.owners;
+    const size_t n = ow.size();
+    const size_t nSpheres = s.spheres.size();
+    const size_t nTris = s.triangles.size();
+    const float h = (float)dt;
+    const StepConstants consts{gravity, (float)dt, dt, errorOutVelocity * errorOutVelocity, s.frame, s.domainSize};
+    IntegrationScratch& scratch = s.integrationScratch;
+    scratch.flags.resize(n);
+    scratch.midAngVel.resize(n);
+    uint8_t* flags = scratch.flags.data();
+    const double* baseline = travelBaseline.data();
+    const FamilyStepMotion* familyMotion = motion.data();
+    double maxTravel = 0.0;
+    float maxSpeed = 0.f;
+    size_t firstFault = n;
+    int anyLarge = 0;
+
+#pragma omp parallel if (n > PARALLEL_MIN_ITEMS)
+    {
+#pragma omp for simd schedule(static) reduction(max : maxTravel, maxSpeed, anyLarge) reduction(min : firstFault)
+        for (size_t o = 0; o < n; o++) {
+            const OwnerStepResult r = stepOwner(s, o, familyMotion[ow.family[o]], consts, baseline[o]);
+            flags[o] = r.flags;
+            maxTravel = r.travelSinceDetection > maxTravel ? r.travelSinceDetection : maxTravel;
+            maxSpeed = r.speed > maxSpeed ? r.speed : maxSpeed;
+            firstFault = (r.flags & STEP_FAULTS) && o < firstFault ? o : firstFault;
+            anyLarge = (r.flags & STEP_LARGE_ROTATION) ? 1 : anyLarge;
+        }
+
+        // Rotations too large for the series (over 0.2 rad in one step): rare, done exactly.
+        if (anyLarge) {
+#pragma omp for schedule(static)
+            for (size_t o = 0; o < n; o++)
+                if (flags[o] & STEP_LARGE_ROTATION) {
+                    ow.oriQ[o] = integrateOrientation(ow.oriQ[o], scratch.midAngVel[o], h);
+                    s.cache.ownerAngVelGlobal[o] = rotateToGlobal(ow.oriQ[o], ow.angVel[o]);
+                }
+        }
+
+#pragma omp for simd schedule(static)
+        for (size_t i = 0; i < nSpheres; i++) placeSphere(s, i);
+
+        // Triangle vertices of meshes that moved.
+#pragma omp for schedule(static)
+        for (size_t t = 0; t < nTris; t++)
+            if (flags[s.triangles.owner[t]] & STEP_MOVED) placeTriangle(s, t);
+    }
+    const size_t faultOwner = firstFault;
+    const OwnerFault fault = firstFault < n ? faultFromFlags(flags[firstFault]) : OwnerFault::NONE;
+    IntegrationResult res;
+
+    // Kinematic analytical owners: few, so done serially.
+    if (s.analytical.size() > 0) {
+        updateAnalyticalCache(s);
+        const double diag = length(s.domainSize);
+        std::vector<float> rate(s.numAnalyticalOwners, 0.f);
+        for (size_t k = 0; k < s.analytical.size(); k++) {
+            const size_t o = s.analytical.owner[k];
+            rate[o - s.numClumps] = std::max(rate[o - s.numClumps], analyticalSurfaceSpeed(s, k, diag));
+        }
+        for (size_t o = s.numClumps; o < s.numClumps + s.numAnalyticalOwners; o++) {
+            ow.travel[o] += (double)(rate[o - s.numClumps] * h);
+            maxTravel = std::max(maxTravel, ow.travel[o] - travelBaseline[o]);
+            maxSpeed = std::max(maxSpeed, rate[o - s.numClumps]);
+        }
+    }
+    res.maxTravel = maxTravel;
+    res.maxSurfaceSpeed = maxSpeed;
+    res.fault = fault;
+    res.faultOwner = faultOwner;
+    return res;
+}
+
+}  // namespace deme

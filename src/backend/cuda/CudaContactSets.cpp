@@ -1,0 +1,72 @@
+// CudaDynamics' contact sets: the snapshot an order is measured from, whether a delivered set may
+// still serve, and the installation of a detected set with the history of the one it replaces
+// (ARCHITECTURE.md invariant 6): persistent pairs merged back, wildcards and mesh state mapped by
+// key, family initial values for new pairs.
+#include <chrono>
+#include <cstring>
+
+#include "backend/cuda/CudaDynamics.h"
+#include "backend/cuda/CudaKinematics.h"
+#include "backend/cuda/DeviceContactSet.h"
+
+namespace deme::cuda {
+
+namespace {
+
+constexpr unsigned int THREADS = 256;
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+}  // namespace
+
+void CudaDynamics::markOrderBaseline() {
+    // The owners' travel now: the set an order sent now yields serves while nobody travels its margin
+    // beyond it.
+    launch(kCopyDoubles, blocksFor(m_view.numOwners, THREADS), THREADS, 0, m_stream, m_orderBaseline.data(),
+           (const double*)m_state.owners.travel.data(), m_view.numOwners);
+}
+
+double CudaDynamics::maxTravelSinceOrder() {
+    m_maxTravelBits.zeroAsync(m_stream);
+    launch(kMaxTravelSince, blocksFor(m_view.numOwners, THREADS), THREADS, 0, m_stream,
+           (const double*)m_state.owners.travel.data(), (const double*)m_orderBaseline.data(), m_view.numOwners,
+           m_maxTravelBits.data());
+    unsigned long long bits = 0;
+    m_maxTravelBits.downloadAsync(&bits, 1, m_stream);
+    synchronize(m_stream);
+    double t;
+    std::memcpy(&t, &bits, sizeof(double));
+    return t;
+}
+
+// History mapping from the set in use (with its up-to-date wildcards) into the fresh one, then the
+// fresh one serves.
+void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
+    const double t0 = now();
+    DeviceContacts& old = m_contacts[m_current];
+    DeviceContacts& fresh = m_contacts[1 - m_current];
+    // The outbox's buffers become the fresh set's pairs; the fresh set's former ones (unused since
+    // the set before) become the outbox, which kT resizes before it writes.
+    KinematicsOutbox& out = m_kinematics->outbox();
+    std::swap(fresh.geomA, out.geomA);
+    std::swap(fresh.geomB, out.geomB);
+    std::swap(fresh.type, out.type);
+    // Persistent pairs the detection missed stay in the set (DevicePersistentContacts.h).
+    const ContactKeys oldKeys{old.geomA.data(), old.geomB.data(), m_numContacts};
+    const unsigned int total = m_persistence.merge(fresh.geomA, fresh.geomB, fresh.type, (unsigned int)r.numPairs,
+                                                   oldKeys, old.type.data(), old.persistent.data(), m_prim, m_stream);
+    resizeContactState(fresh, total, m_W);
+    mapContactHistory(kMapHistory, old, m_numContacts, fresh, total, m_W, m_stream);
+    m_persistence.carryOver(m_view, ContactKeys{fresh.geomA.data(), fresh.geomB.data(), total}, fresh.type.data(),
+                            fresh.persistent.data(), fresh.wildcards.data(), m_W, oldKeys, old.persistent.data(),
+                            m_stream);
+    m_current = 1 - m_current;
+    m_numContacts = total;
+    refreshView();
+    // The set's snapshot is the order's: travel is measured from there.
+    std::swap(m_baseline, m_orderBaseline);
+    synchronize(m_stream);
+    timing.seconds[(int)Phase::HISTORY_MAPPING] += now() - t0;
+}
+
+}  // namespace deme::cuda

@@ -1,0 +1,107 @@
+// The dynamics side (dT) of the CUDA backend: the state lives in device memory while DoDynamics runs;
+// the mesh contact rule, the force pass, integration and history mapping run as kernels compiled
+// at run time by NVRTC from the same per-item code the CPU's loops call (docs/cuda-backend.md), on
+// dT's own stream. The step loop and the contact-set schedule above it are the engine's one
+// (runtime/Simulation, runtime/ContactSetManager); contact detection is CudaKinematics'.
+//
+// The host SimState stays the record between calls: upload() copies it to the device after
+// Initialize and after host-side edits, download() copies the evolved state back when the host needs
+// it. Files: CudaDynamics.cpp (state copies and the step), CudaContactSets.cpp (installing a
+// detected set), CudaDynamicsKernels.cpp (the kernels' compilation).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "backend/cuda/CudaModule.h"
+#include "backend/cuda/DeviceForceModel.h"
+#include "backend/cuda/DevicePersistentContacts.h"
+#include "backend/cuda/DevicePrimitives.h"
+#include "backend/cuda/DeviceState.h"
+#include "backend/cuda/kernels/KernelArgs.cuh"
+#include "forcemodel/ModelLayout.h"
+#include "runtime/Backends.h"
+#include "state/FamilyStepMotion.h"
+
+namespace deme::cuda {
+
+class CudaKinematics;
+
+class CudaDynamics : public DynamicsBackend {
+  public:
+    // Compiles (or loads from the cache) the kernels for GPU `device`, the force model's included.
+    CudaDynamics(int device, const ModelLayout& model);
+    ~CudaDynamics() override;
+    CudaDynamics(const CudaDynamics&) = delete;
+    CudaDynamics& operator=(const CudaDynamics&) = delete;
+    // The kinematics side whose results install() takes (made after this, on dT's stream).
+    void setKinematics(CudaKinematics* kinematics) { m_kinematics = kinematics; }
+
+    void upload(const SimState& s, const Settings& settings, const FamilyRules& families) override;
+    void download(SimState& s) override;
+    void uploadTrackerLoads(const SimState& s) override;
+    StepOutcome step(double time, const Settings& settings, const FamilyRules& families, bool storeContactForces,
+                     TimingStats& timing) override;
+    void markOrderBaseline() override;
+    double maxTravelSinceOrder() override;
+    void install(const DetectionReport& report, TimingStats& timing) override;
+    size_t numContacts() const override { return m_numContacts; }
+    std::string description() const override;
+    bool onGpu() const override { return true; }
+
+    // What kinematics orders snapshot, on this stream.
+    const DeviceState& state() const { return m_state; }
+    Stream stream() const { return m_stream; }
+    int device() const { return m_device; }
+    const std::string& deviceName() const { return m_name; }
+    double kernelCompileSeconds() const { return m_compileSeconds; }
+    bool kernelsFromCache() const { return m_fromCache; }
+
+  private:
+    void select() const;
+    void compileKernels(const ModelLayout& layout);
+    void prepareFamilyMotion(const FamilyRules& families);
+    void refreshView();
+
+    int m_device = 0;
+    std::string m_name;
+    Stream m_stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
+    // Around each step's force phase on dT's stream: its GPU time, read after the step's one host
+    // synchronisation, splits the step between the force and integration phases (the timing report
+    // and synchronous n_max adaptation use it) without a synchronisation of its own.
+    void *m_forceStart = nullptr, *m_forceEnd = nullptr;  // cudaEvent_t
+    CudaModule m_dynamicsModule, m_historyModule, m_exchangeModule;
+    CudaKernel kResetReduction, kCopyDoubles, kClearLoads, kResolveMesh, kIntegrate, kLargeRot, kPlaceSpheres,
+        kPlaceTris, kAnalytical, kMapHistory, kMaxTravelSince;
+    // The families' prescriptions, compiled from the user's expressions (recompiled when they change).
+    CudaModule m_familyModule;
+    CudaKernel kFamilyMotion;
+    std::string m_familySource;
+    double m_compileSeconds = 0.0;
+    bool m_fromCache = true;
+    // DEME_CUDA_PROFILE_FROM_STEP: the step at which a profiler's capture starts (docs/gpu-tests.md).
+    unsigned long long m_profileFromStep = ~0ull, m_steps = 0;
+    // The contact force model's kernel and data, and the persistent-contact rules of each new set.
+    DeviceForceModel m_model;
+    DevicePersistentContacts m_persistence;
+    DevicePrimitives m_prim;
+    CudaKinematics* m_kinematics = nullptr;
+
+    DeviceState m_state;
+    DeviceContacts m_contacts[2];  // the set in use and the one a detection fills
+    int m_current = 0;
+    uint32_t m_numContacts = 0;
+    // Owners' travel at the snapshot of the set in use (baseline) and of the order in flight.
+    DeviceBuffer<double> m_baseline, m_orderBaseline;
+    DeviceBuffer<FamilyStepMotion> m_motion;
+    DeviceBuffer<StepReduction> m_reduction;
+    DeviceBuffer<unsigned long long> m_maxTravelBits;
+
+    // Host-side copies of what the loop needs.
+    StateView m_view{};
+    unsigned int m_W = 0;
+    uint32_t m_numClumps = 0, m_numAnalyticalOwners = 0;
+    double m_domainDiagonal = 0.0;
+};
+
+}  // namespace deme::cuda

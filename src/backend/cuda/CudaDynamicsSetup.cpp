@@ -1,0 +1,84 @@
+// CudaDynamics' set-up: the kernels it runs, compiled (or found in the kernel cache) by NVRTC for its
+// GPU, and the families' prescription kernel, recompiled whenever the prescriptions change.
+#include <cstdlib>
+
+#include <cuda_runtime_api.h>
+
+#include "backend/cuda/CudaCheck.h"
+#include "backend/cuda/CudaDynamics.h"
+#include "backend/cuda/Device.h"
+#include "backend/cuda/EmbeddedKernel.h"
+#include "backend/cuda/NvrtcCompiler.h"
+#include "codegen/FamilyMotionSource.h"
+
+namespace deme::cuda {
+
+CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(device) {
+    compileKernels(model);
+    if (const char* p = std::getenv("DEME_CUDA_PROFILE_FROM_STEP")) m_profileFromStep = std::strtoull(p, nullptr, 10);
+}
+
+CudaDynamics::~CudaDynamics() {
+    if (m_stream && cudaStreamDestroy(static_cast<cudaStream_t>(m_stream)) != cudaSuccess) cudaGetLastError();
+    for (void* e : {m_forceStart, m_forceEnd})
+        if (e && cudaEventDestroy(static_cast<cudaEvent_t>(e)) != cudaSuccess) cudaGetLastError();
+}
+
+void CudaDynamics::select() const { useDevice("DoDynamics", m_device); }
+
+void CudaDynamics::compileKernels(const ModelLayout& layout) {
+    const DeviceInfo& info = useDevice("Initialize", m_device);
+    m_name = info.name;
+    CudaCompileOptions opt;
+    opt.architecture = info.architecture();
+    const std::string dynPath = "backend/cuda/kernels/Dynamics.cu", detPath = "backend/cuda/kernels/Detection.cu",
+                      exPath = "backend/cuda/kernels/Exchange.cu";
+    const CudaCompileResult d = compileCudaSource("Initialize", dynPath, embeddedKernelText(dynPath), opt);
+    const CudaCompileResult k = compileCudaSource("Initialize", detPath, embeddedKernelText(detPath), opt);
+    const CudaCompileResult x = compileCudaSource("Initialize", exPath, embeddedKernelText(exPath), opt);
+    m_compileSeconds = d.compileSeconds + k.compileSeconds + x.compileSeconds;
+    m_fromCache = d.cacheHit && k.cacheHit && x.cacheHit;
+    m_dynamicsModule = CudaModule("Initialize", d.image);
+    // dT needs only the history mapping of Detection.cu; kT loads its own copy on its GPU.
+    m_historyModule = CudaModule("Initialize", k.image);
+    m_exchangeModule = CudaModule("Initialize", x.image);
+    kResetReduction = m_dynamicsModule.kernel("deme_reset_reduction");
+    kCopyDoubles = m_dynamicsModule.kernel("deme_copy_doubles");
+    kClearLoads = m_dynamicsModule.kernel("deme_clear_owner_loads");
+    kResolveMesh = m_dynamicsModule.kernel("deme_resolve_mesh_contacts");
+    kIntegrate = m_dynamicsModule.kernel("deme_integrate");
+    kLargeRot = m_dynamicsModule.kernel("deme_large_rotations");
+    kPlaceSpheres = m_dynamicsModule.kernel("deme_place_spheres");
+    kPlaceTris = m_dynamicsModule.kernel("deme_place_triangles");
+    kAnalytical = m_dynamicsModule.kernel("deme_analytical_step");
+    kMapHistory = m_historyModule.kernel("deme_map_history");
+    kMaxTravelSince = m_exchangeModule.kernel("deme_max_travel_since");
+    m_model.load("Initialize (contact force model)", layout, m_dynamicsModule, opt);
+    m_persistence.load("Initialize", opt);
+    m_compileSeconds += m_model.compileSeconds() + m_persistence.compileSeconds();
+    m_fromCache = m_fromCache && m_model.fromCache() && m_persistence.fromCache();
+    // Non-blocking: the legacy default stream would serialise with kT's stream on a shared GPU.
+    cudaStream_t st = nullptr;
+    DEME_CUDA_CHECK("Initialize", cudaStreamCreateWithFlags(&st, cudaStreamNonBlocking));
+    m_stream = st;
+    cudaEvent_t start = nullptr, end = nullptr;
+    DEME_CUDA_CHECK("Initialize", cudaEventCreate(&start));
+    DEME_CUDA_CHECK("Initialize", cudaEventCreate(&end));
+    m_forceStart = start;
+    m_forceEnd = end;
+}
+
+void CudaDynamics::prepareFamilyMotion(const FamilyRules& families) {
+    std::string source = familyMotionKernelSource(families.motions());
+    if (source == m_familySource) return;
+    CudaCompileOptions opt;
+    opt.architecture = useDevice("DoDynamics", m_device).architecture();
+    const CudaCompileResult r = compileCudaSource("DoDynamics", "deme_family_motion.cu", source, opt);
+    m_compileSeconds += r.compileSeconds;
+    m_fromCache = m_fromCache && r.cacheHit;
+    m_familyModule = CudaModule("DoDynamics", r.image);
+    kFamilyMotion = m_familyModule.kernel(kFamilyMotionKernel);
+    m_familySource = std::move(source);
+}
+
+}  // namespace deme::cuda

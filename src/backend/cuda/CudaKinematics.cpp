@@ -1,0 +1,408 @@
+#include "backend/cuda/CudaKinematics.h"
+
+#include <chrono>
+
+#include <deme/Error.h>
+
+#include <cuda_runtime_api.h>
+
+#include "backend/cuda/CudaCheck.h"
+#include "backend/cuda/CudaModule.h"
+#include "backend/cuda/Device.h"
+#include "backend/cuda/DevicePrimitives.h"
+#include "backend/cuda/EmbeddedKernel.h"
+#include "backend/cuda/NvrtcCompiler.h"
+#include "kinematics/DetectionRules.h"
+#include "state/StateView.h"
+
+namespace deme::cuda {
+
+namespace {
+
+constexpr unsigned int THREADS = 256;
+constexpr const char* CALL = "DoDynamics";
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+int bitsFor(uint64_t n) {
+    int b = 1;
+    while (b < 64 && (uint64_t(1) << b) <= n) b++;
+    return b;
+}
+
+cudaStream_t toCuda(Stream s) { return static_cast<cudaStream_t>(s); }
+
+// Runs f with GPU `device` current for this thread, then makes `back` current again: kT sizes the
+// outbox, which lives on dT's GPU, from its own thread.
+template <class F>
+void onDevice(int device, int back, F&& f) {
+    if (device == back) {
+        f();
+        return;
+    }
+    DEME_CUDA_CHECK(CALL, cudaSetDevice(device));
+    try {
+        f();
+    } catch (...) {
+        cudaSetDevice(back);
+        throw;
+    }
+    DEME_CUDA_CHECK(CALL, cudaSetDevice(back));
+}
+
+template <class T>
+void put(DeviceBuffer<T>& d, const std::vector<T>& h, Stream stream) {
+    d.resizeDiscarding(h.size());
+    if (!h.empty()) d.uploadAsync(h.data(), h.size(), stream);
+}
+
+// Items registered in bins (spheres or triangles).
+struct DeviceBins {
+    DeviceBuffer<int> lo, hi;
+    DeviceBuffer<unsigned int> count, offset, keys, items, sortedKeys, sortedItems, start;
+};
+
+}  // namespace
+
+// kT's side: everything here is on kT's GPU and used only by kT's thread.
+struct CudaKinematics::Work {
+    int device = 0, dTDevice = 0;
+    bool staged = false;  // kT on another GPU than dT: copy the snapshot in and the contact list out
+    Stream stream = nullptr;
+    CudaModule module;
+    CudaKernel kSphereBoxes, kTriBoxes, kBinEntries, kBinCounts, kPairSearch;
+    DevicePrimitives prim;
+    // Static geometry (a copy of Geometry).
+    DeviceBuffer<bodyID_t> sphereOwner, anaOwner, triOwner;
+    DeviceBuffer<float> radius, anaRadius, familyExtraMargin;
+    DeviceBuffer<uint8_t> anaType, anaInside, familyMask;
+    BinGrid grid{};
+    uint32_t numOwners = 0, numSpheres = 0, numAnalytical = 0, numTriangles = 0;
+    // The snapshot and the contact list on this GPU, when staged.
+    KinematicsInbox localIn;
+    KinematicsOutbox localOut;
+    // Scratch.
+    DeviceBins sphereBins, triBins;
+    DeviceBuffer<double3> triLo, triHi;
+    DeviceBuffer<unsigned int> pairCount, pairOffset;
+
+    ~Work() {
+        if (stream && cudaStreamDestroy(toCuda(stream)) != cudaSuccess) cudaGetLastError();
+    }
+    void upload(const Geometry& g);
+    unsigned int readCount(const DeviceBuffer<unsigned int>& offsets, size_t at);
+    void detect(const DetectionOrder& o, void* submitted, KinematicsInbox& in, KinematicsOutbox& out,
+                DetectionReport& r);
+};
+
+void CudaKinematics::Work::upload(const Geometry& g) {
+    put(sphereOwner, g.sphereOwner, stream);
+    put(radius, g.radius, stream);
+    put(anaOwner, g.anaOwner, stream);
+    put(anaType, g.anaType, stream);
+    put(anaRadius, g.anaRadius, stream);
+    put(anaInside, g.anaInside, stream);
+    put(triOwner, g.triOwner, stream);
+    put(familyMask, g.familyMask, stream);
+    put(familyExtraMargin, g.familyExtraMargin, stream);
+    grid = g.grid;
+    numOwners = g.numOwners;
+    numSpheres = g.numSpheres;
+    numAnalytical = g.numAnalytical;
+    numTriangles = g.numTriangles;
+    if (staged) {
+        localIn.spherePos.resizeDiscarding(numSpheres);
+        localIn.triVert.resizeDiscarding(3 * (size_t)numTriangles);
+        localIn.analPos.resizeDiscarding(numAnalytical);
+        localIn.analDir.resizeDiscarding(numAnalytical);
+        localIn.ownerFamily.resizeDiscarding(numOwners);
+    }
+    // The host vectors stay dT's: wait until the copies have read them.
+    synchronize(stream);
+}
+
+unsigned int CudaKinematics::Work::readCount(const DeviceBuffer<unsigned int>& offsets, size_t at) {
+    unsigned int n = 0;
+    offsets.downloadAsync(&n, 1, stream, at);
+    synchronize(stream);
+    return n;
+}
+
+// The rules of kinematics/DetectionRules.h in kernels (kernels/Detection.cu), bins sorted with CUB.
+void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, KinematicsInbox& in,
+                                  KinematicsOutbox& out, DetectionReport& r) {
+    const double t0 = now();
+    // The snapshot is complete once dT's stream has passed the event (an event of another GPU is
+    // fine for cudaStreamWaitEvent).
+    DEME_CUDA_CHECK(CALL, cudaStreamWaitEvent(toCuda(stream), static_cast<cudaEvent_t>(submitted), 0));
+    KinematicsInbox& src = staged ? localIn : in;
+    if (staged) {
+        localIn.spherePos.copyFromAsync(in.spherePos, numSpheres, stream);
+        localIn.triVert.copyFromAsync(in.triVert, 3 * (size_t)numTriangles, stream);
+        localIn.analPos.copyFromAsync(in.analPos, numAnalytical, stream);
+        localIn.analDir.copyFromAsync(in.analDir, numAnalytical, stream);
+        localIn.ownerFamily.copyFromAsync(in.ownerFamily, numOwners, stream);
+    }
+    // The state as the detection kernels read it: static geometry here, positions from the snapshot.
+    StateView v{};
+    v.owners.family = src.ownerFamily.data();
+    v.spheres.owner = sphereOwner.data();
+    v.spheres.radius = radius.data();
+    v.analytical.owner = anaOwner.data();
+    v.analytical.type = anaType.data();
+    v.analytical.radius = anaRadius.data();
+    v.analytical.inside = anaInside.data();
+    v.triangles.owner = triOwner.data();
+    v.cache.spherePos = src.spherePos.data();
+    v.cache.analPos = src.analPos.data();
+    v.cache.analDir = src.analDir.data();
+    v.cache.triVert = src.triVert.data();
+    v.numOwners = numOwners;
+    v.numSpheres = numSpheres;
+    v.numAnalytical = numAnalytical;
+    v.numTriangles = numTriangles;
+    const unsigned int nS = numSpheres, nT = numTriangles;
+    const uint64_t numBins = grid.numBins();
+    DetectionArgs args{grid, o.margin, familyExtraMargin.data(), familyMask.data(), {}, {}, nullptr, nullptr};
+
+    // 1. Bins of every geometry enlarged by its margin.
+    auto binItems = [&](DeviceBins& b, unsigned int n, auto&& boxes) {
+        b.lo.resizeDiscarding(3 * (size_t)n);
+        b.hi.resizeDiscarding(3 * (size_t)n);
+        b.count.resizeDiscarding(n + 1);
+        b.offset.resizeDiscarding(n + 1);
+        b.count.zeroAsync(stream);
+        if (n) boxes();
+        prim.exclusiveSum(b.count.data(), b.offset.data(), n + 1, stream);
+        const unsigned int entries = readCount(b.offset, n);
+        b.keys.resizeDiscarding(entries);
+        b.items.resizeDiscarding(entries);
+        b.sortedKeys.resizeDiscarding(entries);
+        b.sortedItems.resizeDiscarding(entries);
+        if (entries) {
+            launch(kBinEntries, blocksFor(n, THREADS), THREADS, 0, stream, grid, n, (const int*)b.lo.data(),
+                   (const int*)b.hi.data(), (const unsigned int*)b.offset.data(), b.keys.data(), b.items.data());
+            prim.sortPairs(b.keys.data(), b.sortedKeys.data(), b.items.data(), b.sortedItems.data(), entries, stream,
+                           0, bitsFor(numBins));
+        }
+        // Each bin's first entry in the sorted order: the entries per bin, summed (in place).
+        b.start.resizeDiscarding(numBins + 1);
+        b.start.zeroAsync(stream);
+        if (entries)
+            launch(kBinCounts, blocksFor(entries, THREADS), THREADS, 0, stream, (const unsigned int*)b.keys.data(),
+                   entries, b.start.data());
+        prim.exclusiveSum(b.start.data(), b.start.data(), numBins + 1, stream);
+    };
+    binItems(sphereBins, nS, [&] {
+        launch(kSphereBoxes, blocksFor(nS, THREADS), THREADS, 0, stream, v, args, sphereBins.lo.data(),
+               sphereBins.hi.data(), sphereBins.count.data());
+    });
+    triLo.resizeDiscarding(nT);
+    triHi.resizeDiscarding(nT);
+    binItems(triBins, nT, [&] {
+        launch(kTriBoxes, blocksFor(nT, THREADS), THREADS, 0, stream, v, args, triLo.data(), triHi.data(),
+               triBins.lo.data(), triBins.hi.data(), triBins.count.data());
+    });
+    synchronize(stream);
+    const double t1 = now();
+    r.binningSeconds = t1 - t0;
+
+    // 2. Pair search: count, offsets, fill.
+    args.sphereBins = BinsView{sphereBins.lo.data(), sphereBins.hi.data(), sphereBins.start.data(),
+                               sphereBins.sortedItems.data()};
+    if (nT)
+        args.triangleBins =
+            BinsView{triBins.lo.data(), triBins.hi.data(), triBins.start.data(), triBins.sortedItems.data()};
+    args.triLo = triLo.data();
+    args.triHi = triHi.data();
+    pairCount.resizeDiscarding(nS + 1);
+    pairOffset.resizeDiscarding(nS + 1);
+    pairCount.zeroAsync(stream);
+    launch(kPairSearch, blocksFor(nS, THREADS), THREADS, 0, stream, v, args, pairCount.data(),
+           (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr, (uint8_t*)nullptr);
+    prim.exclusiveSum(pairCount.data(), pairOffset.data(), nS + 1, stream);
+    const unsigned int total = readCount(pairOffset, nS);
+    // The outbox is on dT's GPU: size it there.
+    onDevice(dTDevice, device, [&] {
+        out.geomA.resizeDiscarding(total);
+        out.geomB.resizeDiscarding(total);
+        out.type.resizeDiscarding(total);
+    });
+    KinematicsOutbox& dst = staged ? localOut : out;
+    if (staged) {
+        localOut.geomA.resizeDiscarding(total);
+        localOut.geomB.resizeDiscarding(total);
+        localOut.type.resizeDiscarding(total);
+    }
+    if (total)
+        launch(kPairSearch, blocksFor(nS, THREADS), THREADS, 0, stream, v, args, pairCount.data(),
+               (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data(), dst.type.data());
+    if (staged) {
+        out.geomA.copyFromAsync(localOut.geomA, total, stream);
+        out.geomB.copyFromAsync(localOut.geomB, total, stream);
+        out.type.copyFromAsync(localOut.type, total, stream);
+    }
+    // Reported only once everything is in the outbox: dT reads it on its own stream, unordered
+    // with this one.
+    synchronize(stream);
+    r.searchSeconds = now() - t1;
+    r.order = o;
+    r.numPairs = total;
+}
+
+CudaKinematics::CudaKinematics(int kTDevice, int dTDevice, const DeviceState& source, Stream dtStream)
+    : m_kTDevice(kTDevice), m_dTDevice(dTDevice), m_source(source), m_dtStream(dtStream) {
+    // dT's GPU is current here: the event and the exchange buffers belong to it.
+    cudaEvent_t event = nullptr;
+    DEME_CUDA_CHECK("Initialize", cudaEventCreateWithFlags(&event, cudaEventDisableTiming));
+    m_submitted = event;
+    m_thread = std::thread([this] { run(); });
+    std::unique_lock<std::mutex> lock(m_startMutex);
+    m_startWake.wait(lock, [this] { return m_started; });
+    if (m_startFailure) {
+        std::exception_ptr f = m_startFailure;
+        lock.unlock();
+        // The thread has ended (a failed start-up returns); join it before the members go.
+        m_thread.join();
+        cudaEventDestroy(event);
+        m_submitted = nullptr;
+        std::rethrow_exception(f);
+    }
+}
+
+CudaKinematics::~CudaKinematics() {
+    m_mailbox.stop();
+    if (m_thread.joinable()) m_thread.join();
+    if (m_submitted && cudaEventDestroy(static_cast<cudaEvent_t>(m_submitted)) != cudaSuccess) cudaGetLastError();
+}
+
+void CudaKinematics::setGeometry(const SimState& s, const BinGrid& g, const FamilyRules& families,
+                                 const Settings& settings) {
+    if (!m_mailbox.idle()) throwError(CALL, "internal: the kinematics geometry changed while an order was in flight");
+    Geometry& k = m_geometry;
+    k.sphereOwner = s.spheres.owner;
+    k.radius = s.spheres.radius;
+    k.anaOwner = s.analytical.owner;
+    k.anaType = s.analytical.type;
+    k.anaRadius = s.analytical.radius;
+    k.anaInside = s.analytical.inside;
+    k.triOwner = s.triangles.owner;
+    k.familyMask.assign(families.contactMask(), families.contactMask() + NUM_FAMILIES * NUM_FAMILIES);
+    k.familyExtraMargin.assign(settings.familyExtraMargin, settings.familyExtraMargin + NUM_FAMILIES);
+    // Bin indices are 32-bit keys on the GPU (the CUB sort by bin).
+    if (g.numBins() >= (uint64_t(1) << 32))
+        throwError("Initialize", "the contact-detection grid has " + std::to_string(g.numBins()) +
+                                     " bins, more than the GPU's 32-bit bin keys hold: choose larger bins "
+                                     "(SetInitBinSize) or a smaller domain");
+    k.grid = g;
+    k.numOwners = (uint32_t)s.owners.size();
+    k.numSpheres = (uint32_t)s.spheres.size();
+    k.numAnalytical = (uint32_t)s.analytical.size();
+    k.numTriangles = (uint32_t)s.triangles.size();
+    m_geometryChanged = true;
+    // The inbox, on dT's GPU (current for this thread).
+    m_inbox.spherePos.resizeDiscarding(k.numSpheres);
+    m_inbox.triVert.resizeDiscarding(3 * (size_t)k.numTriangles);
+    m_inbox.analPos.resizeDiscarding(k.numAnalytical);
+    m_inbox.analDir.resizeDiscarding(k.numAnalytical);
+    m_inbox.ownerFamily.resizeDiscarding(k.numOwners);
+}
+
+void CudaKinematics::submit(const DetectionOrder& order) {
+    if (!m_mailbox.idle()) throwError(CALL, "internal: a kinematics order was sent while another was in flight");
+    // The snapshot, copied on dT's stream; kT starts once the stream has passed the event.
+    const Geometry& k = m_geometry;
+    m_inbox.spherePos.copyFromAsync(m_source.cache.spherePos, k.numSpheres, m_dtStream);
+    m_inbox.triVert.copyFromAsync(m_source.cache.triVert, 3 * (size_t)k.numTriangles, m_dtStream);
+    m_inbox.analPos.copyFromAsync(m_source.cache.analPos, k.numAnalytical, m_dtStream);
+    m_inbox.analDir.copyFromAsync(m_source.cache.analDir, k.numAnalytical, m_dtStream);
+    m_inbox.ownerFamily.copyFromAsync(m_source.owners.family, k.numOwners, m_dtStream);
+    DEME_CUDA_CHECK(CALL, cudaEventRecord(static_cast<cudaEvent_t>(m_submitted), toCuda(m_dtStream)));
+    Order o{order, m_geometryChanged};
+    m_geometryChanged = false;
+    m_mailbox.post(o);
+}
+
+bool CudaKinematics::tryTake(DetectionReport& report) { return m_mailbox.tryTake(report); }
+
+void CudaKinematics::waitAndTake(DetectionReport& report) { m_mailbox.waitAndTake(report); }
+
+void CudaKinematics::detectNow(const DetectionOrder& order, DetectionReport& report) {
+    submit(order);
+    waitAndTake(report);
+}
+
+void CudaKinematics::run() {
+    std::unique_ptr<Work> w;
+    auto reportStart = [this](std::exception_ptr failure) {
+        {
+            std::lock_guard<std::mutex> lock(m_startMutex);
+            m_startFailure = failure;
+            m_started = true;
+        }
+        m_startWake.notify_all();
+    };
+    try {
+        // Every CUDA call of this thread is for kT's GPU unless it says otherwise.
+        const DeviceInfo& info = useDevice("Initialize", m_kTDevice);
+        w.reset(new Work());
+        w->device = m_kTDevice;
+        w->dTDevice = m_dTDevice;
+        w->staged = m_kTDevice != m_dTDevice;
+        cudaStream_t stream = nullptr;
+        // Non-blocking: no implicit synchronisation with the legacy default stream, so kT's work
+        // overlaps dT's on a shared GPU.
+        DEME_CUDA_CHECK("Initialize", cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
+        w->stream = stream;
+        if (w->staged) {
+            // Peer access makes the snapshot and result transfers direct GPU-to-GPU copies; without
+            // it the runtime stages them through the host, slower but equally correct.
+            int can = 0;
+            DEME_CUDA_CHECK("Initialize", cudaDeviceCanAccessPeer(&can, m_kTDevice, m_dTDevice));
+            if (can) {
+                const cudaError_t e = cudaDeviceEnablePeerAccess(m_dTDevice, 0);
+                if (e == cudaErrorPeerAccessAlreadyEnabled)
+                    cudaGetLastError();
+                else
+                    DEME_CUDA_CHECK("Initialize", e);
+            }
+            m_peerAccess = can != 0;
+        }
+        CudaCompileOptions opt;
+        opt.architecture = info.architecture();
+        const std::string path = "backend/cuda/kernels/Detection.cu";
+        const CudaCompileResult c = compileCudaSource("Initialize", path, embeddedKernelText(path), opt);
+        // A module is loaded per GPU: this one is kT's.
+        w->module = CudaModule("Initialize", c.image);
+        w->kSphereBoxes = w->module.kernel("deme_sphere_bin_boxes");
+        w->kTriBoxes = w->module.kernel("deme_triangle_bin_boxes");
+        w->kBinEntries = w->module.kernel("deme_bin_entries");
+        w->kBinCounts = w->module.kernel("deme_bin_counts");
+        w->kPairSearch = w->module.kernel("deme_pair_search");
+        m_deviceName = info.name;
+        m_compileSeconds = c.compileSeconds;
+        m_fromCache = c.cacheHit;
+    } catch (...) {
+        w.reset();  // frees on this thread, with kT's GPU current
+        reportStart(std::current_exception());
+        return;
+    }
+    reportStart(nullptr);
+    Order order;
+    while (m_mailbox.waitForOrder(order)) {
+        DetectionReport report;
+        try {
+            // m_geometry, the inbox and the outbox are kT's to read and write until it reports.
+            if (order.geometryChanged) w->upload(m_geometry);
+            w->detect(order.order, m_submitted, m_inbox, m_outbox, report);
+        } catch (...) {
+            m_mailbox.fail(std::current_exception());
+            continue;
+        }
+        m_mailbox.deliver(report);
+    }
+    // kT's buffers, module and stream go here, with kT's GPU current.
+    w.reset();
+}
+
+}  // namespace deme::cuda

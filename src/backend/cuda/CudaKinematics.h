@@ -1,0 +1,123 @@
+// The kinematics side (kT, paper §2.1) of the CUDA backend: contact detection on its own CUDA stream,
+// driven by its own host thread through the worker mailbox (runtime/WorkerMailbox.h), on the
+// dynamics GPU or on a second one, while the dynamics side (dT) keeps stepping. dT submits an order
+// (a snapshot of what detection reads), kT bins, sorts and pair-searches with the rules of
+// kinematics/DetectionRules.h, and dT takes the finished contact list.
+//
+// Where things live (docs/cuda-backend.md): both exchange buffers, the inbox (the snapshot) and the
+// outbox (the contact list), are on dT's GPU, as in the paper: dT fills the inbox on its stream and
+// reads the outbox on its stream, never touching another GPU. kT keeps on its own GPU what detection
+// reads and never changes (radii, owners, analytical shapes, family rules) and its scratch (bins,
+// sorted entries, per-sphere counts). On a second GPU, kT copies the snapshot to its own memory in
+// one transfer (peer to peer where the GPUs allow it) because the pair search reads each position
+// many times at random, and copies the contact list back in one transfer; on one GPU it reads the
+// inbox and writes the outbox in place.
+//
+// Buffer ownership: dT writes the inbox only while kT is idle; kT writes the outbox only between
+// taking an order and reporting its result, and dT reads it only after taking that result. kT
+// starts reading the inbox only once dT's stream has reached the copies (an event), and reports a
+// result only once its own stream has finished, so no device-side ordering between the two streams
+// is needed beyond that one event.
+#pragma once
+
+#include <condition_variable>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "backend/cuda/CudaTypes.h"
+#include "backend/cuda/DeviceBuffer.h"
+#include "backend/cuda/DeviceState.h"
+#include "runtime/Backends.h"
+#include "runtime/WorkerMailbox.h"
+
+namespace deme::cuda {
+
+// The snapshot detection reads, on dT's GPU (written by dT).
+struct KinematicsInbox {
+    DeviceBuffer<double3> spherePos, triVert, analPos, analDir;
+    DeviceBuffer<family_t> ownerFamily;
+};
+
+// The contact list kT found, sorted by (A, B), on dT's GPU (written by kT). dT may swap these buffers
+// with its own after taking a result: kT resizes them before every write.
+struct KinematicsOutbox {
+    DeviceBuffer<bodyID_t> geomA, geomB;
+    DeviceBuffer<uint8_t> type;
+};
+
+class CudaKinematics : public KinematicsBackend {
+  public:
+    // Starts kT's thread on GPU `kTDevice`, which compiles (or loads from the cache) the detection
+    // kernels for that GPU and creates its stream; the exchange buffers go on `dTDevice`, which must
+    // be current for the calling (dT's) thread. Orders snapshot `source` on `dtStream`. Throws what
+    // kT's start-up threw.
+    CudaKinematics(int kTDevice, int dTDevice, const DeviceState& source, Stream dtStream);
+    ~CudaKinematics() override;
+    CudaKinematics(const CudaKinematics&) = delete;
+    CudaKinematics& operator=(const CudaKinematics&) = delete;
+
+    void setGeometry(const SimState& s, const BinGrid& grid, const FamilyRules& families,
+                     const Settings& settings) override;
+    void submit(const DetectionOrder& order) override;
+    bool tryTake(DetectionReport& report) override;
+    void waitAndTake(DetectionReport& report) override;
+    void detectNow(const DetectionOrder& order, DetectionReport& report) override;
+    bool sharesDynamicsDevice() const override { return m_kTDevice == m_dTDevice; }
+
+    // The outbox, for dT after it took a result and before it submits the next order.
+    KinematicsOutbox& outbox() { return m_outbox; }
+
+    int device() const { return m_kTDevice; }
+    const std::string& deviceName() const { return m_deviceName; }
+    double compileSeconds() const { return m_compileSeconds; }
+    bool kernelsFromCache() const { return m_fromCache; }
+    // Whether kT reaches dT's GPU peer to peer (two GPUs only).
+    bool peerAccess() const { return m_peerAccess; }
+
+  private:
+    struct Work;  // kT's device-side working memory, created and freed on kT's thread
+    struct Geometry {
+        std::vector<bodyID_t> sphereOwner, anaOwner, triOwner;
+        std::vector<float> radius, anaRadius, familyExtraMargin;
+        std::vector<uint8_t> anaType, anaInside, familyMask;
+        BinGrid grid{};
+        uint32_t numOwners = 0, numSpheres = 0, numAnalytical = 0, numTriangles = 0;
+    };
+    struct Order {
+        DetectionOrder order;
+        bool geometryChanged = false;  // kT copies m_geometry to its GPU first
+    };
+    using Mailbox = WorkerMailbox<Order, DetectionReport>;
+
+    void run();
+
+    const int m_kTDevice, m_dTDevice;
+    const DeviceState& m_source;
+    const Stream m_dtStream;
+    std::string m_deviceName;
+    double m_compileSeconds = 0.0;
+    bool m_fromCache = true, m_peerAccess = false;
+
+    Mailbox m_mailbox{"the GPU kinematics thread"};
+    // Start-up: kT reports once it is ready (or why it could not start).
+    std::mutex m_startMutex;
+    std::condition_variable m_startWake;
+    bool m_started = false;
+    std::exception_ptr m_startFailure;
+
+    Geometry m_geometry;  // written by dT only while kT is idle
+    bool m_geometryChanged = false;
+
+    // Exchange buffers, on dT's GPU.
+    KinematicsInbox m_inbox;
+    KinematicsOutbox m_outbox;
+    void* m_submitted = nullptr;  // a cudaEvent_t on dT's GPU: dT's stream has filled the inbox
+
+    std::thread m_thread;  // last member: starts after everything above exists
+};
+
+}  // namespace deme::cuda

@@ -1,0 +1,112 @@
+#include "backend/cuda/DeviceState.h"
+
+namespace deme::cuda {
+
+namespace {
+
+// Copies by role (state/StateFields.h): what the host writes goes up, what the steps write comes
+// back; the steps' scratch is sized where they run; the CPU's bookkeeping stays on the host.
+struct Upload {
+    Stream stream;
+    size_t scratchSize;
+    template <class T>
+    void operator()(DeviceBuffer<T>& d, const std::vector<T>& h, FieldRole role) const {
+        if (role == FieldRole::HOST) return;
+        if (role == FieldRole::SCRATCH) {
+            d.resizeDiscarding(scratchSize);
+            return;
+        }
+        d.resizeDiscarding(h.size());
+        if (!h.empty()) d.uploadAsync(h.data(), h.size(), stream);
+    }
+};
+
+struct Download {
+    Stream stream;
+    template <class T>
+    void operator()(const DeviceBuffer<T>& d, std::vector<T>& h, FieldRole role) const {
+        if (role != FieldRole::EVOLVES) return;
+        h.resize(d.size());
+        if (!h.empty()) d.downloadAsync(h.data(), h.size(), stream);
+    }
+};
+
+struct Point {
+    template <class T>
+    void operator()(T*& v, DeviceBuffer<T>& d, FieldRole role) const {
+        v = role == FieldRole::HOST ? nullptr : d.data();
+    }
+};
+
+}  // namespace
+
+void DeviceState::upload(const SimState& s, Stream stream) {
+    const Upload up{stream, s.owners.size()};
+    forEachOwnerField(owners, s.owners, up);
+    forEachMassField(massProps, s.massProps, up);
+    forEachSphereField(spheres, s.spheres, up);
+    forEachAnalyticalField(analytical, s.analytical, up);
+    forEachTriangleField(triangles, s.triangles, up);
+    forEachCacheField(cache, s.cache, up);
+    forEachScratchField(integrationScratch, s.integrationScratch, up);
+}
+
+void DeviceState::download(SimState& s, Stream stream) const {
+    const Download down{stream};
+    forEachOwnerField(owners, s.owners, down);
+    forEachCacheField(cache, s.cache, down);
+}
+
+void DeviceState::viewInto(StateView& v) {
+    const Point point;
+    forEachOwnerField(v.owners, owners, point);
+    forEachMassField(v.massProps, massProps, point);
+    forEachSphereField(v.spheres, spheres, point);
+    forEachAnalyticalField(v.analytical, analytical, point);
+    forEachTriangleField(v.triangles, triangles, point);
+    forEachCacheField(v.cache, cache, point);
+    forEachScratchField(v.integrationScratch, integrationScratch, point);
+}
+
+void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, Stream stream) {
+    const size_t n = c.size();
+    forEachContactField(d, c, [&](auto& dev, const auto& host, FieldRole role) {
+        if (role != FieldRole::EVOLVES) return;
+        // Per-pair fields the host has not filled yet (none persistent, no forces) start at zero.
+        const size_t count = (void*)&host == (void*)&c.wildcards ? n * W : n;
+        dev.resizeDiscarding(count);
+        if (host.size() == count && count)
+            dev.uploadAsync(host.data(), count, stream);
+        else if (count)
+            dev.zeroAsync(stream);
+    });
+}
+
+void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, ContactArrays& c, Stream stream) {
+    forEachContactField(d, c, [&](const auto& dev, auto& host, FieldRole role) {
+        if (role == FieldRole::HOST) {
+            // The CPU's reduction bookkeeping does not exist on the GPU: per-contact torques read
+            // as zero, as the GPU adds loads to the owners directly.
+            return;
+        }
+        const size_t count = (void*)&host == (void*)&c.wildcards ? n * W : n;
+        host.resize(count);
+        if (count) dev.downloadAsync(host.data(), count, stream);
+    });
+    c.torqueA.assign(n, make_float3(0.f));
+    c.torqueB.assign(n, make_float3(0.f));
+}
+
+void viewContacts(DeviceContacts& d, uint32_t n, StateView& v) {
+    forEachContactField(v.contacts, d, Point{});
+    v.numContacts = n;
+}
+
+void resizeContactState(DeviceContacts& d, size_t n, unsigned int W) {
+    d.meshState.resizeDiscarding(n);
+    d.wildcards.resizeDiscarding(n * W);
+    d.force.resizeDiscarding(n);
+    d.persistent.resizeDiscarding(n);
+}
+
+}  // namespace deme::cuda

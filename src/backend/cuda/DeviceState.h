@@ -1,0 +1,43 @@
+// The simulation state in device memory: the field lists of state/StateFields.h as device buffers,
+// and their copies to and from the host's SimState, made from the fields' roles (INPUT and EVOLVES
+// fields go up, EVOLVES fields come back, SCRATCH fields are sized per owner, HOST fields stay on
+// the host). Contact sets are kept by the dynamics side itself (two of them, for history mapping),
+// with the contact field list: DeviceContacts.
+#pragma once
+
+#include "backend/cuda/DeviceBuffer.h"
+#include "state/SimState.h"
+#include "state/StateView.h"
+
+namespace deme::cuda {
+
+using DeviceContacts = ContactFields<DeviceBuffer>;
+
+struct DeviceState {
+    OwnerFields<DeviceBuffer> owners;
+    MassFields<DeviceBuffer> massProps;
+    SphereFields<DeviceBuffer> spheres;
+    AnalyticalFields<DeviceBuffer> analytical;
+    TriangleFields<DeviceBuffer> triangles;
+    CacheFields<DeviceBuffer> cache;
+    ScratchFields<DeviceBuffer> integrationScratch;
+
+    // Queues the copies of every uploaded field of `s` on `stream` (the host arrays must stay as
+    // they are until the stream has passed them).
+    void upload(const SimState& s, Stream stream);
+    // Queues the copies of every evolving field into `s` on `stream`.
+    void download(SimState& s, Stream stream) const;
+    // Points `v`'s arrays (all but its contacts) at these buffers.
+    void viewInto(StateView& v);
+};
+
+// The contact set `c` of the host (n pairs, W wildcards each) onto the device, and back.
+void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, Stream stream);
+void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, ContactArrays& c, Stream stream);
+// Points the view's contact arrays at `d`'s (n pairs).
+void viewContacts(DeviceContacts& d, uint32_t n, StateView& v);
+// Sizes the per-contact state of `d` for n pairs of W wildcards each (the pairs themselves are set by
+// whoever fills geomA, geomB, type).
+void resizeContactState(DeviceContacts& d, size_t n, unsigned int W);
+
+}  // namespace deme::cuda

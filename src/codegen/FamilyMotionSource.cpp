@@ -1,0 +1,58 @@
+#include "codegen/FamilyMotionSource.h"
+
+#include <sstream>
+
+namespace deme {
+
+namespace {
+
+const char* const kAxis[3] = {"x", "y", "z"};
+
+// One family's case: which components are prescribed and their expressions of t.
+void writeFamily(std::ostringstream& o, unsigned int f, const FamilyMotion& m) {
+    o << "        case " << f << ":\n";
+    if (m.fixed) o << "            s.fixed = 1;\n";
+    for (int i = 0; i < 3; i++) {
+        if (m.linPrescribed[i])
+            o << "            s.linMask |= " << (1u << i) << "u;\n"
+              << "            s.lin." << kAxis[i] << " = (float)" << m.lin[i].toCppSource({"t"}) << ";\n";
+        if (m.angPrescribed[i])
+            o << "            s.angMask |= " << (1u << i) << "u;\n"
+              << "            s.ang." << kAxis[i] << " = (float)" << m.ang[i].toCppSource({"t"}) << ";\n";
+    }
+    o << "            break;\n";
+}
+
+}  // namespace
+
+std::string familyMotionKernelSource(const std::array<FamilyMotion, NUM_FAMILIES>& motions) {
+    std::ostringstream o;
+    o << "// Generated: the families' prescribed motion (codegen/FamilyMotionSource.cpp).\n"
+         "#include \"state/FamilyStepMotion.h\"\n"
+         "\n"
+         "namespace deme {\n"
+         "// std::min / std::max semantics, as the CPU's evaluator has them.\n"
+         "__device__ inline double deme_min(double a, double b) { return b < a ? b : a; }\n"
+         "__device__ inline double deme_max(double a, double b) { return a < b ? b : a; }\n"
+         "}  // namespace deme\n"
+         "\n"
+         "extern \"C\" __global__ void "
+      << kFamilyMotionKernel
+      << "(double t, deme::FamilyStepMotion* out) {\n"
+         "    using namespace deme;\n"
+         "    const unsigned int f = blockIdx.x * blockDim.x + threadIdx.x;\n"
+         "    if (f >= NUM_FAMILIES) return;\n"
+         "    FamilyStepMotion s;\n"
+         "    (void)t;\n"
+         "    switch (f) {\n";
+    for (unsigned int f = 0; f < NUM_FAMILIES; f++)
+        if (motions[f].hasAny()) writeFamily(o, f, motions[f]);
+    o << "        default:\n"
+         "            break;\n"
+         "    }\n"
+         "    out[f] = s;\n"
+         "}\n";
+    return o.str();
+}
+
+}  // namespace deme

@@ -1,0 +1,184 @@
+// Contact detection (the kinematics side, paper §2.1) as per-item functions, written once for the
+// CPU's OpenMP loops (backend/cpu/ContactDetector.cpp) and the GPU's kernels
+// (backend/cuda/kernels/Detection.cu); templates over the state type (SimState or StateView, same
+// member names). What differs between the backends is only how items are sorted into bins.
+//
+// Method: every geometry, enlarged by its margin, is registered in each bin its box touches; each
+// sphere A then searches the bins of its box, and a pair is reported only from the bin that holds
+// the lower corner of the two enlarged boxes' intersection, so exactly once. A sphere's partners
+// come in contact-set order: spheres by id, analytical components by id, triangles by id. So the
+// whole set is sorted by (A, B), which history mapping's binary searches need.
+//
+// No-miss bound: every geometry is enlarged by `margin`. A pair left out is more than 2*margin apart.
+// The step loop re-detects before any owner's accumulated travel (an upper bound on how far any of
+// its surface points moved) exceeds the margin, so such a pair cannot touch before the next
+// detection: the gap can shrink by at most travelA + travelB <= 2*margin.
+#pragma once
+
+#include "kinematics/BinGrid.h"
+#include "physics/ContactGeometry.h"
+
+namespace deme {
+
+// Items registered in bins: each item's bin box, and the items of each bin (bin b's are
+// items[start[b] .. start[b + 1]), ascending).
+struct BinsView {
+    const int *lo, *hi;
+    const uint32_t *start, *items;
+};
+
+// What detection reads besides the state.
+struct DetectionArgs {
+    BinGrid grid;
+    double margin;
+    const float* familyExtraMargin;  // NUM_FAMILIES values added to each family's margin
+    const uint8_t* familyMask;       // NUM_FAMILIES x NUM_FAMILIES, nonzero where contacts are resolved
+    BinsView sphereBins, triangleBins;  // triangleBins.start is null where there are no triangles
+    const double3 *triLo, *triHi;  // triangles' enlarged boxes
+};
+
+template <class S>
+DEME_HD_INLINE double marginOf(const S& s, const DetectionArgs& a, bodyID_t owner) {
+    return a.margin + (double)a.familyExtraMargin[s.owners.family[owner]];
+}
+
+// Sphere i's box, enlarged by its margin.
+template <class S>
+DEME_HD_INLINE void sphereBox(const S& s, const DetectionArgs& a, size_t i, double3& lo, double3& hi) {
+    const double e = (double)s.spheres.radius[i] + marginOf(s, a, s.spheres.owner[i]);
+    const double3 p = s.cache.spherePos[i];
+    lo = make_double3(p.x - e, p.y - e, p.z - e);
+    hi = make_double3(p.x + e, p.y + e, p.z + e);
+}
+
+// Triangle t's box, enlarged by its margin.
+template <class S>
+DEME_HD_INLINE void triangleBox(const S& s, const DetectionArgs& a, size_t t, double3& lo, double3& hi) {
+    const double3* v = &s.cache.triVert[3 * t];
+    const double e = marginOf(s, a, s.triangles.owner[t]);
+    lo = make_double3(fmin(fmin(v[0].x, v[1].x), v[2].x) - e, fmin(fmin(v[0].y, v[1].y), v[2].y) - e,
+                      fmin(fmin(v[0].z, v[1].z), v[2].z) - e);
+    hi = make_double3(fmax(fmax(v[0].x, v[1].x), v[2].x) + e, fmax(fmax(v[0].y, v[1].y), v[2].y) + e,
+                      fmax(fmax(v[0].z, v[1].z), v[2].z) + e);
+}
+
+// Whether bin (x, y, z) holds the lower corner of the intersection of boxes starting at loA and lo.
+DEME_HD_INLINE bool binOwnsPair(const BinGrid& g, const double3& loA, const double3& lo, int x, int y, int z) {
+    return binCoord(fmax(loA.x, lo.x), g.origin.x, g.size, g.nx) == x &&
+           binCoord(fmax(loA.y, lo.y), g.origin.y, g.size, g.ny) == y &&
+           binCoord(fmax(loA.z, lo.z), g.origin.z, g.size, g.nz) == z;
+}
+
+// Whether analytical component j is a partner of a sphere at pA with enlarged radius eA.
+template <class S>
+DEME_HD_INLINE bool analyticalInReach(const S& s, const DetectionArgs& a, const uint8_t* maskRow, const double3& pA,
+                                      double eA, unsigned int j) {
+    const bodyID_t o = s.analytical.owner[j];
+    if (!maskRow[s.owners.family[o]]) return false;
+    const double dist = s.analytical.type[j] == ANAL_PLANE
+                            ? planeSignedDistance(pA, s.cache.analPos[j], s.cache.analDir[j])
+                            : cylinderSignedDistance(pA, s.cache.analPos[j], s.cache.analDir[j], s.analytical.radius[j],
+                                                     s.analytical.inside[j] != 0);
+    return dist < eA + marginOf(s, a, o);
+}
+
+// Sorts ids[0, n) ascending (a sphere's partner lists are short).
+DEME_HD_INLINE void sortIds(bodyID_t* ids, unsigned int n) {
+    for (unsigned int k = 1; k < n; k++) {
+        const bodyID_t v = ids[k];
+        unsigned int at = k;
+        while (at > 0 && ids[at - 1] > v) {
+            ids[at] = ids[at - 1];
+            at--;
+        }
+        ids[at] = v;
+    }
+}
+
+// The contact type of a pair (sphere, b) from b's place in the unified geometry id space.
+template <class S>
+DEME_HD_INLINE uint8_t contactTypeOf(const S& s, bodyID_t b) {
+    return b < s.analyticalIdBase()   ? (uint8_t)SPHERE_SPHERE
+           : b < s.triangleIdBase() ? (uint8_t)SPHERE_ANALYTICAL
+                                      : (uint8_t)SPHERE_TRIANGLE;
+}
+
+// Sphere sa's partners (unified geometry ids) in contact-set order, into out[0, capacity); returns
+// how many there are. If that is more than `capacity`, out holds no usable list: call again with
+// room for all (capacity 0 counts only).
+template <class S>
+DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, bodyID_t sa, bodyID_t* out,
+                                           unsigned int capacity) {
+    const BinGrid& g = a.grid;
+    const double3 pA = s.cache.spherePos[sa];
+    const bodyID_t oA = s.spheres.owner[sa];
+    const double eA = (double)s.spheres.radius[sa] + marginOf(s, a, oA);
+    const double3 loA = make_double3(pA.x - eA, pA.y - eA, pA.z - eA);
+    const uint8_t* maskRow = a.familyMask + (size_t)s.owners.family[oA] * NUM_FAMILIES;
+    const int* bLo = a.sphereBins.lo + 3 * (size_t)sa;
+    const int* bHi = a.sphereBins.hi + 3 * (size_t)sa;
+    // 1. Sphere partners: spheres b > a of another owner (each pair once, from its lower sphere).
+    unsigned int nSph = 0;
+    for (int z = bLo[2]; z <= bHi[2]; z++)
+        for (int y = bLo[1]; y <= bHi[1]; y++)
+            for (int x = bLo[0]; x <= bHi[0]; x++) {
+                const uint64_t bin = binIndex(g, x, y, z);
+                for (uint32_t e = a.sphereBins.start[bin]; e < a.sphereBins.start[bin + 1]; e++) {
+                    const bodyID_t b = a.sphereBins.items[e];
+                    if (b <= sa) continue;
+                    const bodyID_t oB = s.spheres.owner[b];
+                    if (oB == oA || !maskRow[s.owners.family[oB]]) continue;
+                    const double3 pB = s.cache.spherePos[b];
+                    const double eB = (double)s.spheres.radius[b] + marginOf(s, a, oB);
+                    const double reach = eA + eB;
+                    const double3 d = pA - pB;
+                    if (fabs(d.x) > reach || fabs(d.y) > reach || fabs(d.z) > reach) continue;
+                    if (!binOwnsPair(g, loA, make_double3(pB.x - eB, pB.y - eB, pB.z - eB), x, y, z)) continue;
+                    if (dot(d, d) >= reach * reach) continue;
+                    if (nSph < capacity) out[nSph] = b;
+                    nSph++;
+                }
+            }
+    // 2. Triangle partners, kept behind the spheres for now.
+    unsigned int nTri = 0;
+    const bodyID_t triBase = s.triangleIdBase();
+    if (a.triangleBins.start != nullptr) {  // null without triangles
+        for (int z = bLo[2]; z <= bHi[2]; z++)
+            for (int y = bLo[1]; y <= bHi[1]; y++)
+                for (int x = bLo[0]; x <= bHi[0]; x++) {
+                    const uint64_t bin = binIndex(g, x, y, z);
+                    for (uint32_t e = a.triangleBins.start[bin]; e < a.triangleBins.start[bin + 1]; e++) {
+                        const uint32_t tri = a.triangleBins.items[e];
+                        const bodyID_t oT = s.triangles.owner[tri];
+                        if (!maskRow[s.owners.family[oT]]) continue;
+                        const double3 lo = a.triLo[tri], hi = a.triHi[tri];
+                        if (lo.x > pA.x + eA || lo.y > pA.y + eA || lo.z > pA.z + eA || hi.x < loA.x ||
+                            hi.y < loA.y || hi.z < loA.z)
+                            continue;
+                        if (!binOwnsPair(g, loA, lo, x, y, z)) continue;
+                        const double3* v = &s.cache.triVert[3 * (size_t)tri];
+                        double3 bary;
+                        const double3 c = closestPointOnTriangle(pA, v[0], v[1], v[2], bary);
+                        if (length(pA - c) >= eA + marginOf(s, a, oT)) continue;
+                        if (nSph + nTri < capacity) out[nSph + nTri] = triBase + tri;
+                        nTri++;
+                    }
+                }
+    }
+    // 3. Analytical components (few: every one is checked).
+    const unsigned int nA = (unsigned int)(s.triangleIdBase() - s.analyticalIdBase());
+    unsigned int nAna = 0;
+    for (unsigned int j = 0; j < nA; j++) nAna += analyticalInReach(s, a, maskRow, pA, eA, j) ? 1u : 0u;
+    const unsigned int total = nSph + nAna + nTri;
+    if (total > capacity) return total;
+    // 4. In order: [spheres by id | analytical by id | triangles by id].
+    sortIds(out, nSph);
+    sortIds(out + nSph, nTri);
+    for (unsigned int k = nTri; k > 0; k--) out[nSph + nAna + k - 1] = out[nSph + k - 1];
+    unsigned int at = nSph;
+    for (unsigned int j = 0; j < nA; j++)
+        if (analyticalInReach(s, a, maskRow, pA, eA, j)) out[at++] = s.analyticalIdBase() + j;
+    return total;
+}
+
+}  // namespace deme

@@ -1,0 +1,114 @@
+// The small interface between the one step loop (runtime/Simulation) and scheduler
+// (runtime/ContactSetManager) and the backends that run them: the CPU (backend/cpu, OpenMP loops)
+// and CUDA (backend/cuda, kernels). Both implement it with loops over the same per-item functions
+// (kinematics/, dynamics/); everything that decides -- when to detect, wait or swap contact sets,
+// what a step does in which order, when a run stops -- is above it and written once.
+//
+// Kinematics (kT, paper §2.1): contact detection, on its own thread beside the steps (submit, then
+// try-take or wait-and-take) or on the spot (detectNow). Dynamics (dT): the state, the steps, and
+// the installation of a detected contact set (history mapping).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "kinematics/BinGrid.h"
+#include "runtime/FamilyRules.h"
+#include "runtime/Settings.h"
+#include "runtime/TimingStats.h"
+#include "state/SimState.h"
+
+namespace deme {
+
+struct ModelLayout;
+
+// A detection from the state of dynamics step `step`, geometries enlarged by `margin`.
+struct DetectionOrder {
+    unsigned long long step = 0;
+    unsigned long long generation = 0;  // host edits counted by the scheduler; older results are stale
+    double margin = 0.0;
+};
+
+// What one detection found; the pairs themselves stay with the backend until installed.
+struct DetectionReport {
+    DetectionOrder order;
+    size_t numPairs = 0;
+    double binningSeconds = 0.0, searchSeconds = 0.0;
+};
+
+// What one step reports.
+struct StepOutcome {
+    size_t realContacts = 0, realSphereSphere = 0;  // pairs with overlap > 0 after the step's force pass
+    float maxSpeed = 0.f;     // fastest geometry point (sizes the next margin)
+    double maxTravel = 0.0;   // largest travel of any owner since the set in use was detected
+    bool fault = false;       // some owner diverged or left the domain (faultOwner, faultFlags)
+    size_t faultOwner = 0;    // lowest internal owner id with a fault
+    uint8_t faultFlags = 0;   // OwnerStepFlag bits of that owner
+    unsigned int kernelError = 0, kernelErrorItem = 0;  // GPU only: KernelError bits and the sphere
+};
+
+class KinematicsBackend {
+  public:
+    virtual ~KinematicsBackend() = default;
+    // What detection reads and never changes during a run, from the host state (after Initialize
+    // and every host-side edit). Only while no order is in flight.
+    virtual void setGeometry(const SimState& s, const BinGrid& grid, const FamilyRules& families,
+                             const Settings& settings) = 0;
+    // Asynchronous detection: sends an order from the current state (snapshot taken now).
+    virtual void submit(const DetectionOrder& order) = 0;
+    // A finished result, if any (false: none yet). Rethrows a failure of the kinematics thread.
+    virtual bool tryTake(DetectionReport& report) = 0;
+    // Waits for the order in flight, then takes its result.
+    virtual void waitAndTake(DetectionReport& report) = 0;
+    // Synchronous detection from the current state (the dynamics side waits for it).
+    virtual void detectNow(const DetectionOrder& order, DetectionReport& report) = 0;
+    // Whether detection takes its time from the dynamics side's device (n_max then weighs its cost).
+    virtual bool sharesDynamicsDevice() const = 0;
+};
+
+class DynamicsBackend {
+  public:
+    virtual ~DynamicsBackend() = default;
+    // The host state becomes the one the steps run on (after Initialize and host-side edits).
+    virtual void upload(const SimState& s, const Settings& settings, const FamilyRules& families) = 0;
+    // The evolved state (and contact set) into `s`.
+    virtual void download(SimState& s) = 0;
+    // Tracker loads (AddAcc) of `s` for the coming call, or zeros.
+    virtual void uploadTrackerLoads(const SimState& s) = 0;
+    // One step with the contact set in use: contact forces, their reduction onto owners, integration
+    // and the cached poses. Per-contact forces are stored where `storeContactForces` says (a step
+    // after which the host may read them).
+    virtual StepOutcome step(double time, const Settings& settings, const FamilyRules& families,
+                             bool storeContactForces, TimingStats& timing) = 0;
+
+    // Contact sets. markOrderBaseline(): the owners' travel now is the snapshot of an order sent now.
+    virtual void markOrderBaseline() = 0;
+    // The largest travel of any owner since the last markOrderBaseline().
+    virtual double maxTravelSinceOrder() = 0;
+    // The result of the last order taken from the kinematics side becomes the set in use, with the
+    // history of the set it replaces (wildcards, mesh state, persistent pairs); travel is measured
+    // from the order's snapshot from now on.
+    virtual void install(const DetectionReport& report, TimingStats& timing) = 0;
+    virtual size_t numContacts() const = 0;
+
+    // The margin-free facts the messages and reports need.
+    virtual std::string description() const = 0;  // "CPU, 2 threads", "GPU 0 (NVIDIA H200)"
+    virtual bool onGpu() const = 0;
+};
+
+// A backend's two sides, made together (each side knows its partner).
+struct Backends {
+    std::unique_ptr<DynamicsBackend> dynamics;
+    std::unique_ptr<KinematicsBackend> kinematics;
+};
+
+// Made by backend/BackendFactory.cpp. `s` is the host state the CPU backend steps on (and that a GPU
+// backend uploads from); the force model is loaded for the backend (compiled at run time for a
+// custom model). Messages go through `log`. Throws deme::Error naming "Initialize" on failure.
+Backends makeBackends(SimState& s, const ModelLayout& model, Settings& settings,
+                      const std::function<void(Verbosity, const std::string&)>& log);
+
+}  // namespace deme

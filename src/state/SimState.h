@@ -1,0 +1,99 @@
+// The simulation's flat structure-of-arrays state on the host, built at Initialize() (paper §2.3,
+// §2.4): the arrays of state/StateFields.h as std::vectors, plus the tables and scalars that only
+// the host side reads. Owners carry mass, pose, velocity and family; geometries (spheres,
+// analytical components, triangles) carry shape and material and point at their owner. Contacts
+// are between geometries.
+#pragma once
+
+#include <vector>
+
+#include <deme/VariableTypes.h>
+
+#include "physics/CompactPosition.h"
+#include "state/StateFields.h"
+
+namespace deme {
+
+template <class T>
+using HostArray = std::vector<T>;
+
+struct OwnerArrays : OwnerFields<HostArray> {
+    size_t size() const { return voxel.size(); }
+};
+using MassProperties = MassFields<HostArray>;
+struct SphereArrays : SphereFields<HostArray> {
+    size_t size() const { return owner.size(); }
+};
+struct AnalyticalArrays : AnalyticalFields<HostArray> {
+    size_t size() const { return owner.size(); }
+};
+struct TriangleArrays : TriangleFields<HostArray> {
+    size_t size() const { return owner.size(); }
+};
+struct ContactArrays : ContactFields<HostArray> {
+    size_t size() const { return geomA.size(); }
+};
+using KinematicCache = CacheFields<HostArray>;
+using IntegrationScratch = ScratchFields<HostArray>;
+
+inline uint64_t contactKey(bodyID_t a, bodyID_t b) { return (uint64_t(a) << 32) | uint64_t(b); }
+
+// Material property tables for the force model.
+struct MaterialTables {
+    unsigned int count = 0;
+    // The standard properties, which the built-in models and the derived tables read (0 where a
+    // material lacks one).
+    std::vector<float> E, nu;         // per material
+    std::vector<float> CoR, mu, Crr;  // per pair, count x count
+    // Derived once per pair (MaterialMixing.h) so that force models need not mix per contact:
+    // effective Young's and shear moduli, and the damping term of CoR.
+    std::vector<float> E_eff, G_eff, beta_CoR;
+    // Every property by name for a user's model, in the order of the model's layout
+    // (forcemodel/ModelLayout.h): per-material ones, then the ones the model reads per pair.
+    std::vector<std::vector<float>> props, pairProps;
+};
+
+// The force model's owner and geometry wildcards (paper Table 3): one array per wildcard, in the
+// order the model declares them, indexed by internal owner id or unified geometry id. Contact
+// wildcards live with the contacts (ContactArrays::wildcards).
+struct WildcardArrays {
+    std::vector<std::vector<float>> owner, geometry;
+    // Contacts that appear between families a and b (either way round) start with `value` in
+    // contact wildcard `index` instead of 0.
+    struct ContactInit {
+        family_t a, b;
+        unsigned int index;
+        float value;
+    };
+    std::vector<ContactInit> contactInit;
+};
+
+struct SimState {
+    DomainFrame frame;
+    double3 domainSize;
+    OwnerArrays owners;
+    MassProperties massProps;
+    SphereArrays spheres;
+    AnalyticalArrays analytical;
+    TriangleArrays triangles;
+    ContactArrays contacts;
+    KinematicCache cache;
+    IntegrationScratch integrationScratch;
+    std::vector<uint32_t> ownerSphereStart;  // spheres of owner o: [start[o], start[o+1])
+    std::vector<uint32_t> ownerTriStart;     // triangles of owner o: [start[o], start[o+1])
+    // Owners and spheres are stored in a space-filling-curve order for memory locality; users see
+    // ids in the order they added things (clumps batch by batch, then external objects).
+    std::vector<bodyID_t> ownerUserToInternal, ownerInternalToUser;
+    std::vector<bodyID_t> sphereInternalToUser, sphereUserToInternal;
+    MaterialTables materials;
+    WildcardArrays wildcards;
+    unsigned int numWildcards = 0;
+    size_t numClumps = 0;  // owners [0, numClumps) are clumps; analytical owners, then meshes follow
+    size_t numAnalyticalOwners = 0;
+    bool hasTrackerLoads = false;  // some owner has extraAcc/extraAngAcc for the coming call
+    // First geometry id of each kind in the unified id space of contacts.
+    bodyID_t analyticalIdBase() const { return (bodyID_t)spheres.size(); }
+    bodyID_t triangleIdBase() const { return (bodyID_t)(spheres.size() + analytical.size()); }
+};
+
+}  // namespace deme

@@ -1,0 +1,46 @@
+// The simulation state as flat arrays behind raw pointers: what GPU kernels get. Made from the same
+// field lists as SimState (state/StateFields.h), so its members carry SimState's names and the
+// per-item code (contact inputs, detection, owner step, force models) is written once as templates
+// over the state type: SimState on the CPU, a StateView of device memory on the GPU. Plain data
+// only, so NVRTC can compile it.
+#pragma once
+
+#include <deme/VariableTypes.h>
+
+#include "physics/CompactPosition.h"
+#include "state/StateFields.h"
+
+namespace deme {
+
+template <class T>
+using ViewPointer = T*;
+
+using OwnerView = OwnerFields<ViewPointer>;
+using MassView = MassFields<ViewPointer>;
+using SphereView = SphereFields<ViewPointer>;
+using AnalyticalView = AnalyticalFields<ViewPointer>;
+using TriangleView = TriangleFields<ViewPointer>;
+// On the GPU `force` is null in the steps whose per-contact forces nobody reads: loads go to the
+// owners directly there, and not writing them saves a third of the force pass's memory traffic.
+using ContactView = ContactFields<ViewPointer>;
+using CacheView = CacheFields<ViewPointer>;
+using IntegrationScratchView = ScratchFields<ViewPointer>;
+
+struct StateView {
+    DomainFrame frame;
+    double3 domainSize;
+    OwnerView owners;
+    MassView massProps;
+    SphereView spheres;
+    AnalyticalView analytical;
+    TriangleView triangles;
+    ContactView contacts;
+    CacheView cache;
+    IntegrationScratchView integrationScratch;
+    unsigned int numWildcards;
+    uint32_t numOwners, numSpheres, numAnalytical, numTriangles, numContacts;
+    DEME_HD bodyID_t analyticalIdBase() const { return numSpheres; }
+    DEME_HD bodyID_t triangleIdBase() const { return numSpheres + numAnalytical; }
+};
+
+}  // namespace deme
