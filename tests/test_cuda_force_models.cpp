@@ -103,8 +103,8 @@ TEST_F(CudaForceModelNvrtc, BuiltInForcePassesAreInTheDynamicsModule) {
     const CudaCompileResult r = compileEmbedded("backend/cuda/kernels/Dynamics.cu");
     EXPECT_NE(r.image.find(".entry deme_force_pass_frictional_hertz"), std::string::npos);
     EXPECT_NE(r.image.find(".entry deme_force_pass_frictionless_hertz"), std::string::npos);
-    const CudaCompileResult p = compileEmbedded("backend/cuda/kernels/PersistentMerge.cu");
-    for (const char* k : {"deme_persistent_missing", "deme_persistent_merge", "deme_persistent_flags"})
+    const CudaCompileResult p = compileEmbedded("backend/cuda/kernels/HistoryMapping.cu");
+    for (const char* k : {"deme_persistent_missing", "deme_persistent_merge", "deme_map_history"})
         EXPECT_NE(p.image.find(".entry " + std::string(k)), std::string::npos) << k;
 }
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "ScratchDirTest.h"
+#include "TestKernels.h"
 #include "backend/cuda/CudaModule.h"
 #include "backend/cuda/Device.h"
 #include "backend/cuda/DeviceBuffer.h"
@@ -252,17 +253,15 @@ class CudaModuleLaunch : public deme_test::ScratchDirTest {};
 TEST_F(CudaModuleLaunch, RunsTheExampleKernelLikeTheHost) {
     SKIP_WITHOUT_GPU();
     jit::KernelCache cache(dir.string());
-    std::string source;
-    for (const jit::EmbeddedFile& f : jit::embeddedSources())
-        if (std::string(f.path) == "backend/cuda/kernels/Example.cu") source.assign(f.text, f.size);
+    const std::string source = deme_test::testKernelText("Example.cu");
     ASSERT_FALSE(source.empty());
     // Both image kinds: CUBIN for this GPU (the default), and PTX that the driver compiles.
-    const CudaCompileResult cubin = compileCudaSource("test", "backend/cuda/kernels/Example.cu", source, {}, cache);
+    const CudaCompileResult cubin = compileCudaSource("test", deme_test::kExampleKernelPath, source, {}, cache);
     CudaCompileOptions ptxOptions;
     ptxOptions.architecture =
         "compute_" + std::to_string(usableDevices().front().major * 10 + usableDevices().front().minor);
     const CudaCompileResult ptx =
-        compileCudaSource("test", "backend/cuda/kernels/Example.cu", source, ptxOptions, cache);
+        compileCudaSource("test", deme_test::kExampleKernelPath, source, ptxOptions, cache);
 
     const unsigned int n = 1000;
     std::mt19937 rng(6);

@@ -14,6 +14,7 @@
 
 #include "ScratchDirTest.h"
 #include "TestHelpers.h"
+#include "TestKernels.h"
 #include "backend/cuda/Device.h"
 #include "backend/cuda/DeviceBuffer.h"
 #include "backend/cuda/NvrtcCompiler.h"
@@ -27,14 +28,7 @@ using namespace deme::cuda;
 
 namespace {
 
-std::string embeddedText(const std::string& path) {
-    for (const jit::EmbeddedFile& f : jit::embeddedSources())
-        if (path == f.path) return std::string(f.text, f.size);
-    ADD_FAILURE() << path << " is not embedded";
-    return "";
-}
-
-const char* const kExamplePath = "backend/cuda/kernels/Example.cu";
+const char* const kExamplePath = deme_test::kExampleKernelPath;
 const char* const kExampleEntry = "exampleSpherePairOverlap";
 
 void reportTime(const std::string& what, double seconds) {
@@ -64,7 +58,7 @@ class CudaNvrtc : public deme_test::ScratchDirTest {
 // ---- NVRTC
 
 TEST_F(CudaNvrtc, CompilesTheExampleKernelToPtx) {
-    const CudaCompileResult r = compile(kExamplePath, embeddedText(kExamplePath), "compute_90");
+    const CudaCompileResult r = compile(kExamplePath, deme_test::testKernelText("Example.cu"), "compute_90");
     EXPECT_EQ(r.kind, GpuImageKind::Ptx);
     EXPECT_EQ(r.architecture, "compute_90");
     EXPECT_FALSE(r.cacheHit);
@@ -75,7 +69,7 @@ TEST_F(CudaNvrtc, CompilesTheExampleKernelToPtx) {
 }
 
 TEST_F(CudaNvrtc, SecondCompileIsACacheHit) {
-    const std::string source = embeddedText(kExamplePath);
+    const std::string source = deme_test::testKernelText("Example.cu");
     const auto start = std::chrono::steady_clock::now();
     const CudaCompileResult first = compile(kExamplePath, source, "compute_90");
     const double cold = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -93,7 +87,7 @@ TEST_F(CudaNvrtc, SecondCompileIsACacheHit) {
 }
 
 TEST_F(CudaNvrtc, OptionsArchitectureAndSourceAreInTheKey) {
-    const std::string source = embeddedText(kExamplePath);
+    const std::string source = deme_test::testKernelText("Example.cu");
     const std::string base = compile(kExamplePath, source, "compute_90").key;
     EXPECT_NE(compile(kExamplePath, source, "compute_90", {"DEME_EXAMPLE_FLAG=1"}).key, base);
     EXPECT_NE(compile(kExamplePath, source, "compute_80").key, base);
@@ -103,7 +97,7 @@ TEST_F(CudaNvrtc, OptionsArchitectureAndSourceAreInTheKey) {
 
 // CUBIN needs no GPU either: NVRTC assembles it itself.
 TEST_F(CudaNvrtc, CompilesCubinForARealArchitecture) {
-    const CudaCompileResult r = compile(kExamplePath, embeddedText(kExamplePath), "sm_90");
+    const CudaCompileResult r = compile(kExamplePath, deme_test::testKernelText("Example.cu"), "sm_90");
     EXPECT_EQ(r.kind, GpuImageKind::Cubin);
     ASSERT_GE(r.image.size(), 4u);
     EXPECT_EQ(r.image.substr(0, 4),
@@ -192,8 +186,8 @@ extern "C" __global__ void physicsSmoke(double* out, deme::float4* q, deme::floa
     const deme::ContactPoint c = deme::sphereCylinderContact(deme::make_double3(0.1, 0, 0), 0.01,
         deme::make_double3(0, 0, 0), deme::make_double3(0, 0, 1), 1.0, true);
     q[0] = deme::integrateOrientation(q[0], w, dt);
-    deme::float3 wv = w;
-    deme::advanceAngularVelocity(wv, w, deme::make_float3(1.f), dt);
+    const deme::float3 wv =
+        deme::advanceAngularVelocity(w, w, deme::make_float3(1.f), deme::make_float3(1.f), dt).wEnd;
     deme::voxelID_t v; deme::subVoxelPos_t sx, sy, sz;
     deme::DomainFrame frame{deme::make_double3(0, 0, 0), 1.0, 1.0 / 65536};
     deme::encodePosition(c.point, frame, v, sx, sy, sz);

@@ -128,7 +128,7 @@ void checkPersistentPairSurvives(bool async, const std::string& backend = "cpu")
 TEST(ForceModelPersistence, PersistentPairSurvivesDetection) { checkPersistentPairSurvives(false); }
 TEST(ForceModelPersistence, PersistentPairSurvivesAsyncDetection) { checkPersistentPairSurvives(true); }
 
-// On the GPU: detection there merges the persistent pair back in (DevicePersistentContacts), and the
+// On the GPU: detection there merges the persistent pair back in (DeviceHistoryMapping), and the
 // host's Mark/Remove calls reach the device set. Skipped without a usable GPU.
 TEST(GpuParity, PersistentPairSurvivesDetection) {
     if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";

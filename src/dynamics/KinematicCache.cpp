@@ -1,7 +1,8 @@
 #include "dynamics/KinematicCache.h"
 
-#include "parallel/Parallel.h"
+#include "dynamics/ContactInputsGather.h"
 #include "dynamics/OwnerStep.h"
+#include "parallel/Parallel.h"
 
 namespace deme {
 
@@ -11,16 +12,26 @@ void updateAnalyticalCache(SimState& s) {
 
 void refreshKinematicCache(SimState& s) {
     KinematicCache& k = s.cache;
-    const size_t n = s.owners.size();
+    const size_t n = s.owners.size(), nS = s.spheres.size(), nT = s.triangles.size();
     k.ownerPos.resize(n);
     k.ownerAngVelGlobal.resize(n);
-    k.spherePos.resize(s.spheres.size());
-    k.sphereArm.resize(s.spheres.size());
+    k.spherePos.resize(nS);
+    k.sphereArm.resize(nS);
     k.analPos.resize(s.analytical.size());
     k.analDir.resize(s.analytical.size());
-    k.triVert.resize(3 * s.triangles.size());
-#pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
-    for (size_t o = 0; o < n; o++) updateOwnerCache(s, o);
+    k.triVert.resize(3 * nT);
+#pragma omp parallel if (n > PARALLEL_MIN_ITEMS)
+    {
+#pragma omp for schedule(static)
+        for (size_t o = 0; o < n; o++) {
+            k.ownerPos[o] = ownerPosition(s, (bodyID_t)o);
+            k.ownerAngVelGlobal[o] = rotateToGlobal(s.owners.oriQ[o], s.owners.angVel[o]);
+        }
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < nS; i++) placeSphere(s, i);
+#pragma omp for schedule(static)
+        for (size_t t = 0; t < nT; t++) placeTriangle(s, t);
+    }
     updateAnalyticalCache(s);
 }
 

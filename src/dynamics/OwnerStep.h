@@ -59,25 +59,6 @@ struct OwnerStepResult {
     uint8_t flags;
 };
 
-// encodePosition without branches: always computes a candidate, and says whether it is valid.
-DEME_HD_INLINE bool encodePositionSelect(const double3& p, const DomainFrame& f, voxelID_t& voxel, subVoxelPos_t& sx,
-                                         subVoxelPos_t& sy, subVoxelPos_t& sz) {
-    const double inv = 1.0 / f.subStep;
-    double g[3] = {(p.x - f.origin.x) * inv + 0.5, (p.y - f.origin.y) * inv + 0.5, (p.z - f.origin.z) * inv + 0.5};
-    // The negated comparisons also reject NaN.
-    const bool ok = g[0] >= 0.0 && g[1] >= 0.0 && g[2] >= 0.0 && g[0] <= (double)MAX_GRID_COORD &&
-                    g[1] <= (double)MAX_GRID_COORD && g[2] <= (double)MAX_GRID_COORD;
-    int64_t i[3];
-    for (int a = 0; a < 3; a++) i[a] = ok ? (int64_t)g[a] : 0;  // no out-of-range conversion
-    const voxelID_t vNew =
-        packVoxel((uint64_t)i[0] >> SUBVOXEL_BITS, (uint64_t)i[1] >> SUBVOXEL_BITS, (uint64_t)i[2] >> SUBVOXEL_BITS);
-    voxel = ok ? vNew : voxel;
-    sx = ok ? (subVoxelPos_t)(i[0] & 0xFFFF) : sx;
-    sy = ok ? (subVoxelPos_t)(i[1] & 0xFFFF) : sy;
-    sz = ok ? (subVoxelPos_t)(i[2] & 0xFFFF) : sz;
-    return ok;
-}
-
 // Advances owner o by one step and refreshes its cached pose. Written without branches (every
 // path is computed, then selected) and as a function of its own, so that the owner sweep
 // vectorises: the vectoriser sees this function's locals only after inlining, whereas locals of an
@@ -99,12 +80,10 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     // Tracker loads are zero unless set, and read unconditionally: a conditional load is control flow.
     const float3 acc = ow.contactForce[o] * (1.f / s.massProps.mass[in]) + c.gravity + ow.extraAcc[o];
     const float3 torqueLocal = rotateToLocal(q0, ow.contactTorque[o]) + ow.extraAngAcc[o] * moi;
-    // advanceAngularVelocity (explicit midpoint), written with values.
-    const float3 wHalf = w0 + (0.5f * c.h) * eulerAngularAccInv(w0, torqueLocal, moi, invMoi);
-    const float3 wEnd = w0 + c.h * eulerAngularAccInv(wHalf, torqueLocal, moi, invMoi);
-    float3 v = dynamic ? v0 + c.h * acc : v0;
-    float3 w = dynamic ? wEnd : w0;
-    float3 wMid = dynamic ? wHalf : w0;
+    const AngularStep rot = advanceAngularVelocity(w0, torqueLocal, moi, invMoi, c.h);
+    float3 v = dynamic ? advanceVelocity(v0, acc, c.h) : v0;
+    float3 w = dynamic ? rot.wEnd : w0;
+    float3 wMid = dynamic ? rot.wMid : w0;
     // Prescribed components replace the integrated ones (kinematic owners have nothing else).
     v = applyMask(v, m.lin, m.linMask);
     w = applyMask(w, m.ang, m.angMask);
@@ -124,8 +103,8 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     ow.oriQ[o] = q;
 
     // A fixed owner has v = 0, so x is its cached position and re-encodes to the same code.
-    const double3 x = k.ownerPos[o] + to_double3(v) * c.dt;
-    const bool encoded = encodePositionSelect(x, c.frame, ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o]);
+    const double3 x = advancePosition(k.ownerPos[o], v, c.dt);
+    const bool encoded = encodePosition(x, c.frame, ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o]);
     k.ownerPos[o] = decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], c.frame);
     const bool notFinite = !finite3(v) || !finite3(w) || !finiteFloat(q.w);
     const bool tooFast = dynamic && dot(v, v) > c.maxSpeed2;

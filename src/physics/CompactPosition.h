@@ -40,21 +40,25 @@ DEME_HD inline double3 decodePosition(voxelID_t voxel, subVoxelPos_t sx, subVoxe
 
 // Rounds to the nearest representable position. Returns false (and leaves outputs untouched) if the
 // position lies outside the representable range: the caller reports the owner as out of the domain.
+// Written without branches (a candidate is always computed, then selected), so that the owner
+// sweep that calls it vectorises.
 DEME_HD inline bool encodePosition(const double3& p, const DomainFrame& f, voxelID_t& voxel, subVoxelPos_t& sx,
                                    subVoxelPos_t& sy, subVoxelPos_t& sz) {
     const double inv = 1.0 / f.subStep;
-    const double gx = (p.x - f.origin.x) * inv + 0.5;
-    const double gy = (p.y - f.origin.y) * inv + 0.5;
-    const double gz = (p.z - f.origin.z) * inv + 0.5;
+    const double g[3] = {(p.x - f.origin.x) * inv + 0.5, (p.y - f.origin.y) * inv + 0.5,
+                         (p.z - f.origin.z) * inv + 0.5};
     // The negated comparisons also reject NaN.
-    if (!(gx >= 0.0 && gy >= 0.0 && gz >= 0.0)) return false;
-    if (!(gx <= (double)MAX_GRID_COORD && gy <= (double)MAX_GRID_COORD && gz <= (double)MAX_GRID_COORD)) return false;
-    const int64_t ix = (int64_t)gx, iy = (int64_t)gy, iz = (int64_t)gz;
-    voxel = packVoxel((uint64_t)ix >> SUBVOXEL_BITS, (uint64_t)iy >> SUBVOXEL_BITS, (uint64_t)iz >> SUBVOXEL_BITS);
-    sx = (subVoxelPos_t)(ix & 0xFFFF);
-    sy = (subVoxelPos_t)(iy & 0xFFFF);
-    sz = (subVoxelPos_t)(iz & 0xFFFF);
-    return true;
+    const bool ok = g[0] >= 0.0 && g[1] >= 0.0 && g[2] >= 0.0 && g[0] <= (double)MAX_GRID_COORD &&
+                    g[1] <= (double)MAX_GRID_COORD && g[2] <= (double)MAX_GRID_COORD;
+    int64_t i[3];
+    for (int a = 0; a < 3; a++) i[a] = ok ? (int64_t)g[a] : 0;  // no out-of-range conversion
+    const voxelID_t vNew =
+        packVoxel((uint64_t)i[0] >> SUBVOXEL_BITS, (uint64_t)i[1] >> SUBVOXEL_BITS, (uint64_t)i[2] >> SUBVOXEL_BITS);
+    voxel = ok ? vNew : voxel;
+    sx = ok ? (subVoxelPos_t)(i[0] & 0xFFFF) : sx;
+    sy = ok ? (subVoxelPos_t)(i[1] & 0xFFFF) : sy;
+    sz = ok ? (subVoxelPos_t)(i[2] & 0xFFFF) : sz;
+    return ok;
 }
 
 }  // namespace deme

@@ -1,10 +1,13 @@
-// Rigid-body kinematics and time integration of one owner.
+// Rigid-body kinematics and time integration of one owner: the integrator the owner step
+// (dynamics/OwnerStep.h) calls on both backends.
 //
 // Integrator (documented in docs/physics.md): semi-implicit (symplectic) Euler for translation,
 //   v(n+1) = v(n) + dt * a(n),   x(n+1) = x(n) + dt * v(n+1)        -- first order, energy-stable;
 // explicit midpoint (second order) for Euler's rotation equations in the body frame,
 //   I dw/dt = tau - w x (I w),
-// and the exact exponential map of the midpoint angular velocity for the orientation quaternion.
+// and the exact exponential map of the midpoint angular velocity for the orientation quaternion
+// (Quaternion.h: a series for the usual small angles, the exact form for large ones). Written with
+// values and no branches, so that the owner sweep vectorises.
 #pragma once
 
 #include "Quaternion.h"
@@ -30,13 +33,24 @@ DEME_HD inline float3 eulerAngularAccInv(const float3& w, const float3& torqueLo
     return (torqueLocal - cross(w, Iw)) * invMoi;
 }
 
-// Advances the body-frame angular velocity w by dt (explicit midpoint) and returns the midpoint
-// angular velocity, which the orientation update uses.
-DEME_HD inline float3 advanceAngularVelocity(float3& w, const float3& torqueLocal, const float3& moi, float dt) {
-    const float3 invMoi = make_float3(1.f / moi.x, 1.f / moi.y, 1.f / moi.z);
-    const float3 wHalf = w + (0.5f * dt) * eulerAngularAccInv(w, torqueLocal, moi, invMoi);
-    w = w + dt * eulerAngularAccInv(wHalf, torqueLocal, moi, invMoi);
-    return wHalf;
+// Translation, semi-implicit Euler: the new velocity from the acceleration, then the new position
+// from the new velocity.
+DEME_HD inline float3 advanceVelocity(const float3& v, const float3& acc, float dt) { return v + dt * acc; }
+DEME_HD inline double3 advancePosition(const double3& x, const float3& vNew, double dt) {
+    return x + to_double3(vNew) * dt;
+}
+
+// Rotation, explicit midpoint: the body-frame angular velocity at the middle of the step (which the
+// orientation update uses) and at its end.
+struct AngularStep {
+    float3 wMid, wEnd;
+};
+DEME_HD inline AngularStep advanceAngularVelocity(const float3& w, const float3& torqueLocal, const float3& moi,
+                                                  const float3& invMoi, float dt) {
+    AngularStep r;
+    r.wMid = w + (0.5f * dt) * eulerAngularAccInv(w, torqueLocal, moi, invMoi);
+    r.wEnd = w + dt * eulerAngularAccInv(r.wMid, torqueLocal, moi, invMoi);
+    return r;
 }
 
 }  // namespace deme

@@ -10,6 +10,7 @@
 #include <deme/VariableTypes.h>
 
 #include "physics/CompactPosition.h"
+#include "state/ContactInitRule.h"
 #include "state/StateFields.h"
 
 namespace deme {
@@ -60,11 +61,7 @@ struct WildcardArrays {
     std::vector<std::vector<float>> owner, geometry;
     // Contacts that appear between families a and b (either way round) start with `value` in
     // contact wildcard `index` instead of 0.
-    struct ContactInit {
-        family_t a, b;
-        unsigned int index;
-        float value;
-    };
+    using ContactInit = ContactInitRule;
     std::vector<ContactInit> contactInit;
 };
 

@@ -2,57 +2,52 @@
 
 #include <algorithm>
 
+#include "kinematics/HistoryRules.h"
 #include "parallel/Parallel.h"
-#include "dynamics/ContactInputsGather.h"
 
 namespace deme {
 
 namespace {
 
-std::vector<uint64_t> keysOf(const std::vector<bodyID_t>& geomA, const std::vector<bodyID_t>& geomB) {
-    std::vector<uint64_t> keys(geomA.size());
-    for (size_t i = 0; i < keys.size(); i++) keys[i] = contactKey(geomA[i], geomB[i]);
-    return keys;
+ContactKeys keysOf(const std::vector<bodyID_t>& geomA, const std::vector<bodyID_t>& geomB) {
+    return ContactKeys{geomA.data(), geomB.data(), (unsigned int)geomA.size()};
 }
 
 // Adds to `fresh` the persistent pairs of the current set that it lacks, keeping it sorted by key.
-void keepPersistentPairs(const SimState& s, const std::vector<uint64_t>& oldKeys, DetectedContacts& fresh,
-                         std::vector<uint64_t>& freshKeys) {
-    const ContactArrays& c = s.contacts;
-    std::vector<size_t> missing;  // indices into the current set, in key order
-    for (size_t j = 0; j < oldKeys.size(); j++)
-        if (c.persistent[j] && !std::binary_search(freshKeys.begin(), freshKeys.end(), oldKeys[j]))
-            missing.push_back(j);
-    if (missing.empty()) return;
+void mergePersistentPairs(const ContactArrays& c, DetectedContacts& fresh) {
+    const ContactKeys old = keysOf(c.geomA, c.geomB), freshKeys = keysOf(fresh.geomA, fresh.geomB);
+    const size_t nOld = old.n, nFresh = freshKeys.n;
+    std::vector<unsigned int> missingBefore(nOld + 1, 0);
+#pragma omp parallel for schedule(static) if (nOld > PARALLEL_MIN_ITEMS)
+    for (size_t j = 0; j < nOld; j++)
+        missingBefore[j] = persistentPairMissing(freshKeys, old, c.persistent.data(), (unsigned int)j) ? 1u : 0u;
+    std::vector<uint8_t> missing(missingBefore.begin(), missingBefore.end() - 1);
+    unsigned int sum = 0;
+    for (unsigned int& m : missingBefore) {
+        const unsigned int v = m;
+        m = sum;
+        sum += v;
+    }
+    if (sum == 0) return;
     DetectedContacts merged;
-    const size_t n = fresh.size() + missing.size();
-    merged.geomA.reserve(n);
-    merged.geomB.reserve(n);
-    merged.type.reserve(n);
-    size_t i = 0, k = 0;
-    while (i < fresh.size() || k < missing.size()) {
-        if (k == missing.size() || (i < fresh.size() && freshKeys[i] < oldKeys[missing[k]])) {
-            merged.geomA.push_back(fresh.geomA[i]);
-            merged.geomB.push_back(fresh.geomB[i]);
-            merged.type.push_back(fresh.type[i]);
-            i++;
-        } else {
-            const size_t j = missing[k++];
-            merged.geomA.push_back(c.geomA[j]);
-            merged.geomB.push_back(c.geomB[j]);
-            merged.type.push_back(c.type[j]);
-        }
+    merged.geomA.resize(nFresh + sum);
+    merged.geomB.resize(nFresh + sum);
+    merged.type.resize(nFresh + sum);
+#pragma omp parallel for schedule(static) if (nFresh > PARALLEL_MIN_ITEMS)
+    for (size_t i = 0; i < nFresh; i++) {
+        const unsigned int at = mergedSlotOfFresh(freshKeys, old, missingBefore.data(), (unsigned int)i);
+        merged.geomA[at] = fresh.geomA[i];
+        merged.geomB[at] = fresh.geomB[i];
+        merged.type[at] = fresh.type[i];
+    }
+    for (size_t j = 0; j < nOld; j++) {
+        if (!missing[j]) continue;
+        const unsigned int at = mergedSlotOfOld(freshKeys, old, missingBefore.data(), (unsigned int)j);
+        merged.geomA[at] = c.geomA[j];
+        merged.geomB[at] = c.geomB[j];
+        merged.type[at] = c.type[j];
     }
     fresh = std::move(merged);
-    freshKeys = keysOf(fresh.geomA, fresh.geomB);
-}
-
-// Wildcards of a pair entering the set: 0, or the value set for its two families.
-void initialWildcards(const SimState& s, bodyID_t a, bodyID_t b, uint8_t type, float* wc) {
-    const family_t fa = s.owners.family[s.spheres.owner[a]];
-    const family_t fb = s.owners.family[geometryOwner(s, type, b)];
-    for (const WildcardArrays::ContactInit& r : s.wildcards.contactInit)
-        if ((r.a == fa && r.b == fb) || (r.a == fb && r.b == fa)) wc[r.index] = r.value;
 }
 
 }  // namespace
@@ -60,28 +55,23 @@ void initialWildcards(const SimState& s, bodyID_t a, bodyID_t b, uint8_t type, f
 void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     ContactArrays& c = s.contacts;
     const unsigned int W = s.numWildcards;
-    const std::vector<uint64_t> oldKeys = keysOf(c.geomA, c.geomB);
-    std::vector<uint64_t> freshKeys = keysOf(fresh.geomA, fresh.geomB);
-    if (std::find(c.persistent.begin(), c.persistent.end(), 1) != c.persistent.end())
-        keepPersistentPairs(s, oldKeys, fresh, freshKeys);
+    const bool anyPersistent = std::find(c.persistent.begin(), c.persistent.end(), 1) != c.persistent.end();
+    if (anyPersistent) mergePersistentPairs(c, fresh);
     const size_t nNew = fresh.size();
-    const bool initRules = !s.wildcards.contactInit.empty();
-
-    std::vector<float> wildcards(nNew * W, 0.f);
-    std::vector<uint8_t> meshState(nNew, 0), persistent(nNew, 0);
+    const OldContactHistory old{keysOf(c.geomA, c.geomB),
+                                c.wildcards.data(),
+                                c.meshState.data(),
+                                anyPersistent ? c.persistent.data() : nullptr,
+                                W,
+                                s.wildcards.contactInit.data(),
+                                (unsigned int)s.wildcards.contactInit.size()};
+    const ContactKeys freshKeys = keysOf(fresh.geomA, fresh.geomB);
+    std::vector<float> wildcards(nNew * W);
+    std::vector<uint8_t> meshState(nNew), persistent(nNew);
 #pragma omp parallel for schedule(static) if (nNew > PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < nNew; i++) {
-        const uint64_t key = freshKeys[i];
-        const auto it = std::lower_bound(oldKeys.begin(), oldKeys.end(), key);
-        if (it != oldKeys.end() && *it == key) {
-            const size_t j = (size_t)(it - oldKeys.begin());
-            for (unsigned int w = 0; w < W; w++) wildcards[i * W + w] = c.wildcards[j * W + w];
-            meshState[i] = c.meshState[j];
-            persistent[i] = c.persistent[j];
-        } else if (initRules) {
-            initialWildcards(s, fresh.geomA[i], fresh.geomB[i], fresh.type[i], wildcards.data() + i * W);
-        }
-    }
+    for (size_t i = 0; i < nNew; i++)
+        carryPairHistory(s, freshKeys, fresh.type.data(), old, (unsigned int)i, wildcards.data() + i * W,
+                         meshState[i], persistent[i]);
     c.geomA.swap(fresh.geomA);
     c.geomB.swap(fresh.geomB);
     c.type.swap(fresh.type);

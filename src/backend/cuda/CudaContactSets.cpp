@@ -7,7 +7,6 @@
 
 #include "backend/cuda/CudaDynamics.h"
 #include "backend/cuda/CudaKinematics.h"
-#include "backend/cuda/DeviceContactSet.h"
 
 namespace deme::cuda {
 
@@ -51,15 +50,9 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     std::swap(fresh.geomA, out.geomA);
     std::swap(fresh.geomB, out.geomB);
     std::swap(fresh.type, out.type);
-    // Persistent pairs the detection missed stay in the set (DevicePersistentContacts.h).
-    const ContactKeys oldKeys{old.geomA.data(), old.geomB.data(), m_numContacts};
-    const unsigned int total = m_persistence.merge(fresh.geomA, fresh.geomB, fresh.type, (unsigned int)r.numPairs,
-                                                   oldKeys, old.type.data(), old.persistent.data(), m_prim, m_stream);
-    resizeContactState(fresh, total, m_W);
-    mapContactHistory(kMapHistory, old, m_numContacts, fresh, total, m_W, m_stream);
-    m_persistence.carryOver(m_view, ContactKeys{fresh.geomA.data(), fresh.geomB.data(), total}, fresh.type.data(),
-                            fresh.persistent.data(), fresh.wildcards.data(), m_W, oldKeys, old.persistent.data(),
-                            m_stream);
+    // Persistent pairs the detection missed stay in the set; every pair takes its history over.
+    const unsigned int total =
+        m_history.install(fresh, (unsigned int)r.numPairs, old, m_numContacts, m_W, m_view, m_prim, m_stream);
     m_current = 1 - m_current;
     m_numContacts = total;
     refreshView();

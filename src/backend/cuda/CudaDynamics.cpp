@@ -47,7 +47,7 @@ void CudaDynamics::upload(const SimState& s, const Settings& settings, const Fam
     // The model's tables and wildcards and the persistence rules (copied on the legacy stream and
     // waited for, so dT's stream finds them in place).
     m_model.upload(s);
-    m_persistence.uploadRules(s.wildcards.contactInit);
+    m_history.uploadRules(s.wildcards.contactInit);
     synchronize(nullptr);
 
     m_view.frame = s.frame;

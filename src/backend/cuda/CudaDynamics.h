@@ -15,7 +15,7 @@
 
 #include "backend/cuda/CudaModule.h"
 #include "backend/cuda/DeviceForceModel.h"
-#include "backend/cuda/DevicePersistentContacts.h"
+#include "backend/cuda/DeviceHistoryMapping.h"
 #include "backend/cuda/DevicePrimitives.h"
 #include "backend/cuda/DeviceState.h"
 #include "backend/cuda/kernels/KernelArgs.cuh"
@@ -70,9 +70,9 @@ class CudaDynamics : public DynamicsBackend {
     // synchronisation, splits the step between the force and integration phases (the timing report
     // and synchronous n_max adaptation use it) without a synchronisation of its own.
     void *m_forceStart = nullptr, *m_forceEnd = nullptr;  // cudaEvent_t
-    CudaModule m_dynamicsModule, m_historyModule, m_exchangeModule;
+    CudaModule m_dynamicsModule, m_exchangeModule;
     CudaKernel kResetReduction, kCopyDoubles, kClearLoads, kResolveMesh, kIntegrate, kLargeRot, kPlaceSpheres,
-        kPlaceTris, kAnalytical, kMapHistory, kMaxTravelSince;
+        kPlaceTris, kAnalytical, kMaxTravelSince;
     // The families' prescriptions, compiled from the user's expressions (recompiled when they change).
     CudaModule m_familyModule;
     CudaKernel kFamilyMotion;
@@ -81,9 +81,9 @@ class CudaDynamics : public DynamicsBackend {
     bool m_fromCache = true;
     // DEME_CUDA_PROFILE_FROM_STEP: the step at which a profiler's capture starts (docs/gpu-tests.md).
     unsigned long long m_profileFromStep = ~0ull, m_steps = 0;
-    // The contact force model's kernel and data, and the persistent-contact rules of each new set.
+    // The contact force model's kernel and data, and the history mapping of each new set.
     DeviceForceModel m_model;
-    DevicePersistentContacts m_persistence;
+    DeviceHistoryMapping m_history;
     DevicePrimitives m_prim;
     CudaKinematics* m_kinematics = nullptr;
 

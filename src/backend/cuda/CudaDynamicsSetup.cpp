@@ -31,16 +31,12 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     m_name = info.name;
     CudaCompileOptions opt;
     opt.architecture = info.architecture();
-    const std::string dynPath = "backend/cuda/kernels/Dynamics.cu", detPath = "backend/cuda/kernels/Detection.cu",
-                      exPath = "backend/cuda/kernels/Exchange.cu";
+    const std::string dynPath = "backend/cuda/kernels/Dynamics.cu", exPath = "backend/cuda/kernels/Exchange.cu";
     const CudaCompileResult d = compileCudaSource("Initialize", dynPath, embeddedKernelText(dynPath), opt);
-    const CudaCompileResult k = compileCudaSource("Initialize", detPath, embeddedKernelText(detPath), opt);
     const CudaCompileResult x = compileCudaSource("Initialize", exPath, embeddedKernelText(exPath), opt);
-    m_compileSeconds = d.compileSeconds + k.compileSeconds + x.compileSeconds;
-    m_fromCache = d.cacheHit && k.cacheHit && x.cacheHit;
+    m_compileSeconds = d.compileSeconds + x.compileSeconds;
+    m_fromCache = d.cacheHit && x.cacheHit;
     m_dynamicsModule = CudaModule("Initialize", d.image);
-    // dT needs only the history mapping of Detection.cu; kT loads its own copy on its GPU.
-    m_historyModule = CudaModule("Initialize", k.image);
     m_exchangeModule = CudaModule("Initialize", x.image);
     kResetReduction = m_dynamicsModule.kernel("deme_reset_reduction");
     kCopyDoubles = m_dynamicsModule.kernel("deme_copy_doubles");
@@ -51,12 +47,11 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     kPlaceSpheres = m_dynamicsModule.kernel("deme_place_spheres");
     kPlaceTris = m_dynamicsModule.kernel("deme_place_triangles");
     kAnalytical = m_dynamicsModule.kernel("deme_analytical_step");
-    kMapHistory = m_historyModule.kernel("deme_map_history");
     kMaxTravelSince = m_exchangeModule.kernel("deme_max_travel_since");
     m_model.load("Initialize (contact force model)", layout, m_dynamicsModule, opt);
-    m_persistence.load("Initialize", opt);
-    m_compileSeconds += m_model.compileSeconds() + m_persistence.compileSeconds();
-    m_fromCache = m_fromCache && m_model.fromCache() && m_persistence.fromCache();
+    m_history.load("Initialize", opt);
+    m_compileSeconds += m_model.compileSeconds() + m_history.compileSeconds();
+    m_fromCache = m_fromCache && m_model.fromCache() && m_history.fromCache();
     // Non-blocking: the legacy default stream would serialise with kT's stream on a shared GPU.
     cudaStream_t st = nullptr;
     DEME_CUDA_CHECK("Initialize", cudaStreamCreateWithFlags(&st, cudaStreamNonBlocking));

@@ -80,27 +80,4 @@ extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, unsign
     }
 }
 
-// Contact history across a re-detection: a pair found again keeps its wildcards and mesh state,
-// a new pair starts from zero. The old set is sorted by (A, B).
-extern "C" __global__ void deme_map_history(const bodyID_t* newA, const bodyID_t* newB, unsigned int nNew,
-                                            const bodyID_t* oldA, const bodyID_t* oldB, unsigned int nOld,
-                                            const float* oldWildcards, const uint8_t* oldMeshState, unsigned int W,
-                                            float* newWildcards, uint8_t* newMeshState) {
-    const size_t i = globalIndex();
-    if (i >= nNew) return;
-    const unsigned long long key = ((unsigned long long)newA[i] << 32) | newB[i];
-    unsigned int lo = 0, hi = nOld;
-    while (lo < hi) {
-        const unsigned int mid = (lo + hi) >> 1;
-        const unsigned long long k = ((unsigned long long)oldA[mid] << 32) | oldB[mid];
-        if (k < key)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    const bool found = lo < nOld && (((unsigned long long)oldA[lo] << 32) | oldB[lo]) == key;
-    for (unsigned int w = 0; w < W; w++) newWildcards[i * W + w] = found ? oldWildcards[(size_t)lo * W + w] : 0.f;
-    newMeshState[i] = found ? oldMeshState[lo] : (uint8_t)0;
-}
-
 }  // namespace deme

@@ -1,9 +1,9 @@
-// The GPU's persistent-contact kernels (src/backend/cuda/kernels/PersistentMerge.cu) checked without
-// a GPU: the kernel file is compiled here for the host, each kernel run as a loop over its threads,
-// and the result compared with the CPU's installDetectedContacts (kinematics/HistoryMapping.cpp) on
-// random contact sets: the same pairs in the same order, the same persistent flags, the same initial
-// wildcards of new pairs. The kernels use nothing of CUDA but the thread index
-// (tests/HostKernelEmulation.h). (History mapping of wildcards is Detection.cu's, tested on the GPU.)
+// The GPU's history-mapping kernels (src/backend/cuda/kernels/HistoryMapping.cu) checked without a
+// GPU: the kernel file is compiled here for the host, each kernel run as a loop over its threads in
+// the order DeviceHistoryMapping launches them, and the result compared with the CPU's
+// installDetectedContacts (backend/cpu/HistoryMapping.cpp) on random contact sets: the same pairs in
+// the same order, the same wildcards (carried over, initial values of new pairs), mesh states and
+// persistent flags. The kernels use nothing of CUDA but the thread index (tests/HostKernelEmulation.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,7 +14,7 @@
 #include "backend/cpu/HistoryMapping.h"
 
 #include "HostKernelEmulation.h"
-#include "backend/cuda/kernels/PersistentMerge.cu"
+#include "backend/cuda/kernels/HistoryMapping.cu"
 #include "HostKernelEmulationEnd.h"
 
 using namespace deme;
@@ -40,9 +40,10 @@ Pairs randomPairs(std::mt19937& rng, unsigned int spheres, size_t n) {
 
 }  // namespace
 
-TEST(CudaPersistentMerge, KernelsFollowTheCpuRules) {
+TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
     std::mt19937 rng(11);
     const unsigned int spheres = 40;
+    size_t newPairs = 0;  // pairs new to the set: 0, or 7 between families 0 and 1
     for (int round = 0; round < 200; round++) {
         SCOPED_TRACE(round);
         // The CPU's state: spheres in families 0..2, one contact wildcard, a rule for families 0-1.
@@ -62,16 +63,20 @@ TEST(CudaPersistentMerge, KernelsFollowTheCpuRules) {
         c.geomA = old.a;
         c.geomB = old.b;
         c.type.assign(nOld, SPHERE_SPHERE);
-        c.wildcards.assign(nOld, -1.f);
+        c.wildcards.resize(nOld);
+        for (float& w : c.wildcards) w = (float)(rng() % 1000) + 0.5f;
         c.persistent = oldPersistent;
-        c.meshState.assign(nOld, 0);
+        c.meshState.resize(nOld);
+        for (uint8_t& m : c.meshState) m = (uint8_t)(rng() % 4);
+        const std::vector<float> oldWildcards = c.wildcards;
+        const std::vector<uint8_t> oldMeshState = c.meshState;
         DetectedContacts detected;
         detected.geomA = fresh.a;
         detected.geomB = fresh.b;
         detected.type.assign(nFresh, SPHERE_SPHERE);
         installDetectedContacts(s, detected);
 
-        // The GPU's steps, as DevicePersistentContacts runs them.
+        // The GPU's steps, as DeviceHistoryMapping runs them.
         const std::vector<uint8_t> oldType(nOld, SPHERE_SPHERE), freshType(nFresh, SPHERE_SPHERE);
         const ContactKeys freshKeys{fresh.a.data(), fresh.b.data(), (unsigned int)nFresh};
         const ContactKeys oldKeys{old.a.data(), old.b.data(), (unsigned int)nOld};
@@ -90,21 +95,24 @@ TEST(CudaPersistentMerge, KernelsFollowTheCpuRules) {
         });
         ASSERT_EQ(A, c.geomA);
         ASSERT_EQ(B, c.geomB);
-        // History mapping would copy the old wildcards of pairs found again; new pairs start at 0.
-        std::vector<float> wildcards(total, 0.f);
-        std::vector<uint8_t> persistent(total, 9);
+        std::vector<float> wildcards(total, -9.f);
+        std::vector<uint8_t> meshState(total, 9), persistent(total, 9);
         StateView view{};
         view.spheres.owner = s.spheres.owner.data();
         view.owners.family = s.owners.family.data();
         view.numSpheres = spheres;
         const ContactInitRule rule{0, 1, 0, 7.f};
+        const OldContactHistory history{oldKeys, oldWildcards.data(), oldMeshState.data(),
+                                        any ? oldPersistent.data() : nullptr, 1, &rule, 1};
         const ContactKeys mergedKeys{A.data(), B.data(), (unsigned int)total};
         runThreads(total, [&] {
-            deme_persistent_flags(view, mergedKeys, T.data(), oldKeys, any ? oldPersistent.data() : nullptr,
-                                  persistent.data(), &rule, 1, wildcards.data(), 1);
+            deme_map_history(view, mergedKeys, T.data(), history, wildcards.data(), meshState.data(),
+                             persistent.data());
         });
         EXPECT_EQ(persistent, c.persistent);
-        for (size_t i = 0; i < total; i++)
-            if (c.wildcards[i] != -1.f) EXPECT_EQ(wildcards[i], c.wildcards[i]) << "pair " << i;
+        EXPECT_EQ(meshState, c.meshState);
+        EXPECT_EQ(wildcards, c.wildcards);
+        newPairs += std::count(wildcards.begin(), wildcards.end(), 7.f) + std::count(wildcards.begin(), wildcards.end(), 0.f);
     }
+    EXPECT_GT(newPairs, 1000u);
 }

@@ -1,7 +1,7 @@
-// An example of a kernel compiled at run time by NVRTC (src/backend/cuda/NvrtcCompiler.h): it
-// includes the single-source physics headers exactly as the CPU code does. Kept as the smallest
-// case for the plumbing tests, which run it on a GPU against the host (the simulation's kernels are
-// Dynamics.cu and Detection.cu; the tests compile every file in this folder).
+// A test-only kernel compiled at run time by NVRTC (src/backend/cuda/NvrtcCompiler.h): it includes
+// the single-source physics headers exactly as the engine's kernels do. The smallest case for the
+// NVRTC and launch tests (test_cuda_plumbing.cpp, test_cuda_gpu.cpp), which run it on a GPU against
+// the host; read from the source tree by tests/TestKernels.h, never embedded in the library.
 #include "physics/ContactGeometry.h"
 #include "physics/Quaternion.h"
 

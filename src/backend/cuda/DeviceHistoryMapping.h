@@ -1,0 +1,56 @@
+// Installing a freshly detected contact set on the GPU with the history of the set it replaces: the
+// rules of kinematics/HistoryRules.h run as the kernels of kernels/HistoryMapping.cu, on dT's stream
+// (CudaContactSets.cpp calls it when dT installs a set). Each contact set carries a persistent flag
+// per pair, which the force model may change and the host may set (MarkPersistentContact,
+// re-uploaded).
+#pragma once
+
+#include <vector>
+
+#include "backend/cuda/CudaModule.h"
+#include "backend/cuda/DeviceBuffer.h"
+#include "backend/cuda/DevicePrimitives.h"
+#include "backend/cuda/DeviceState.h"
+#include "backend/cuda/NvrtcCompiler.h"
+#include "kinematics/HistoryRules.h"
+#include "state/SimState.h"
+#include "state/StateView.h"
+
+namespace deme::cuda {
+
+class DeviceHistoryMapping {
+  public:
+    // Compiles (or finds in the kernel cache) the kernels for `options`.
+    void load(const std::string& call, const CudaCompileOptions& options);
+    double compileSeconds() const { return m_compileSeconds; }
+    bool fromCache() const { return m_fromCache; }
+
+    // The family initial values of contact wildcards (WildcardArrays::contactInit), after upload.
+    void uploadRules(const std::vector<ContactInitRule>& rules);
+
+    // Makes `fresh` (its first nFresh pairs set by detection, sorted) the new set: adds the
+    // persistent pairs of `old` (nOld pairs) it lacks, in key order, sizes its per-contact state and
+    // carries every pair's history over. Returns the new set's size. `view` gives the geometries'
+    // owners and families.
+    unsigned int install(DeviceContacts& fresh, unsigned int nFresh, const DeviceContacts& old, unsigned int nOld,
+                         unsigned int W, const StateView& view, DevicePrimitives& prim, Stream stream);
+
+  private:
+    // Adds the missing persistent pairs to fresh's pair arrays; returns the new count. Sets
+    // m_oldHadPersistent.
+    unsigned int mergePersistent(DeviceContacts& fresh, unsigned int nFresh, const DeviceContacts& old,
+                                 unsigned int nOld, DevicePrimitives& prim, Stream stream);
+
+    CudaModule m_module;
+    CudaKernel m_missing, m_merge, m_map;
+    DeviceBuffer<unsigned int> m_isMissing, m_missingBefore, m_any;
+    DeviceBuffer<bodyID_t> m_mergedA, m_mergedB;
+    DeviceBuffer<uint8_t> m_mergedType;
+    DeviceBuffer<ContactInitRule> m_rules;
+    unsigned int m_numRules = 0;
+    bool m_oldHadPersistent = false;
+    double m_compileSeconds = 0.0;
+    bool m_fromCache = true;
+};
+
+}  // namespace deme::cuda

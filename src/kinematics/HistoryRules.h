@@ -1,0 +1,98 @@
+// Contact history across a re-detection (paper §3.2, ARCHITECTURE.md invariant 6) as per-pair
+// functions, written once for the CPU's loops (backend/cpu/HistoryMapping.cpp) and the GPU's kernels
+// (backend/cuda/kernels/HistoryMapping.cu):
+//   1. persistent pairs of the old set that the fresh detection lacks are merged back into it, in key
+//      order (each pair finds its place by counting the other set's pairs before it);
+//   2. every pair of the new set found in the old one keeps its wildcards, mesh state and persistent
+//      flag; a new pair starts from zero, or from the value set for its two families.
+// Contact sets are sorted by the pair key (geometry A, then B), so every lookup is a binary search.
+#pragma once
+
+#include "dynamics/ContactInputsGather.h"
+#include "state/ContactInitRule.h"
+
+namespace deme {
+
+// A contact set's pair keys: geometries A and B of n pairs, sorted by (A, B).
+struct ContactKeys {
+    const bodyID_t *geomA, *geomB;
+    unsigned int n;
+};
+
+DEME_HD_INLINE uint64_t pairKey(bodyID_t a, bodyID_t b) { return ((uint64_t)a << 32) | (uint64_t)b; }
+
+// The first index of `set` whose key is not below `key`.
+DEME_HD_INLINE unsigned int keyLowerBound(const ContactKeys& set, uint64_t key) {
+    unsigned int lo = 0, hi = set.n;
+    while (lo < hi) {
+        const unsigned int mid = (lo + hi) >> 1;
+        if (pairKey(set.geomA[mid], set.geomB[mid]) < key)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+DEME_HD_INLINE bool keyAt(const ContactKeys& set, unsigned int at, uint64_t key) {
+    return at < set.n && pairKey(set.geomA[at], set.geomB[at]) == key;
+}
+
+// 1. Whether pair j of the old set is persistent and the fresh set lacks it.
+DEME_HD_INLINE bool persistentPairMissing(const ContactKeys& fresh, const ContactKeys& old,
+                                          const uint8_t* oldPersistent, unsigned int j) {
+    if (!oldPersistent[j]) return false;
+    const uint64_t key = pairKey(old.geomA[j], old.geomB[j]);
+    return !keyAt(fresh, keyLowerBound(fresh, key), key);
+}
+
+// Where fresh pair i and missing old pair j go in the merged set: their index in their own set plus
+// the other set's pairs before them (the two share no key). missingBefore is the exclusive sum of
+// persistentPairMissing over the old set.
+DEME_HD_INLINE unsigned int mergedSlotOfFresh(const ContactKeys& fresh, const ContactKeys& old,
+                                              const unsigned int* missingBefore, unsigned int i) {
+    return i + missingBefore[keyLowerBound(old, pairKey(fresh.geomA[i], fresh.geomB[i]))];
+}
+DEME_HD_INLINE unsigned int mergedSlotOfOld(const ContactKeys& fresh, const ContactKeys& old,
+                                            const unsigned int* missingBefore, unsigned int j) {
+    return missingBefore[j] + keyLowerBound(fresh, pairKey(old.geomA[j], old.geomB[j]));
+}
+
+// What the new set takes over from the old one.
+struct OldContactHistory {
+    ContactKeys keys;
+    const float* wildcards;       // W per pair
+    const uint8_t* meshState;
+    const uint8_t* persistent;    // null: none of the old pairs is persistent
+    unsigned int W;
+    const ContactInitRule* rules;  // initial wildcards of pairs new to the set
+    unsigned int numRules;
+};
+
+// 2. The history of pair i of the new set (keys `fresh`, types `freshType`): its W wildcards, mesh
+// state and persistent flag. `s` gives the geometries' owners and families.
+template <class S>
+DEME_HD_INLINE void carryPairHistory(const S& s, const ContactKeys& fresh, const uint8_t* freshType,
+                                     const OldContactHistory& old, unsigned int i, float* wildcards,
+                                     uint8_t& meshState, uint8_t& persistent) {
+    const uint64_t key = pairKey(fresh.geomA[i], fresh.geomB[i]);
+    const unsigned int at = keyLowerBound(old.keys, key);
+    if (keyAt(old.keys, at, key)) {
+        for (unsigned int w = 0; w < old.W; w++) wildcards[w] = old.wildcards[(size_t)at * old.W + w];
+        meshState = old.meshState[at];
+        persistent = old.persistent ? old.persistent[at] : (uint8_t)0;
+        return;
+    }
+    for (unsigned int w = 0; w < old.W; w++) wildcards[w] = 0.f;
+    meshState = 0;
+    persistent = 0;
+    if (old.numRules == 0) return;
+    const family_t fa = s.owners.family[s.spheres.owner[fresh.geomA[i]]];
+    const family_t fb = s.owners.family[geometryOwner(s, freshType[i], fresh.geomB[i])];
+    for (unsigned int r = 0; r < old.numRules; r++) {
+        const ContactInitRule& rule = old.rules[r];
+        if ((rule.a == fa && rule.b == fb) || (rule.a == fb && rule.b == fa)) wildcards[rule.index] = rule.value;
+    }
+}
+
+}  // namespace deme
