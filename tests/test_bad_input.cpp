@@ -399,6 +399,7 @@ TEST(BadInput, UnknownOutputContent) {
             sim.SetOutputContent(std::vector<std::string>{"VEL", "COLOR"});
         },
         {"SetOutputContent", "COLOR"});
+    EXPECT_DEME_ERROR([&] { sim.SetOutputContent({"VEL", "COLOR"}); }, {"SetOutputContent", "COLOR"});
     EXPECT_DEME_ERROR([&] { sim.SetOutputFormat("VTK"); }, {"SetOutputFormat", "VTK"});
     EXPECT_NO_THROW(sim.SetOutputContent("XYZ ABSV|VEL"));
 }
