@@ -99,6 +99,18 @@ void expectSameBed(const BedResult& ref, const BedResult& other) {
     EXPECT_NEAR((double)other.contacts, (double)ref.contacts, 0.03 * (double)ref.contacts);
 }
 
+// With asynchronous detection on a bed that settles and then barely moves, the dynamics side waits
+// only when a contact set runs out before its successor arrives. The schedule (docs/threads.md)
+// orders the successor 1.25 L + 1 steps before the set in use reaches n_max, L being kT's smoothed
+// latency in steps, while a result takes about L; with n_max >= 2.25 L + 2 a set serves at least
+// L + 1 steps between orders. So dT waits only for a detection more than 0.25 L + 1 steps late, and
+// only for the excess. To wait a tenth of the loop, dT would have to wait (L + 1) / 9 steps or more
+// per set: detections regularly some 36 % (plus one step) slower than their running average, on a
+// bed whose detection work hardly changes. The settled mixer on one and two H200s waited 0.0011 to
+// 0.012 of its loop (BENCHMARKS.md). A share above 0.1 means kT misses its slot on most sets (n_max
+// at its cap, a latency not measured right, sets expiring by travel).
+constexpr double kMaxAsyncWaitShare = 0.1;
+
 }  // namespace
 
 TEST(GpuParity, SettledBedAgreesWithTheCpu) {
@@ -128,7 +140,7 @@ TEST(GpuParity, AsyncSettledBedAgreesWithTheCpu) {
     EXPECT_NEAR(cpu.floorForce, cpu.weight, 0.01 * cpu.weight);
     expectSameBed(cpu, gpu);
     EXPECT_GT(gpu.asyncUpdates, 0u);
-    EXPECT_LT(gpu.waitShare, 1.0);
+    EXPECT_LT(gpu.waitShare, kMaxAsyncWaitShare);
 }
 
 // Two GPUs (DEMSolver(2)): kinematics on the second, reading the snapshot from and writing the
@@ -154,7 +166,7 @@ TEST(GpuParity, TwoGpusAgreeWithOne) {
         EXPECT_GT(res.deviceBytes, res.deviceBytesGpu1);    // and dT's state on GPU 0
         if (!sync) {
             EXPECT_GT(res.asyncUpdates, 0u);
-            EXPECT_LT(res.waitShare, 1.0);
+            EXPECT_LT(res.waitShare, kMaxAsyncWaitShare);  // kT on its own GPU: the same schedule
         }
     }
 }
