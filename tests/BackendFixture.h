@@ -10,10 +10,10 @@
 // How an instance makes its solvers use its backend: from the fixture's construction to its
 // destruction the environment variable DEME_BACKEND, the backend a solver takes unless SetBackend
 // says otherwise (read at Initialize), names the instance's backend; the previous value (or its
-// absence) comes back afterwards. So every solver the test creates, also inside helpers, runs on the
-// instance's backend without being told; a solver that must run on a given backend whatever the
-// instance (the CPU reference of a comparison) calls SetBackend. The variable is changed only
-// between tests, when no solver and none of its threads exist.
+// absence) comes back afterwards. So every solver the test creates, also in functions it calls,
+// runs on the instance's backend without being told; a solver that must run on a given backend
+// whatever the instance (the CPU reference of a comparison) calls SetBackend. The variable is
+// changed only between tests, when no solver and none of its threads exist.
 //
 // backend() names the instance's backend, onGpu() says whether it is "cuda", scratchDir() is a
 // directory of the test's own (removed afterwards; instances running at once do not share it).
