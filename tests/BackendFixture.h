@@ -96,8 +96,8 @@ class BackendTest : public ::testing::TestWithParam<std::string> {
 
 }  // namespace deme_test
 
-#define DEME_BACKEND_TEST_SUITE(Suite)                                                                \
-    class Suite : public ::deme_test::BackendTest {};                                                 \
+#define DEME_BACKEND_TEST_SUITE(Suite)                                                       \
+    class Suite : public ::deme_test::BackendTest {};                                        \
     INSTANTIATE_TEST_SUITE_P(, Suite, ::testing::ValuesIn(::deme_test::availableBackends()), \
                              ::deme_test::BackendTest::instanceName)
 

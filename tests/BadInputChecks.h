@@ -34,9 +34,9 @@ inline void expectDemeError(const std::function<void()>& f, const std::vector<st
 }
 
 // SCOPED_TRACE so that a failure reports the line of the check, not of the helper.
-#define EXPECT_DEME_ERROR(...)             \
-    do {                                   \
-        SCOPED_TRACE("EXPECT_DEME_ERROR"); \
+#define EXPECT_DEME_ERROR(...)                     \
+    do {                                           \
+        SCOPED_TRACE("EXPECT_DEME_ERROR");         \
         ::deme_test::expectDemeError(__VA_ARGS__); \
     } while (0)
 

@@ -48,8 +48,7 @@ TEST_F(OutputContentList, OneTwoAndThreeNames) {
     EXPECT_EQ(sphereHeader([](DEMSolver& s) { s.SetOutputContent({"ABSV"}); }), "X,Y,Z,r,absv");
     EXPECT_EQ(sphereHeader([](DEMSolver& s) { s.SetOutputContent({"XYZ", "ABSV"}); }), "X,Y,Z,r,absv");
     EXPECT_EQ(sphereHeader([](DEMSolver& s) { s.SetOutputContent({"OWNER", "VEL"}); }), "X,Y,Z,r,v_x,v_y,v_z,owner");
-    EXPECT_EQ(sphereHeader([](DEMSolver& s) { s.SetOutputContent({"XYZ", "ABSV", "FAMILY"}); }),
-              "X,Y,Z,r,absv,family");
+    EXPECT_EQ(sphereHeader([](DEMSolver& s) { s.SetOutputContent({"XYZ", "ABSV", "FAMILY"}); }), "X,Y,Z,r,absv,family");
     // The other forms still mean what they meant: a string of names, a vector.
     EXPECT_EQ(sphereHeader([](DEMSolver& s) { s.SetOutputContent("XYZ ABSV"); }), "X,Y,Z,r,absv");
     EXPECT_EQ(sphereHeader([](DEMSolver& s) { s.SetOutputContent(std::vector<std::string>{"VEL"}); }),
