@@ -42,11 +42,11 @@ inline void declareHertzMindlinInputs(deme::DEMForceModel& model) {
     model.SetPerContactWildcards({"delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time"});
 }
 
-// Whether the CUDA backend can run here; the GPU twins of the force model tests (GpuParity.*) skip
-// themselves otherwise (CI), and tests/gpu/run.sh runs them on a GPU machine.
+// Whether the CUDA backend can run here; the force model tests that compare the GPU with the CPU
+// (GpuParity.*) skip themselves otherwise (CI), and tests/gpu/run.sh runs them on a GPU machine.
 inline bool gpuPresent() { return deme::cuda::cudaBackendBuilt() && !deme::cuda::usableDevices().empty(); }
 
-// Custom models shared by the CPU tests and their GPU twins (GpuParity.* beside them).
+// Custom models shared by the force model tests (backend tests and GpuParity.* comparisons).
 
 // Coulomb's force between the owners' charges Q (an owner wildcard), for every pair in the contact set
 // whether or not it touches.

@@ -1,13 +1,16 @@
 // API behaviour that the physics tests do not cover: trackers, inspectors, contact masks,
-// family changes, moving analytical objects, template scaling.
+// family changes, moving analytical objects, on every backend; and template scaling (no simulation).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "BackendFixture.h"
 #include "TestHelpers.h"
 
 using namespace deme;
 using namespace deme_test;
+
+DEME_BACKEND_TEST_SUITE(Api);
 
 namespace {
 
@@ -29,7 +32,7 @@ struct TwoBalls {
 
 }  // namespace
 
-TEST(Api, DisabledFamiliesPassThroughEachOther) {
+DEME_BACKEND_TEST(Api, DisabledFamiliesPassThroughEachOther) {
     TwoBalls s;
     s.b->SetFamily(5);
     s.sim.DisableContactBetweenFamilies(0, 5);
@@ -46,7 +49,7 @@ TEST(Api, DisabledFamiliesPassThroughEachOther) {
     EXPECT_GT(ta->Vel().x, -0.9f);  // slowed or reversed by the collision
 }
 
-TEST(Api, ChangeFamilyReleasesAFixedClump) {
+DEME_BACKEND_TEST(Api, ChangeFamilyReleasesAFixedClump) {
     TwoBalls s(0.f);
     s.a->SetFamily(1);
     s.sim.SetFamilyFixed(1);
@@ -62,7 +65,7 @@ TEST(Api, ChangeFamilyReleasesAFixedClump) {
     EXPECT_NEAR(ta->Pos().z, -0.5 * 9.81 * 0.1 * 0.1, 1e-3);  // free fall, first-order integration
 }
 
-TEST(Api, TrackerSettersAndLoads) {
+DEME_BACKEND_TEST(Api, TrackerSettersAndLoads) {
     TwoBalls s(0.f);
     s.sim.Initialize();
     auto ta = s.sim.Track(s.a);
@@ -85,7 +88,7 @@ TEST(Api, TrackerSettersAndLoads) {
     EXPECT_NEAR(ta->AngVelGlobal().z, 3.f, 1e-6);
 }
 
-TEST(Api, InspectorsReduceOverClumps) {
+DEME_BACKEND_TEST(Api, InspectorsReduceOverClumps) {
     TwoBalls s(2.f);
     s.sim.Initialize();
     auto tb = s.sim.Track(s.b);
@@ -98,7 +101,7 @@ TEST(Api, InspectorsReduceOverClumps) {
 
 // An external object with a prescribed velocity: a plane rising at 0.1 m/s lifts a resting ball,
 // which then moves with it; the tracker reports the load the ball puts on the plane.
-TEST(Api, PrescribedAnalyticalObjectCarriesABall) {
+DEME_BACKEND_TEST(Api, PrescribedAnalyticalObjectCarriesABall) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.2, 0.3));
@@ -120,7 +123,8 @@ TEST(Api, PrescribedAnalyticalObjectCarriesABall) {
     EXPECT_NEAR(-tl->ContactForce().z, 9.81, 0.1);  // carries the ball's weight
 }
 
-TEST(Api, TemplateScaleScalesMassAndInertia) {
+// No simulation starts here: a plain test, apart from the backend suite above.
+TEST(ApiTemplate, ScaleScalesMassAndInertia) {
     DEMSolver sim;
     auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.3));
     auto t = sim.LoadClumpType(2.f, make_float3(1.f, 2.f, 3.f), {0.5f, 0.25f},

@@ -3,10 +3,14 @@
 
 #include <vector>
 
+#include "BackendFixture.h"
 #include "TestHelpers.h"
 
 using namespace deme;
 using namespace deme_test;
+
+DEME_BACKEND_TEST_SUITE(HertzImpact);
+DEME_BACKEND_TEST_SUITE(HeadOnCollision);
 
 namespace {
 
@@ -54,7 +58,7 @@ ImpactResult dropOnPlane(double r, double density, double E, double nu, double C
 // rigid-like flat of effective modulus E* at speed v reaches
 //   delta_max = (15 m v^2 / (16 E* sqrt(R)))^(2/5),  and stays in contact for t_c = 2.9432 delta_max / v.
 // With CoR = 1 the model has no damping; tolerance 2 % (the requirement).
-TEST(HertzImpact, DurationAndPeakOverlapMatchTheory) {
+DEME_BACKEND_TEST(HertzImpact, DurationAndPeakOverlapMatchTheory) {
     const double r = 0.01, density = 2600, E = 1e8, nu = 0.3, v = 1.0;
     const double m = sphereMass(r, density);
     const double Estar = effectiveModulus(E, nu);
@@ -68,7 +72,7 @@ TEST(HertzImpact, DurationAndPeakOverlapMatchTheory) {
 
 // The damping coefficient is derived from CoR so that rebound speed / impact speed = CoR
 // (paper §3.1); tolerance 5 % (the requirement).
-TEST(HertzImpact, RestitutionMatchesCoR) {
+DEME_BACKEND_TEST(HertzImpact, RestitutionMatchesCoR) {
     const double r = 0.01, density = 2600, E = 1e8, nu = 0.3, v = 1.0;
     const double m = sphereMass(r, density);
     const double deltaMax = std::pow(15.0 * m * v * v / (16.0 * effectiveModulus(E, nu) * std::sqrt(r)), 0.4);
@@ -81,7 +85,7 @@ TEST(HertzImpact, RestitutionMatchesCoR) {
 
 // Two equal spheres meeting head-on, in a frame where the pair drifts: the total momentum is
 // conserved to 1e-6 relative, and in the centre-of-mass frame the two move as mirror images.
-TEST(HeadOnCollision, MomentumConservedAndSymmetric) {
+DEME_BACKEND_TEST(HeadOnCollision, MomentumConservedAndSymmetric) {
     const double r = 0.01, density = 2600, dt = 1e-6;
     DEMSolver sim;
     sim.SetVerbosity("QUIET");

@@ -1,7 +1,7 @@
 // Force models on the CUDA backend, checked without a GPU (they run in CI): the kernels NVRTC
 // compiles for them reach PTX for sm_90 (compute_90), a custom model's generated kernel included, and
-// an error in a model's code is reported at the line of that code. The runs on a GPU are the
-// GpuParity.* twins of the force model tests (test_force_models*.cpp). Skipped in a build without CUDA.
+// an error in a model's code is reported at the line of that code. The runs on a GPU are the cuda
+// instances of the force model tests (test_force_models*.cpp). Skipped in a build without CUDA.
 #include <gtest/gtest.h>
 
 #include <deme/Error.h>

@@ -5,11 +5,14 @@
 
 #include <cmath>
 
+#include "BackendFixture.h"
 #include "BondedCompression.h"
 #include "ForceModelTestUtil.h"
 
 using namespace deme;
 using namespace deme_test;
+
+DEME_BACKEND_TEST_SUITE(ForceModelBonded);
 
 // Test 6 of the issue, on a 420-sphere block (10 layers of 42) compressed to 0.6 % strain.
 //  - Elastic slope: the least-squares slope of plate force against strain (strain from the mean heights
@@ -20,7 +23,7 @@ using namespace deme_test;
 //    for less than 0.3 % (halving the plate speed changes the slope by 0.2 %).
 //  - Failure: the stress peaks before the end and has dropped below half the peak at the end.
 //  - Bonds: the count of bonds (persistent contacts) never grows, and bonds have broken by the end.
-TEST(ForceModelBonded, CompressionElasticSlopePeakAndFailure) {
+DEME_BACKEND_TEST(ForceModelBonded, CompressionElasticSlopePeakAndFailure) {
     bonded_demo::Params p;
     p.halfDims = make_float3(0.006f, 0.006f, 0.008f);
     p.dt = 2e-6;
@@ -53,7 +56,7 @@ TEST(ForceModelBonded, CompressionElasticSlopePeakAndFailure) {
 // A = 1e-5 m, five times the stretch at which the bond (strength 0.2 N, k = 1e5 N/m) breaks. While the
 // bond holds it pulls back with k * stretch; once broken, the pair is an ordinary contact: it repels when
 // pushed together and carries no force at all when pulled apart again, in the second cycle too.
-TEST(ForceModelBonded, BrokenBondNeverFormsAgain) {
+DEME_BACKEND_TEST(ForceModelBonded, BrokenBondNeverFormsAgain) {
     const float r = 1e-3f, k = 1e5f, strength = 0.2f;
     const double A = 1e-5, w = 2 * PI * 50;
     DEMSolver sim;

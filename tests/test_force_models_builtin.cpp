@@ -5,24 +5,24 @@
 #include <cmath>
 #include <fstream>
 
-#include "ForceModelTestUtil.h"
-#include "ScratchDirTest.h"
+#include "BackendFixture.h"
 #include "TestHelpers.h"
 
 using namespace deme;
 using namespace deme_test;
 
+DEME_BACKEND_TEST_SUITE(ForceModelFrictionless);
+DEME_BACKEND_TEST_SUITE(ForceModelOutput);
+
 // A sphere hits a plane obliquely (1 m/s down, 0.5 m/s along x) with mu = 0.5 in the materials: the
 // frictionless model ignores mu, so the tangential velocity comes out exactly as it went in and the
 // sphere does not spin; the normal rebound speed over the impact speed is the CoR (5 %, as the default
-// model's HertzImpact test, since both share the normal force).
-namespace {
-
-void checkFrictionlessObliqueImpact(const std::string& backend) {
+// model's HertzImpact test, since both share the normal force). On the GPU: the frictionless kernel
+// built into the GPU's dynamics module.
+DEME_BACKEND_TEST(ForceModelFrictionless, ObliqueImpactKeepsTangentialVelocity) {
     const double r = 0.01, density = 2600, E = 1e8, nu = 0.3, cor = 0.5, v = 1.0;
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
-    sim.SetBackend(backend);
     auto mat = sim.LoadMaterial(material(E, nu, cor, 0.5, 0.1));
     auto model = sim.UseFrictionlessHertzianModel();
     EXPECT_EQ(model->GetKind(), DEMForceModel::Kind::FRICTIONLESS_HERTZIAN);
@@ -46,21 +46,10 @@ void checkFrictionlessObliqueImpact(const std::string& backend) {
     EXPECT_EQ(tr->AngVelGlobal().y, 0.f);
 }
 
-}  // namespace
-
-TEST(ForceModelFrictionless, ObliqueImpactKeepsTangentialVelocity) { checkFrictionlessObliqueImpact("cpu"); }
-
-// The frictionless kernel built into the GPU's dynamics module. Skipped without a usable GPU.
-TEST(GpuParity, FrictionlessObliqueImpact) {
-    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
-    checkFrictionlessObliqueImpact("cuda");
-}
-
-class ForceModelOutput : public ScratchDirTest {};
-
 // EnableOwnerWildcardOutput: a column per owner wildcard, with each owner's value, in the clump file
 // and (the sphere's owner's value) in the sphere file.
-TEST_F(ForceModelOutput, OwnerWildcardColumns) {
+DEME_BACKEND_TEST(ForceModelOutput, OwnerWildcardColumns) {
+    const std::filesystem::path dir = scratchDir();
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     // The model and material names of test_force_models_errors.cpp: the same generated code, compiled once.

@@ -4,14 +4,16 @@
 
 #include <cmath>
 
+#include "BackendFixture.h"
 #include "ForceModelTestUtil.h"
 #include "TestHelpers.h"
 
 using namespace deme;
 using namespace deme_test;
 
-namespace {
+DEME_BACKEND_TEST_SUITE(ForceModelCohesion);
 
+namespace {
 
 struct Hanging {
     double overlap;  // after settling (or the last value while falling): R - distance to the ceiling
@@ -20,13 +22,12 @@ struct Hanging {
 
 // A sphere (R = 5 mm) starts touching a ceiling at z = 0 under gravity, its weight `weightRatio`
 // times the pull-off force; returns its state after `duration`.
-Hanging hang(double weightRatio, double duration, double& expectedOverlap, const std::string& backend = "cpu") {
+Hanging hang(double weightRatio, double duration, double& expectedOverlap) {
     const double R = 0.005, E = 1e6, nu = 0.3, W = 0.05, g = 9.81;
     const double pullOff = 2 * PI * W * R;  // DMT
     const double mass = weightRatio * pullOff / g;
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
-    sim.SetBackend(backend);
     auto grain = sim.LoadMaterial({{"E", E}, {"nu", nu}, {"CoR", 0.3}, {"W", 0.0}});
     auto ceilingMat = sim.LoadMaterial({{"E", E}, {"nu", nu}, {"CoR", 0.3}, {"W", 0.0}});
     sim.SetMaterialPropertyPair("W", grain, ceilingMat, W);
@@ -55,8 +56,8 @@ Hanging hang(double weightRatio, double duration, double& expectedOverlap, const
 // Test 3 of the issue. Hanging at 0.95 of the pull-off force: at rest at the overlap where Hertz
 // balances the excess pull (1 %; the overlap, 1.3 um, is read from a float position, whose rounding
 // near z = 0.045 m is 4e-9 m, 0.3 %). At 1.05: the sphere comes off and falls (more than a radius
-// below in 0.1 s).
-TEST(ForceModelCohesion, SphereHangsBelowPullOffAndFallsAbove) {
+// below in 0.1 s). On the GPU: material and pair properties read by a generated kernel.
+DEME_BACKEND_TEST(ForceModelCohesion, SphereHangsBelowPullOffAndFallsAbove) {
     double expected = 0.0;
     const Hanging below = hang(0.95, 0.3, expected);
     std::cout << "[   DMT    ] equilibrium overlap " << below.overlap << " m, theory " << expected << " m" << std::endl;
@@ -65,16 +66,4 @@ TEST(ForceModelCohesion, SphereHangsBelowPullOffAndFallsAbove) {
     const Hanging above = hang(1.05, 0.1, expected);
     EXPECT_LT(above.overlap, -0.005);
     EXPECT_LT(above.velocity, -0.5);  // falling freely: g t ~ 1 m/s after leaving
-}
-
-// The DMT model (material and pair properties read by a custom model) on the GPU. Skipped without a
-// usable GPU.
-TEST(GpuParity, CustomModelDmtSphereHangsBelowPullOff) {
-    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
-    double expected = 0.0;
-    const Hanging below = hang(0.95, 0.3, expected, "cuda");
-    EXPECT_NEAR(below.overlap, expected, 0.01 * expected);
-    EXPECT_LT(std::fabs(below.velocity), 1e-4);
-    const Hanging above = hang(1.05, 0.1, expected, "cuda");
-    EXPECT_LT(above.overlap, -0.005);
 }

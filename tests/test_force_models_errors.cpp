@@ -2,11 +2,18 @@
 // bad use of the model and wildcard API is a deme::Error naming the call.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
+#include "BackendFixture.h"
 #include "ForceModelTestUtil.h"
-#include "ScratchDirTest.h"
 
 using namespace deme;
 using namespace deme_test;
+
+// Initialize compiles the model for the instance's backend (on the GPU also with NVRTC) and checks
+// the names: every test here starts a simulation or tries to, except ForceModelHandle.*.
+DEME_BACKEND_TEST_SUITE(ForceModelErrors);
+DEME_BACKEND_TEST_SUITE(ForceModelErrorFiles);
 
 namespace {
 
@@ -43,7 +50,7 @@ bool contains(const std::string& s, const std::string& part) { return s.find(par
 
 // Test 7 of the issue: a syntax error and an unknown variable, each reported with the line of the
 // snippet (the snippet is compiled as "force_model", see docs/force-models.md).
-TEST(ForceModelErrors, SyntaxErrorNamesTheLine) {
+DEME_BACKEND_TEST(ForceModelErrors, SyntaxErrorNamesTheLine) {
     OneSphere s(
         "const float k = 1e5f;\n"
         "const float f = k * (float)overlapDepth;\n"
@@ -55,7 +62,7 @@ TEST(ForceModelErrors, SyntaxErrorNamesTheLine) {
     EXPECT_TRUE(contains(msg, "error")) << msg;
 }
 
-TEST(ForceModelErrors, UnknownVariableNamesTheLine) {
+DEME_BACKEND_TEST(ForceModelErrors, UnknownVariableNamesTheLine) {
     OneSphere s(
         "const float k = 1e5f;\n"
         "force += k * stifness * B2A;\n");
@@ -67,11 +74,11 @@ TEST(ForceModelErrors, UnknownVariableNamesTheLine) {
     EXPECT_NO_THROW(s.sim.Initialize());
 }
 
-class ForceModelErrorFiles : public ScratchDirTest {};
-
 // A model read from a file is reported under the file's name.
-TEST_F(ForceModelErrorFiles, ReadModelErrorsNameTheFile) {
-    const std::string path = write("my_model.cpp", "// a comment\nforce += undefinedThing;\n");
+DEME_BACKEND_TEST(ForceModelErrorFiles, ReadModelErrorsNameTheFile) {
+    const std::filesystem::path dir = scratchDir();
+    const std::string path = (dir / "my_model.cpp").string();
+    std::ofstream(path) << "// a comment\nforce += undefinedThing;\n";
     OneSphere s;
     s.sim.ReadContactForceModel(path);
     const std::string msg = demeErrorMessage([&] { s.sim.Initialize(); });
@@ -80,7 +87,8 @@ TEST_F(ForceModelErrorFiles, ReadModelErrorsNameTheFile) {
                          "ReadContactForceModel"));
 }
 
-TEST(ForceModelErrors, ModelHandleNamesAreChecked) {
+// The model handle's own checks, before any simulation: a plain test.
+TEST(ForceModelHandle, NamesAreChecked) {
     OneSphere s(kQuiet);
     DEMForceModel& m = *s.model;
     for (const char* bad : {"1Q", "Q-1", "", "a b"})
@@ -97,7 +105,7 @@ TEST(ForceModelErrors, ModelHandleNamesAreChecked) {
     EXPECT_TRUE(contains(demeErrorMessage([&] { builtIn->SetPerOwnerWildcards({"Q"}); }), "built-in"));
 }
 
-TEST(ForceModelErrors, NamesMustNotClash) {
+DEME_BACKEND_TEST(ForceModelErrors, NamesMustNotClash) {
     {
         OneSphere s(kQuiet);
         s.model->SetPerOwnerWildcards({"mu"});  // also a material property
@@ -118,7 +126,7 @@ TEST(ForceModelErrors, NamesMustNotClash) {
     }
 }
 
-TEST(ForceModelErrors, MissingMaterialPropertiesNameMaterialAndProperty) {
+DEME_BACKEND_TEST(ForceModelErrors, MissingMaterialPropertiesNameMaterialAndProperty) {
     {
         OneSphere s(kQuiet);
         s.model->SetMustHaveMatProp({"E", "hardness"});
@@ -142,7 +150,7 @@ TEST(ForceModelErrors, MissingMaterialPropertiesNameMaterialAndProperty) {
     }
 }
 
-TEST(ForceModelErrors, WildcardCallsBeforeInitialize) {
+DEME_BACKEND_TEST(ForceModelErrors, WildcardCallsBeforeInitialize) {
     OneSphere s(kQuiet);
     declareQuietWildcards(*s.model);
     const std::vector<std::function<void()>> calls = {
@@ -163,7 +171,7 @@ TEST(ForceModelErrors, WildcardCallsBeforeInitialize) {
     EXPECT_TRUE(contains(msg, "SetFamilyOwnerWildcardValue") && contains(msg, "\"q\"")) << msg;
 }
 
-TEST(ForceModelErrors, UnknownWildcardNamesAndIds) {
+DEME_BACKEND_TEST(ForceModelErrors, UnknownWildcardNamesAndIds) {
     OneSphere s(kQuiet);
     declareQuietWildcards(*s.model);
     s.sim.Initialize();
@@ -191,7 +199,7 @@ TEST(ForceModelErrors, UnknownWildcardNamesAndIds) {
 }
 
 // With the built-in model there are no wildcards to set.
-TEST(ForceModelErrors, DefaultModelHasNoOwnerWildcards) {
+DEME_BACKEND_TEST(ForceModelErrors, DefaultModelHasNoOwnerWildcards) {
     OneSphere s;
     s.sim.Initialize();
     const std::string msg = demeErrorMessage([&] { s.sim.SetOwnerWildcardValue("Q", 0, 1.f); });

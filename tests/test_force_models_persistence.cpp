@@ -5,12 +5,15 @@
 
 #include <cmath>
 
+#include "BackendFixture.h"
 #include "BondedCompression.h"
 #include "ForceModelTestUtil.h"
 #include "backend/cpu/HistoryMapping.h"
 
 using namespace deme;
 using namespace deme_test;
+
+DEME_BACKEND_TEST_SUITE(ForceModelPersistence);
 
 namespace {
 
@@ -46,8 +49,9 @@ DetectedContacts detected(const std::vector<std::pair<bodyID_t, bodyID_t>>& pair
 
 // History mapping alone: persistent pairs missing from a detection are merged back in key order with
 // their wildcards and flag; a non-persistent pair that was not detected is gone; surviving pairs keep
-// their wildcards; new pairs start at 0, or at the value set for their families.
-TEST(ForceModelPersistence, HistoryMappingKeepsPersistentPairsSorted) {
+// their wildcards; new pairs start at 0, or at the value set for their families. The CPU's code on
+// its own, no simulation: a plain test (the GPU's merge against these rules: CudaPersistentMerge.*).
+TEST(PersistentHistoryMapping, KeepsPersistentPairsSorted) {
     SimState s = fourSpheres();
     s.wildcards.contactInit.push_back({0, 1, 0, 7.f});  // contacts between families 0 and 1 start at 7
     setContacts(s, {{0, 1}, {0, 3}, {1, 2}, {2, 3}}, {1.f, 2.f, 3.f, 4.f}, {1, 1, 0, 1});
@@ -78,11 +82,10 @@ namespace {
 // driven 5 mm away along the bond in 0.05 s, far beyond any margin: the bond still pulls with
 // k * stretch, because the pair stays in the contact set. After RemovePersistentContact the pair
 // leaves the set at the next detection: no force.
-void checkPersistentPairSurvives(bool async, const std::string& backend = "cpu") {
+void checkPersistentPairSurvives(bool async) {
     const float r = 1e-3f, k = 100.f;
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
-    sim.SetBackend(backend);
     auto mat = sim.LoadMaterial({{"kb", k}, {"cb", 0.0}});
     bonded_demo::useBondedModel(sim);
     sim.InstructBoxDomainDimension(0.1f, 0.1f, 0.1f);
@@ -125,12 +128,7 @@ void checkPersistentPairSurvives(bool async, const std::string& backend = "cpu")
 
 }  // namespace
 
-TEST(ForceModelPersistence, PersistentPairSurvivesDetection) { checkPersistentPairSurvives(false); }
-TEST(ForceModelPersistence, PersistentPairSurvivesAsyncDetection) { checkPersistentPairSurvives(true); }
-
-// On the GPU: detection there merges the persistent pair back in (DeviceHistoryMapping), and the
-// host's Mark/Remove calls reach the device set. Skipped without a usable GPU.
-TEST(GpuParity, PersistentPairSurvivesDetection) {
-    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
-    checkPersistentPairSurvives(false, "cuda");
-}
+// On the GPU: detection there merges the persistent pair back in (DeviceHistoryMapping), in
+// both detection modes, and the host's Mark/Remove calls reach the device set.
+DEME_BACKEND_TEST(ForceModelPersistence, PersistentPairSurvivesDetection) { checkPersistentPairSurvives(false); }
+DEME_BACKEND_TEST(ForceModelPersistence, PersistentPairSurvivesAsyncDetection) { checkPersistentPairSurvives(true); }

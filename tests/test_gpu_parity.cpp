@@ -1,12 +1,15 @@
-// The same scenes on the CPU and on the GPU (CUDA backend): results agree within physics-level
-// tolerances (the GPU sums contact forces in a different order, so trajectories are not bit-equal).
-// Skipped where no usable GPU is present (CI); tests/gpu/run.sh runs them on a GPU machine.
+// The same scenes on the CPU and on the GPU (CUDA backend), and on one GPU and two: results agree
+// within physics-level tolerances (the GPU sums contact forces in a different order, so trajectories
+// are not bit-equal). Only comparisons live here; a scene checked against physics or behaviour on
+// each backend is a backend fixture test (BackendFixture.h). Skipped where no usable GPU is present
+// (CI); tests/gpu/run.sh runs them on a GPU machine.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <memory>
 #include <random>
 
+#include "RollingSphere.h"
 #include "TestHelpers.h"
 #include "backend/cuda/Device.h"
 #include "backend/cuda/DeviceBuffer.h"
@@ -96,6 +99,18 @@ void expectSameBed(const BedResult& ref, const BedResult& other) {
     EXPECT_NEAR((double)other.contacts, (double)ref.contacts, 0.03 * (double)ref.contacts);
 }
 
+// With asynchronous detection on a bed that settles and then barely moves, the dynamics side waits
+// only when a contact set runs out before its successor arrives. The schedule (docs/threads.md)
+// orders the successor 1.25 L + 1 steps before the set in use reaches n_max, L being kT's smoothed
+// latency in steps, while a result takes about L; with n_max >= 2.25 L + 2 a set serves at least
+// L + 1 steps between orders. So dT waits only for a detection more than 0.25 L + 1 steps late, and
+// only for the excess. To wait a tenth of the loop, dT would have to wait (L + 1) / 9 steps or more
+// per set: detections regularly some 36 % (plus one step) slower than their running average, on a
+// bed whose detection work hardly changes. The settled mixer on one and two H200s waited 0.0011 to
+// 0.012 of its loop (BENCHMARKS.md). A share above 0.1 means kT misses its slot on most sets (n_max
+// at its cap, a latency not measured right, sets expiring by travel).
+constexpr double kMaxAsyncWaitShare = 0.1;
+
 }  // namespace
 
 TEST(GpuParity, SettledBedAgreesWithTheCpu) {
@@ -125,18 +140,7 @@ TEST(GpuParity, AsyncSettledBedAgreesWithTheCpu) {
     EXPECT_NEAR(cpu.floorForce, cpu.weight, 0.01 * cpu.weight);
     expectSameBed(cpu, gpu);
     EXPECT_GT(gpu.asyncUpdates, 0u);
-    EXPECT_LT(gpu.waitShare, 1.0);
-}
-
-// Synchronous detection on the GPU never overlaps: no set arrives from an order.
-TEST(GpuParity, SyncDetectionOnTheGpuSendsNoOrders) {
-    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
-    BedRun run;
-    run.backend = "cuda";
-    run.sync = true;
-    const BedResult gpu = settleBed(run);
-    EXPECT_EQ(gpu.asyncUpdates, 0u);
-    EXPECT_EQ(gpu.waitShare, 0.0);
+    EXPECT_LT(gpu.waitShare, kMaxAsyncWaitShare);
 }
 
 // Two GPUs (DEMSolver(2)): kinematics on the second, reading the snapshot from and writing the
@@ -162,39 +166,15 @@ TEST(GpuParity, TwoGpusAgreeWithOne) {
         EXPECT_GT(res.deviceBytes, res.deviceBytesGpu1);    // and dT's state on GPU 0
         if (!sync) {
             EXPECT_GT(res.asyncUpdates, 0u);
-            EXPECT_LT(res.waitShare, 1.0);
+            EXPECT_LT(res.waitShare, kMaxAsyncWaitShare);  // kT on its own GPU: the same schedule
         }
     }
 }
 
-// A sphere rolling without slip up an incline decelerates at (5/7) g sin(alpha) (solid sphere,
-// I = 2/5 m r^2): both backends give that velocity after 0.5 s to 0.5 %, and each other's to 1e-4.
+// A sphere rolling up an incline: the two backends' velocities after 0.5 s agree to 1e-4 of each
+// other; each against (5/7) g sin(alpha) is Incline.RollingSphereDeceleratesAtFiveSeventhsGSinAlpha.
 TEST(GpuParity, RollingSphereOnIncline) {
     if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
-    auto run = [](const std::string& backend) {
-        const double r = 0.2, m = 5.0, g = 9.81, a = 10.0 * deme::PI / 180.0;
-        DEMSolver sim;
-        sim.SetVerbosity("QUIET");
-        sim.SetBackend(backend);
-        auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.25));
-        sim.InstructBoxDomainDimension(80, 4, 4);
-        sim.AddBCPlane(make_float3(0, 0, 0), make_float3(0, 0, 1), mat);
-        auto tmpl = sim.LoadSphereType((float)m, (float)r, mat);
-        const double Estar = effectiveModulus(1e7, 0.3);
-        const double overlap = std::pow(m * g * std::cos(a) / (4.0 / 3.0 * Estar * std::sqrt(r)), 2.0 / 3.0);
-        auto ball = sim.AddClumps(tmpl, {make_float3(30.f, 0, (float)(r - overlap))});
-        ball->SetVel(make_float3(2.0f, 0, 0));
-        ball->SetAngVel(make_float3(0, (float)(2.0 / r), 0));  // rolling up the slope from the start
-        sim.SetInitTimeStep(1e-4);
-        sim.SetGravitationalAcceleration(make_float3((float)(-g * std::sin(a)), 0, (float)(-g * std::cos(a))));
-        sim.Initialize();
-        auto tr = sim.Track(ball);
-        sim.DoDynamics(0.5);
-        return (double)tr->Vel().x;
-    };
-    const double expected = 2.0 - 5.0 / 7.0 * 9.81 * std::sin(10.0 * deme::PI / 180.0) * 0.5;
-    const double vCpu = run("cpu"), vGpu = run("cuda");
-    EXPECT_NEAR(vCpu, expected, 0.005 * expected);
-    EXPECT_NEAR(vGpu, expected, 0.005 * expected);
+    const double vCpu = RollingSphere::velocityAfterRun("cpu"), vGpu = RollingSphere::velocityAfterRun("cuda");
     EXPECT_NEAR(vGpu, vCpu, 1e-4 * std::fabs(vCpu));
 }

@@ -4,14 +4,19 @@
 #include <cmath>
 #include <random>
 
+#include "BackendFixture.h"
 #include "TestHelpers.h"
 
 using namespace deme;
 using namespace deme_test;
 
+DEME_BACKEND_TEST_SUITE(SettledBed);
+DEME_BACKEND_TEST_SUITE(ElasticGas);
+DEME_BACKEND_TEST_SUITE(StaticFriction);
+
 // 1331 spheres settle in a walled box. At rest the bed is in static equilibrium: with frictionless
 // side walls (which then carry no vertical load) the floor carries the bed's whole weight (1 %).
-TEST(SettledBed, FloorForceEqualsWeight) {
+DEME_BACKEND_TEST(SettledBed, FloorForceEqualsWeight) {
     const double r = 0.005, density = 2600;
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
@@ -58,7 +63,7 @@ TEST(SettledBed, FloorForceEqualsWeight) {
 // Frictionless, perfectly elastic spheres in a closed box with no gravity: the Hertz spring is
 // conservative, so kinetic energy before and after 10^4 steps agrees to 1 % (the bound),
 // sampled at moments when few contacts are active.
-TEST(ElasticGas, KineticEnergyDriftBelowOnePercent) {
+DEME_BACKEND_TEST(ElasticGas, KineticEnergyDriftBelowOnePercent) {
     const double r = 0.005, density = 2600;
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
@@ -97,7 +102,7 @@ TEST(ElasticGas, KineticEnergyDriftBelowOnePercent) {
 // Static friction: a flat 3-sphere clump (it cannot roll) resting on a 20 degree slope with
 // mu = 0.5 > tan(20 deg) = 0.364 sticks. After settling into its elastic equilibrium it drifts
 // less than 1e-6 m over one second.
-TEST(StaticFriction, ClumpSticksOnSlopeBelowFrictionAngle) {
+DEME_BACKEND_TEST(StaticFriction, ClumpSticksOnSlopeBelowFrictionAngle) {
     const double alpha = 20.0 * deme::PI / 180.0, g = 9.81;
     DEMSolver sim;
     sim.SetVerbosity("QUIET");

@@ -4,11 +4,14 @@
 #include <cmath>
 #include <random>
 
+#include "BackendFixture.h"
 #include "MeshBuilders.h"
 #include "TestHelpers.h"
 
 using namespace deme;
 using namespace deme_test;
+
+DEME_BACKEND_TEST_SUITE(MeshBodies);
 
 namespace {
 
@@ -64,7 +67,7 @@ double floorLoadRatio(bool meshBox) {
 }  // namespace
 
 // The meshed box carries the settled bed's weight (1 %), and agrees with the analytical box (2 %).
-TEST(MeshBodies, MeshedBoxCarriesBedWeightLikeAnalyticalBox) {
+DEME_BACKEND_TEST(MeshBodies, MeshedBoxCarriesBedWeightLikeAnalyticalBox) {
     const double mesh = floorLoadRatio(true);
     const double analytical = floorLoadRatio(false);
     EXPECT_NEAR(mesh, 1.0, 0.01);
@@ -74,7 +77,7 @@ TEST(MeshBodies, MeshedBoxCarriesBedWeightLikeAnalyticalBox) {
 
 // A free meshed cube (SetMass) dropped onto the bed comes to rest on it: its velocity vanishes and
 // the grains' contact force on it balances its weight (2 %); the bed's floor then carries bed + cube.
-TEST(MeshBodies, FreeCubeSettlesOnBed) {
+DEME_BACKEND_TEST(MeshBodies, FreeCubeSettlesOnBed) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.2, 0.5, 0.02));
@@ -117,7 +120,7 @@ TEST(MeshBodies, FreeCubeSettlesOnBed) {
 
 // A vertical blade spinning at +5 rad/s about z through a bed: the grains resist, so the contact
 // torque about z reported by the tracker is negative, and ContactAngAccLocal * MOI is that torque.
-TEST(MeshBodies, TorqueOnDrivenBladeOpposesRotation) {
+DEME_BACKEND_TEST(MeshBodies, TorqueOnDrivenBladeOpposesRotation) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.3, 0.5, 0.02));

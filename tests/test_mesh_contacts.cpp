@@ -6,11 +6,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "BackendFixture.h"
 #include "MeshBuilders.h"
 #include "TestHelpers.h"
 
 using namespace deme;
 using namespace deme_test;
+
+DEME_BACKEND_TEST_SUITE(MeshContact);
 
 namespace {
 
@@ -52,7 +55,7 @@ double reboundApex(bool meshFloor, float x, float y) {
 // Reference: the same drop on the analytical plane. The rebound apex on the mesh must match it
 // within 1 % whether the ball lands inside a triangle, on an edge or on a vertex (where 2 or 8
 // triangles meet): one contact, with the plane's normal and overlap.
-TEST(MeshContact, DropOnTessellatedFloorBouncesLikeThePlane) {
+DEME_BACKEND_TEST(MeshContact, DropOnTessellatedFloorBouncesLikeThePlane) {
     const double plane = reboundApex(false, 0.f, 0.f);
     ASSERT_GT(plane, 0.005);  // CoR 0.5: about 0.05 * 0.25
     EXPECT_NEAR(reboundApex(true, 0.0007f, 0.0003f), plane, 0.01 * plane) << "face";
@@ -63,7 +66,7 @@ TEST(MeshContact, DropOnTessellatedFloorBouncesLikeThePlane) {
 
 // A ball rolling at 0.3 m/s over the tessellated floor crosses an edge every few hundred steps;
 // the normal force stays within 2 % of its weight throughout (no spikes, no doubled force).
-TEST(MeshContact, RollingAcrossEdgesKeepsNormalForceSmooth) {
+DEME_BACKEND_TEST(MeshContact, RollingAcrossEdgesKeepsNormalForceSmooth) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial(material(1e8, 0.3, 0.2, 0.5));
@@ -95,9 +98,8 @@ TEST(MeshContact, RollingAcrossEdgesKeepsNormalForceSmooth) {
 // A ball resting in a meshed, frictionless V-groove with 45-degree faces touches both faces; each
 // normal force is m g / (2 cos 45) and together they carry its weight (1 %). (With friction the
 // split between normal and friction forces depends on how the ball settled.)
-TEST(MeshContact, BallInVGrooveBalancesWeight) {
-    const std::string dir = (std::filesystem::temp_directory_path() / "deme_vgroove").string();
-    std::filesystem::create_directories(dir);
+DEME_BACKEND_TEST(MeshContact, BallInVGrooveBalancesWeight) {
+    const std::string dir = scratchDir().string();
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial(material(1e8, 0.3, 0.2, 0.0));
@@ -142,5 +144,4 @@ TEST(MeshContact, BallInVGrooveBalancesWeight) {
         n++;
     }
     EXPECT_EQ(n, 2);
-    std::filesystem::remove_all(dir);
 }

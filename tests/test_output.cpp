@@ -7,10 +7,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "BackendFixture.h"
 #include "TestHelpers.h"
 
 using namespace deme;
 using namespace deme_test;
+
+DEME_BACKEND_TEST_SUITE(Output);
 
 namespace {
 
@@ -30,9 +33,8 @@ std::vector<std::vector<std::string>> readCsv(const std::string& path) {
 
 }  // namespace
 
-TEST(Output, FilesListOwnersInUserOrderWithHeaders) {
-    const std::string dir = (std::filesystem::temp_directory_path() / "deme_output_test").string();
-    std::filesystem::create_directories(dir);
+DEME_BACKEND_TEST(Output, FilesListOwnersInUserOrderWithHeaders) {
+    const std::string dir = scratchDir().string();
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     sim.SetOutputContent({"ABSV", "VEL", "OWNER", "FAMILY"});
@@ -84,5 +86,4 @@ TEST(Output, FilesListOwnersInUserOrderWithHeaders) {
     EXPECT_EQ(contacts[1][4], "3");                       // ownerB: the plane object, after the three clumps
     EXPECT_NEAR(std::stod(contacts[1][14]), 0.01, 1e-4);  // overlap
     EXPECT_GT(std::stod(contacts[1][10]), 0.0);           // pushed up
-    std::filesystem::remove_all(dir);
 }

@@ -3,17 +3,22 @@
 
 #include <cmath>
 
+#include "BackendFixture.h"
 #include "TestHelpers.h"
 #include "physics/Quaternion.h"
 
 using namespace deme;
 using namespace deme_test;
 
+DEME_BACKEND_TEST_SUITE(RigidBody);
+DEME_BACKEND_TEST_SUITE(Families);
+DEME_BACKEND_TEST_SUITE(TimeStepping);
+
 // A free clump with three distinct principal moments, spinning about a general axis with no
 // gravity and no contacts (Euler's torque-free motion): the angular momentum vector in the global
 // frame, L = R(q) I w, and the kinetic energy 1/2 w.Iw are invariants of the exact motion.
 // Tolerance 1e-4 relative over one second (1e4 steps), the requirement.
-TEST(RigidBody, TorqueFreeClumpConservesAngularMomentumAndEnergy) {
+DEME_BACKEND_TEST(RigidBody, TorqueFreeClumpConservesAngularMomentumAndEnergy) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial(material(1e8, 0.3, 0.5, 0.5));
@@ -59,7 +64,7 @@ TEST(RigidBody, TorqueFreeClumpConservesAngularMomentumAndEnergy) {
 
 // A fixed family never moves, even under gravity and contact; a family with prescribed angular
 // velocity w about z has turned by exactly w t; prescribed linear velocity moves by v t.
-TEST(Families, FixedStaysAndPrescribedMotionFollowsItsExpression) {
+DEME_BACKEND_TEST(Families, FixedStaysAndPrescribedMotionFollowsItsExpression) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.5));
@@ -104,7 +109,7 @@ TEST(Families, FixedStaysAndPrescribedMotionFollowsItsExpression) {
 // UpdateStepSize between DoDynamics calls: a free fall of 0.2 s at dt = 1e-3 then 0.2 s at 1e-4 ends
 // where z = z0 - g t^2 / 2 puts it (exact for constant acceleration up to the integrator's first-order
 // position error, g dt t / 2 <= 1e-3 m at the coarse step) and the clock counts both phases' steps.
-TEST(TimeStepping, UpdateStepSizeBetweenCalls) {
+DEME_BACKEND_TEST(TimeStepping, UpdateStepSizeBetweenCalls) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.5));

@@ -20,6 +20,8 @@ struct Bed {
     DEMSolver sim;
     std::shared_ptr<DEMClumpBatch> grains;
     Bed() {
+        // CPU only: the check is bit for bit, which holds where each owner sums its contacts in a
+        // fixed order (the CPU); the GPU's atomics sum in no fixed order, so two GPU runs differ.
         sim.SetBackend("cpu");
         sim.SetVerbosity("QUIET");
         auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.4, 0.5, 0.01));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <string>
@@ -44,6 +45,10 @@ class DEMSolver {
     // "MAT", "QUAT". A single string may list several separated by spaces or '|'.
     void SetOutputContent(const std::string& content);
     void SetOutputContent(const std::vector<std::string>& content);
+    // A brace list, as the paper writes it: SetOutputContent({"XYZ", "ABSV"}). Without this overload
+    // a brace list of one name also makes a std::string (from the name), one of two names too (the
+    // iterator-pair constructor), and the call is ambiguous; with it, every brace list is the list.
+    void SetOutputContent(std::initializer_list<std::string> content);
 
     // ---- Materials ----
     // Properties by name (C++ identifiers). The default model reads E, nu, CoR, mu and Crr (Crr defaults

@@ -98,6 +98,10 @@ void DEMSolver::SetOutputContent(const std::string& content) {
     SetOutputContent(items);
 }
 
+void DEMSolver::SetOutputContent(std::initializer_list<std::string> content) {
+    SetOutputContent(std::vector<std::string>(content));
+}
+
 void DEMSolver::SetOutputContent(const std::vector<std::string>& content) {
     Settings& s = m_sim->settings;
     for (const auto& c : content) {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # GPU test run (on a machine with an NVIDIA GPU; see docs/gpu-tests.md): builds with the CUDA backend,
-# runs the CUDA unit tests, the whole suite with DEME_BACKEND=cuda, and the CPU/GPU parity tests.
+# runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
+# backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
 #   tests/gpu/run.sh [build|unit|suite|bench|timing|gpus|settled|profile|compile|filter ...]   (default: build unit suite)
 set -uo pipefail
@@ -29,11 +30,14 @@ for step in "${steps[@]}"; do
         grep -E '^\[  FAILED|^\[  SKIPPED' "$OUT/unit.log" | head -20
         ;;
     suite)
-        # Async.* pin themselves to the CPU (2-2.5 minutes each there, run by CI anyway): left out, so
-        # the suite fits one 10-minute command.
-        DEME_BACKEND=cuda ctest --test-dir build-gpu -j8 -E 'tsan|package|^Async\.' --timeout 400 \
+        # Every backend test's cuda instance (each instance sets DEME_BACKEND for its solvers), and the
+        # demos with DEME_BACKEND=cuda. Left to CI, so that the step fits one 10-minute command: the
+        # CPU instances, the CPU's bit-for-bit tests (Async.*, Determinism.*, RunMonitor.*,
+        # ForceModelBitIdentity.*), the tests that start no simulation, TSAN and package tests.
+        # GpuParity.* (whose CPU halves are the slowest tests here) run in the unit step.
+        DEME_BACKEND=cuda ctest --test-dir build-gpu -j8 -R '/cuda$|^demo_' --timeout 400 \
             >"$OUT/suite.log" 2>&1
-        echo "suite (DEME_BACKEND=cuda): rc $?"
+        echo "suite (cuda instances and demos): rc $?"
         grep -E 'tests passed|\(Failed\)|\(Timeout\)|\(SEGFAULT\)|Exception' "$OUT/suite.log" | head -40
         ;;
     bench)
@@ -94,7 +98,8 @@ for step in "${steps[@]}"; do
         ./build-gpu/bench/model_compile - cuda 2>&1 | tee -a "$OUT/compile.jsonl" | tail -n 3
         ;;
     filter)
-        # DEME_BACKEND=cuda on the gtest filter in FILTER.
+        # The gtest filter in FILTER, with DEME_BACKEND=cuda for the tests that are not backend tests
+        # (a backend test's instance sets its own: FILTER='SettledBed.*/cuda' takes the GPU's).
         DEME_BACKEND=cuda ./build-gpu/tests/deme_tests --gtest_filter="$FILTER" >"$OUT/filter.log" 2>&1
         echo "filter $FILTER: rc $? ($(grep -c '^\[       OK' "$OUT/filter.log") ok)"
         grep -E '^\[  FAILED|^\[  SKIPPED' "$OUT/filter.log" | head -20
