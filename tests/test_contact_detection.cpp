@@ -99,6 +99,7 @@ namespace {
 // A small granular column poured onto a floor; returns every clump's final position and velocity.
 std::vector<float> runPour(unsigned int cdFreq, unsigned int threads) {
     DEMSolver sim;
+    sim.SetBackend("cpu");  // the CPU's threads are under test, bit for bit
     sim.SetVerbosity("QUIET");
     sim.SetCPUThreads(threads);
     auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.4, 0.5, 0.01));

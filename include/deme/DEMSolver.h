@@ -255,7 +255,7 @@ class DEMSolver {
     void requireInitialized(const char* call) const;
     std::shared_ptr<DEMForceModel> chooseForceModel(const char* call, std::shared_ptr<DEMForceModel> model);
     std::unique_ptr<Scene> m_scene;
-    std::unique_ptr<Simulation> m_sim;
+    std::shared_ptr<Simulation> m_sim;  // shared with trackers and inspectors as weak references
     int m_interruptHook = -1;
 };
 

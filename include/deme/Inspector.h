@@ -1,6 +1,7 @@
 // Inspectors: reductions over all clumps, evaluated on demand.
 #pragma once
 
+#include <memory>
 #include <string>
 
 namespace deme {
@@ -11,11 +12,13 @@ class Simulation;
 // "clump_kinetic_energy" (translational + rotational, summed), "num_contacts".
 class DEMInspector {
   public:
-    DEMInspector(Simulation* sim, std::string kind);
+    // An inspector outliving its solver says so (deme::Error) instead of reading freed memory.
+    DEMInspector(std::weak_ptr<Simulation> sim, std::string kind);
     double GetValue() const;
     const std::string& GetKind() const { return m_kind; }
 
   private:
+    std::weak_ptr<Simulation> m_owner;
     Simulation* m_sim;
     std::string m_kind;
 };

@@ -15,8 +15,9 @@ class Simulation;
 // external object). Values are global unless named Local. Valid after Initialize.
 class DEMTracker {
   public:
-    // `resolve` returns the first owner id of the tracked entity once the solver is initialised.
-    DEMTracker(Simulation* sim, std::function<size_t()> resolve, size_t count);
+    // `resolve` returns the first owner id of the tracked entity once the solver is initialised. A
+    // tracker outliving its solver says so (deme::Error) instead of reading freed memory.
+    DEMTracker(std::weak_ptr<Simulation> sim, std::function<size_t()> resolve, size_t count);
 
     float3 Pos(size_t offset = 0) const;
     float3 Vel(size_t offset = 0) const;
@@ -50,6 +51,8 @@ class DEMTracker {
 
   private:
     size_t internalID(size_t offset) const;  // where the owner is stored
+    Simulation& sim() const;  // the solver's simulation; an error once the solver is gone
+    std::weak_ptr<Simulation> m_owner;  // expired once the solver is destroyed
     Simulation* m_sim;
     std::function<size_t()> m_resolve;
     size_t m_count;

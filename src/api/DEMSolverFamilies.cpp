@@ -91,7 +91,7 @@ std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMClumpBatch
         throwError("Track", "the batch was not added to this solver");
     DEMClumpBatch* b = batch.get();
     return std::make_shared<DEMTracker>(
-        m_sim.get(), [b]() { return b->GetOwnerOffset(); }, batch->GetNumClumps());
+        m_sim, [b]() { return b->GetOwnerOffset(); }, batch->GetNumClumps());
 }
 
 std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMExternObj>& obj) {
@@ -100,7 +100,7 @@ std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMExternObj>
         throwError("Track", "the object was not added to this solver");
     DEMExternObj* o = obj.get();
     return std::make_shared<DEMTracker>(
-        m_sim.get(), [o]() { return o->GetOwnerID(); }, 1);
+        m_sim, [o]() { return o->GetOwnerID(); }, 1);
 }
 
 std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMMeshConnected>& mesh) {
@@ -109,11 +109,11 @@ std::shared_ptr<DEMTracker> DEMSolver::Track(const std::shared_ptr<DEMMeshConnec
         throwError("Track", "the mesh was not added to this solver");
     DEMMeshConnected* m = mesh.get();
     return std::make_shared<DEMTracker>(
-        m_sim.get(), [m]() { return m->GetOwnerID(); }, 1);
+        m_sim, [m]() { return m->GetOwnerID(); }, 1);
 }
 
 std::shared_ptr<DEMInspector> DEMSolver::CreateInspector(const std::string& kind) {
-    return std::make_shared<DEMInspector>(m_sim.get(), kind);
+    return std::make_shared<DEMInspector>(m_sim, kind);
 }
 
 }  // namespace deme

@@ -13,7 +13,8 @@ namespace {
 const char* KINDS[] = {"clump_max_z", "clump_min_z", "clump_max_absv", "clump_kinetic_energy", "num_contacts"};
 }
 
-DEMInspector::DEMInspector(Simulation* sim, std::string kind) : m_sim(sim), m_kind(std::move(kind)) {
+DEMInspector::DEMInspector(std::weak_ptr<Simulation> sim, std::string kind)
+    : m_owner(std::move(sim)), m_sim(m_owner.lock().get()), m_kind(std::move(kind)) {
     if (std::find(std::begin(KINDS), std::end(KINDS), m_kind) == std::end(KINDS))
         throwError("CreateInspector", "unknown inspector \"" + m_kind +
                                           "\" (clump_max_z, clump_min_z, clump_max_absv, clump_kinetic_energy, "
@@ -21,6 +22,8 @@ DEMInspector::DEMInspector(Simulation* sim, std::string kind) : m_sim(sim), m_ki
 }
 
 double DEMInspector::GetValue() const {
+    if (m_owner.expired())
+        throwError("DEMInspector::GetValue", "the solver this inspector belongs to has been destroyed");
     if (!m_sim->initialized()) throwError("DEMInspector::GetValue", "the solver is not initialized yet");
     const SimState& s = m_sim->state();
     const size_t n = s.numClumps;

@@ -78,6 +78,8 @@ class DynamicsBackend {
     virtual void download(SimState& s) = 0;
     // Tracker loads (AddAcc) of `s` for the coming call, or zeros.
     virtual void uploadTrackerLoads(const SimState& s) = 0;
+    // Before the steps of one DoDynamics call (the GPU compiles changed prescriptions here).
+    virtual void beginRun(const Settings& settings, const FamilyRules& families) = 0;
     // One step with the contact set in use: contact forces, their reduction onto owners, integration
     // and the cached poses. Per-contact forces are stored where `storeContactForces` says (a step
     // after which the host may read them).

@@ -95,6 +95,7 @@ void Simulation::advance(unsigned long long n) {
     uploadIfEdited();
     const bool loads = m_state.hasTrackerLoads;
     if (loads) dynamics.uploadTrackerLoads(m_state);
+    dynamics.beginRun(settings, families);
     for (unsigned long long k = 0; k < n; k++) {
         // Per-contact forces are stored in a step the host can read them after: the call's last, or
         // one after which the monitor may stop the call.

@@ -23,6 +23,7 @@ class CpuDynamics : public DynamicsBackend {
     void upload(const SimState& s, const Settings& settings, const FamilyRules& families) override;
     void download(SimState&) override {}
     void uploadTrackerLoads(const SimState&) override {}
+    void beginRun(const Settings&, const FamilyRules&) override {}
     StepOutcome step(double time, const Settings& settings, const FamilyRules& families, bool storeContactForces,
                      TimingStats& timing) override;
     void markOrderBaseline() override;

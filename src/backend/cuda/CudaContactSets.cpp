@@ -19,6 +19,7 @@ double now() { return std::chrono::duration<double>(std::chrono::steady_clock::n
 }  // namespace
 
 void CudaDynamics::markOrderBaseline() {
+    select();
     // The owners' travel now: the set an order sent now yields serves while nobody travels its margin
     // beyond it.
     launch(kCopyDoubles, blocksFor(m_view.numOwners, THREADS), THREADS, 0, m_stream, m_orderBaseline.data(),
@@ -26,6 +27,7 @@ void CudaDynamics::markOrderBaseline() {
 }
 
 double CudaDynamics::maxTravelSinceOrder() {
+    select();
     m_maxTravelBits.zeroAsync(m_stream);
     launch(kMaxTravelSince, blocksFor(m_view.numOwners, THREADS), THREADS, 0, m_stream,
            (const double*)m_state.owners.travel.data(), (const double*)m_orderBaseline.data(), m_view.numOwners,
@@ -41,6 +43,7 @@ double CudaDynamics::maxTravelSinceOrder() {
 // History mapping from the set in use (with its up-to-date wildcards) into the fresh one, then the
 // fresh one serves.
 void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
+    select();
     const double t0 = now();
     DeviceContacts& old = m_contacts[m_current];
     DeviceContacts& fresh = m_contacts[1 - m_current];

@@ -79,12 +79,16 @@ void CudaDynamics::uploadTrackerLoads(const SimState& s) {
     synchronize(m_stream);
 }
 
-StepOutcome CudaDynamics::step(double time, const Settings& settings, const FamilyRules& families,
-                               bool storeContactForces, TimingStats& timing) {
+void CudaDynamics::beginRun(const Settings&, const FamilyRules& families) {
+    // dT's GPU stays current for the call's steps (and the contact-set work between them).
     select();
+    prepareFamilyMotion(families);
+}
+
+StepOutcome CudaDynamics::step(double time, const Settings& settings, const FamilyRules&, bool storeContactForces,
+                               TimingStats& timing) {
     const Stream st = m_stream;
     const unsigned int nO = m_view.numOwners, nS = m_view.numSpheres, nT = m_view.numTriangles;
-    prepareFamilyMotion(families);
     const StepConstants consts{settings.gravity, (float)settings.dt, settings.dt,
                                settings.errorOutVelocity * settings.errorOutVelocity, m_view.frame,
                                m_view.domainSize};

@@ -40,6 +40,7 @@ class CudaDynamics : public DynamicsBackend {
     void upload(const SimState& s, const Settings& settings, const FamilyRules& families) override;
     void download(SimState& s) override;
     void uploadTrackerLoads(const SimState& s) override;
+    void beginRun(const Settings& settings, const FamilyRules& families) override;
     StepOutcome step(double time, const Settings& settings, const FamilyRules& families, bool storeContactForces,
                      TimingStats& timing) override;
     void markOrderBaseline() override;
