@@ -50,12 +50,6 @@ void onDevice(int device, int back, F&& f) {
     DEME_CUDA_CHECK(CALL, cudaSetDevice(back));
 }
 
-template <class T>
-void put(DeviceBuffer<T>& d, const std::vector<T>& h, Stream stream) {
-    d.resizeDiscarding(h.size());
-    if (!h.empty()) d.uploadAsync(h.data(), h.size(), stream);
-}
-
 // Items registered in bins (spheres or triangles).
 struct DeviceBins {
     DeviceBuffer<int> lo, hi;
@@ -96,15 +90,15 @@ struct CudaKinematics::Work {
 };
 
 void CudaKinematics::Work::upload(const Geometry& g) {
-    put(sphereOwner, g.sphereOwner, stream);
-    put(radius, g.radius, stream);
-    put(anaOwner, g.anaOwner, stream);
-    put(anaType, g.anaType, stream);
-    put(anaRadius, g.anaRadius, stream);
-    put(anaInside, g.anaInside, stream);
-    put(triOwner, g.triOwner, stream);
-    put(familyMask, g.familyMask, stream);
-    put(familyExtraMargin, g.familyExtraMargin, stream);
+    uploadResized(sphereOwner, g.sphereOwner, stream);
+    uploadResized(radius, g.radius, stream);
+    uploadResized(anaOwner, g.anaOwner, stream);
+    uploadResized(anaType, g.anaType, stream);
+    uploadResized(anaRadius, g.anaRadius, stream);
+    uploadResized(anaInside, g.anaInside, stream);
+    uploadResized(triOwner, g.triOwner, stream);
+    uploadResized(familyMask, g.familyMask, stream);
+    uploadResized(familyExtraMargin, g.familyExtraMargin, stream);
     grid = g.grid;
     numOwners = g.numOwners;
     numSpheres = g.numSpheres;

@@ -154,6 +154,14 @@ class DeviceBuffer {
     size_t size_ = 0;
 };
 
+// Sizes `d` to `h` (without keeping its contents) and queues the copy of `h` on `stream`; `h` must
+// stay as it is until the stream has passed the copy.
+template <class T>
+void uploadResized(DeviceBuffer<T>& d, const std::vector<T>& h, Stream stream) {
+    d.resizeDiscarding(h.size());
+    if (!h.empty()) d.uploadAsync(h.data(), h.size(), stream);
+}
+
 template <class T>
 void DeviceBuffer<T>::checkRange(size_t offset, size_t count) const {
     if (offset > size_ || count > size_ - offset)

@@ -16,8 +16,7 @@ struct Upload {
             d.resizeDiscarding(scratchSize);
             return;
         }
-        d.resizeDiscarding(h.size());
-        if (!h.empty()) d.uploadAsync(h.data(), h.size(), stream);
+        uploadResized(d, h, stream);
     }
 };
 
@@ -30,6 +29,13 @@ struct Download {
         if (!h.empty()) d.downloadAsync(h.data(), h.size(), stream);
     }
 };
+
+// Elements of contact field `field` (a member of `c`) for n pairs: W for the wildcards, one for every
+// other field.
+template <class V>
+size_t contactFieldCount(const ContactArrays& c, const V& field, size_t n, unsigned int W) {
+    return static_cast<const void*>(&field) == static_cast<const void*>(&c.wildcards) ? n * W : n;
+}
 
 struct Point {
     template <class T>
@@ -73,7 +79,7 @@ void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, S
     forEachContactField(d, c, [&](auto& dev, const auto& host, FieldRole role) {
         if (role != FieldRole::EVOLVES) return;
         // Per-pair fields the host has not filled yet (none persistent, no forces) start at zero.
-        const size_t count = (void*)&host == (void*)&c.wildcards ? n * W : n;
+        const size_t count = contactFieldCount(c, host, n, W);
         dev.resizeDiscarding(count);
         if (host.size() == count && count)
             dev.uploadAsync(host.data(), count, stream);
@@ -84,15 +90,13 @@ void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, S
 
 void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, ContactArrays& c, Stream stream) {
     forEachContactField(d, c, [&](const auto& dev, auto& host, FieldRole role) {
-        if (role == FieldRole::HOST) {
-            // The CPU's reduction bookkeeping does not exist on the GPU: per-contact torques read
-            // as zero, as the GPU adds loads to the owners directly.
-            return;
-        }
-        const size_t count = (void*)&host == (void*)&c.wildcards ? n * W : n;
+        if (role == FieldRole::HOST) return;  // the CPU's bookkeeping; the torques follow below
+        const size_t count = contactFieldCount(c, host, n, W);
         host.resize(count);
         if (count) dev.downloadAsync(host.data(), count, stream);
     });
+    // Per-contact torques exist only in the CPU's reduction (the GPU adds loads to the owners
+    // directly): they read as zero.
     c.torqueA.assign(n, make_float3(0.f));
     c.torqueB.assign(n, make_float3(0.f));
 }
