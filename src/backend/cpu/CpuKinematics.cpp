@@ -13,20 +13,13 @@ CpuKinematics::~CpuKinematics() {
     if (m_thread.joinable()) m_thread.join();
 }
 
-void CpuKinematics::setGeometry(const SimState& s, const BinGrid& grid, const FamilyRules& families,
+void CpuKinematics::setGeometry(const SimState& /*the live state*/, const BinGrid& grid, const FamilyRules& families,
                                 const Settings& settings) {
     if (!m_mailbox.idle()) throwError("DoDynamics", "internal: the kinematics geometry changed while an order was in flight");
     m_grid = grid;
     m_familyMask.assign(families.contactMask(), families.contactMask() + NUM_FAMILIES * NUM_FAMILIES);
     m_familyExtraMargin.assign(settings.familyExtraMargin, settings.familyExtraMargin + NUM_FAMILIES);
-    // What the worker's detection reads and never changes during a run (it is idle: no order is in
-    // flight, and its thread reads m_work only while it holds one).
-    m_work.frame = s.frame;
-    m_work.domainSize = s.domainSize;
-    m_work.spheres = s.spheres;
-    m_work.analytical = s.analytical;
-    m_work.triangles.owner = s.triangles.owner;
-    m_work.owners.family = s.owners.family;
+    m_workGeometryStale = true;  // the worker's copy is made with its next order
 }
 
 void CpuKinematics::detectNow(const DetectionOrder& order, DetectionReport& report) {
@@ -39,6 +32,16 @@ void CpuKinematics::detectNow(const DetectionOrder& order, DetectionReport& repo
 
 void CpuKinematics::submit(const DetectionOrder& order) {
     if (!m_thread.joinable()) m_thread = std::thread([this] { run(); });
+    if (m_workGeometryStale) {
+        // What the worker's detection reads and never changes during a run; it is idle (an order is
+        // sent only then), and its thread reads m_work only while it holds one.
+        m_work.frame = m_live.frame;
+        m_work.domainSize = m_live.domainSize;
+        m_work.spheres = m_live.spheres;
+        m_work.analytical = m_live.analytical;
+        m_work.triangles.owner = m_live.triangles.owner;
+        m_workGeometryStale = false;
+    }
     Order& o = m_order;
     o.order = order;
     o.spherePos = m_live.cache.spherePos;

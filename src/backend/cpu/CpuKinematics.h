@@ -63,9 +63,11 @@ class CpuKinematics : public KinematicsBackend {
     Order m_order;    // dT's, between orders (keeps its capacity)
     Result m_result;  // dT's, between takes
 
-    // The worker thread, started with the first order; its working memory.
+    // The worker thread, started with the first order; its working memory (its copy of the static
+    // geometry made with the first order after setGeometry, so synchronous runs keep none).
     Mailbox m_mailbox{"the kinematics thread"};
     SimState m_work;
+    bool m_workGeometryStale = true;
     ContactDetector m_workDetector;
     std::thread m_thread;
 };
