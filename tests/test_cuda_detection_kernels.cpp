@@ -54,7 +54,8 @@ void emulateBinning(EmulatedBins& b, unsigned int n, const BinGrid& g, size_t nu
     const unsigned int entries = b.count[n];
     b.keys.assign(entries, 0);
     b.items.assign(entries, 0);
-    runThreads(n, [&] { deme_bin_entries(g, n, b.lo.data(), b.hi.data(), b.count.data(), b.keys.data(), b.items.data()); });
+    runThreads(
+        n, [&] { deme_bin_entries(g, n, b.lo.data(), b.hi.data(), b.count.data(), b.keys.data(), b.items.data()); });
     // The radix sort by bin is stable.
     std::vector<unsigned int> order(entries);
     std::iota(order.begin(), order.end(), 0u);
@@ -110,8 +111,8 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& grid, double margin,
                                     r.triangles.count.data());
         });
     });
-    args.sphereBins = BinsView{r.spheres.lo.data(), r.spheres.hi.data(), r.spheres.start.data(),
-                               r.spheres.sortedItems.data()};
+    args.sphereBins =
+        BinsView{r.spheres.lo.data(), r.spheres.hi.data(), r.spheres.start.data(), r.spheres.sortedItems.data()};
     if (nT)
         args.triangleBins = BinsView{r.triangles.lo.data(), r.triangles.hi.data(), r.triangles.start.data(),
                                      r.triangles.sortedItems.data()};

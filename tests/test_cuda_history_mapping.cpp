@@ -82,9 +82,8 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         const ContactKeys oldKeys{old.a.data(), old.b.data(), (unsigned int)nOld};
         std::vector<unsigned int> missing(nOld + 1, 0), before(nOld + 1, 0);
         unsigned int any = 0;
-        runThreads(nOld, [&] {
-            deme_persistent_missing(freshKeys, oldKeys, oldPersistent.data(), missing.data(), &any);
-        });
+        runThreads(nOld,
+                   [&] { deme_persistent_missing(freshKeys, oldKeys, oldPersistent.data(), missing.data(), &any); });
         for (size_t j = 1; j <= nOld; j++) before[j] = before[j - 1] + missing[j - 1];
         const size_t total = nFresh + before[nOld];
         std::vector<bodyID_t> A(total), B(total);
@@ -102,8 +101,8 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         view.owners.family = s.owners.family.data();
         view.numSpheres = spheres;
         const ContactInitRule rule{0, 1, 0, 7.f};
-        const OldContactHistory history{oldKeys, oldWildcards.data(), oldMeshState.data(),
-                                        any ? oldPersistent.data() : nullptr, 1, &rule, 1};
+        const OldContactHistory history{
+            oldKeys, oldWildcards.data(), oldMeshState.data(), any ? oldPersistent.data() : nullptr, 1, &rule, 1};
         const ContactKeys mergedKeys{A.data(), B.data(), (unsigned int)total};
         runThreads(total, [&] {
             deme_map_history(view, mergedKeys, T.data(), history, wildcards.data(), meshState.data(),
@@ -112,7 +111,8 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         EXPECT_EQ(persistent, c.persistent);
         EXPECT_EQ(meshState, c.meshState);
         EXPECT_EQ(wildcards, c.wildcards);
-        newPairs += std::count(wildcards.begin(), wildcards.end(), 7.f) + std::count(wildcards.begin(), wildcards.end(), 0.f);
+        newPairs +=
+            std::count(wildcards.begin(), wildcards.end(), 7.f) + std::count(wildcards.begin(), wildcards.end(), 0.f);
     }
     EXPECT_GT(newPairs, 1000u);
 }

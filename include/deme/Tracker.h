@@ -51,8 +51,8 @@ class DEMTracker {
 
   private:
     size_t internalID(size_t offset) const;  // where the owner is stored
-    Simulation& sim() const;  // the solver's simulation; an error once the solver is gone
-    std::weak_ptr<Simulation> m_owner;  // expired once the solver is destroyed
+    Simulation& sim() const;                 // the solver's simulation; an error once the solver is gone
+    std::weak_ptr<Simulation> m_owner;       // expired once the solver is destroyed
     Simulation* m_sim;
     std::function<size_t()> m_resolve;
     size_t m_count;

@@ -37,9 +37,7 @@ float DEMTracker::Mass(size_t offset) const { return sim().ownerMass(internalID(
 float3 DEMTracker::MOI(size_t offset) const { return sim().ownerMOI(internalID(offset)); }
 unsigned int DEMTracker::GetFamily(size_t offset) const { return sim().state().owners.family[internalID(offset)]; }
 float3 DEMTracker::ContactForce(size_t offset) const { return sim().state().owners.contactForce[internalID(offset)]; }
-float3 DEMTracker::ContactTorque(size_t offset) const {
-    return sim().state().owners.contactTorque[internalID(offset)];
-}
+float3 DEMTracker::ContactTorque(size_t offset) const { return sim().state().owners.contactTorque[internalID(offset)]; }
 float3 DEMTracker::ContactAcc(size_t offset) const {
     const size_t o = internalID(offset);
     return sim().state().owners.contactForce[o] / sim().ownerMass(o);
@@ -87,7 +85,8 @@ void DEMTracker::SetOwnerWildcardValue(const std::string& name, float value, siz
 }
 float DEMTracker::GetOwnerWildcardValue(const std::string& name, size_t offset) const {
     const size_t o = internalID(offset);
-    return sim().state()
+    return sim()
+        .state()
         .wildcards.owner[wildcardIndex(sim(), "DEMTracker::GetOwnerWildcardValue", WildcardKind::OWNER, name)][o];
 }
 

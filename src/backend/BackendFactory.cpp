@@ -19,7 +19,7 @@ Backends makeBackends(SimState& s, const ModelLayout& model, Settings& settings,
     // kernels), a custom one is compiled for the backend here (host compiler or NVRTC, cached).
     if (settings.onGpu) return cuda::makeCudaBackends(model, settings, choice.deviceId, log);
     CpuForceModel cpuModel = loadCpuForceModel(model, "Initialize (contact force model)");
-    const std::string how = model.builtIn()      ? "built in"
+    const std::string how = model.builtIn()     ? "built in"
                             : cpuModel.cacheHit ? "compiled earlier, loaded from the cache"
                                                 : "compiled in " + std::to_string(cpuModel.compileSeconds) + " s";
     log(Verbosity::INFO, "force model: " + model.description() + " (" + how + ")");

@@ -24,7 +24,8 @@ struct MeshCandidate {
 // (within `tolFeature` of) an edge or vertex of its triangle, no triangle sharing that feature may be
 // closer to the sphere centre x.
 template <class S>
-DEME_HD_INLINE bool isLocalMinimum(const S& s, const double3& x, const MeshCandidate& c, const double3& bary, double tolFeature) {
+DEME_HD_INLINE bool isLocalMinimum(const S& s, const double3& x, const MeshCandidate& c, const double3& bary,
+                                   double tolFeature) {
     const auto& tr = s.triangles;
     const double3* v = &s.cache.triVert[3 * c.tri];
     // Distance from the point to the edge opposite each vertex: barycentric weight x altitude.

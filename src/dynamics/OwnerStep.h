@@ -37,8 +37,8 @@ enum OwnerStepFlag : uint8_t {
 constexpr uint8_t STEP_FAULTS = STEP_NOT_FINITE | STEP_TOO_FAST | STEP_LEFT_DOMAIN;
 
 inline OwnerFault faultFromFlags(uint8_t f) {
-    return (f & STEP_NOT_FINITE) ? OwnerFault::NOT_FINITE
-           : (f & STEP_TOO_FAST) ? OwnerFault::TOO_FAST
+    return (f & STEP_NOT_FINITE)    ? OwnerFault::NOT_FINITE
+           : (f & STEP_TOO_FAST)    ? OwnerFault::TOO_FAST
            : (f & STEP_LEFT_DOMAIN) ? OwnerFault::LEFT_DOMAIN
                                     : OwnerFault::NONE;
 }

@@ -31,10 +31,10 @@ struct BinsView {
 struct DetectionArgs {
     BinGrid grid;
     double margin;
-    const float* familyExtraMargin;  // NUM_FAMILIES values added to each family's margin
-    const uint8_t* familyMask;       // NUM_FAMILIES x NUM_FAMILIES, nonzero where contacts are resolved
+    const float* familyExtraMargin;     // NUM_FAMILIES values added to each family's margin
+    const uint8_t* familyMask;          // NUM_FAMILIES x NUM_FAMILIES, nonzero where contacts are resolved
     BinsView sphereBins, triangleBins;  // triangleBins.start is null where there are no triangles
-    const double3 *triLo, *triHi;  // triangles' enlarged boxes
+    const double3 *triLo, *triHi;       // triangles' enlarged boxes
 };
 
 template <class S>
@@ -98,9 +98,9 @@ DEME_HD_INLINE void sortIds(bodyID_t* ids, unsigned int n) {
 // The contact type of a pair (sphere, b) from b's place in the unified geometry id space.
 template <class S>
 DEME_HD_INLINE uint8_t contactTypeOf(const S& s, bodyID_t b) {
-    return b < s.analyticalIdBase()   ? (uint8_t)SPHERE_SPHERE
+    return b < s.analyticalIdBase() ? (uint8_t)SPHERE_SPHERE
            : b < s.triangleIdBase() ? (uint8_t)SPHERE_ANALYTICAL
-                                      : (uint8_t)SPHERE_TRIANGLE;
+                                    : (uint8_t)SPHERE_TRIANGLE;
 }
 
 // Sphere sa's partners (unified geometry ids) in contact-set order, into out[0, capacity); returns
@@ -152,8 +152,8 @@ DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, b
                         const bodyID_t oT = s.triangles.owner[tri];
                         if (!maskRow[s.owners.family[oT]]) continue;
                         const double3 lo = a.triLo[tri], hi = a.triHi[tri];
-                        if (lo.x > pA.x + eA || lo.y > pA.y + eA || lo.z > pA.z + eA || hi.x < loA.x ||
-                            hi.y < loA.y || hi.z < loA.z)
+                        if (lo.x > pA.x + eA || lo.y > pA.y + eA || lo.z > pA.z + eA || hi.x < loA.x || hi.y < loA.y ||
+                            hi.z < loA.z)
                             continue;
                         if (!binOwnsPair(g, loA, lo, x, y, z)) continue;
                         const double3* v = &s.cache.triVert[3 * (size_t)tri];

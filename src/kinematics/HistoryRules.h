@@ -61,9 +61,9 @@ DEME_HD_INLINE unsigned int mergedSlotOfOld(const ContactKeys& fresh, const Cont
 // What the new set takes over from the old one.
 struct OldContactHistory {
     ContactKeys keys;
-    const float* wildcards;       // W per pair
+    const float* wildcards;  // W per pair
     const uint8_t* meshState;
-    const uint8_t* persistent;    // null: none of the old pairs is persistent
+    const uint8_t* persistent;  // null: none of the old pairs is persistent
     unsigned int W;
     const ContactInitRule* rules;  // initial wildcards of pairs new to the set
     unsigned int numRules;
@@ -73,8 +73,8 @@ struct OldContactHistory {
 // state and persistent flag. `s` gives the geometries' owners and families.
 template <class S>
 DEME_HD_INLINE void carryPairHistory(const S& s, const ContactKeys& fresh, const uint8_t* freshType,
-                                     const OldContactHistory& old, unsigned int i, float* wildcards,
-                                     uint8_t& meshState, uint8_t& persistent) {
+                                     const OldContactHistory& old, unsigned int i, float* wildcards, uint8_t& meshState,
+                                     uint8_t& persistent) {
     const uint64_t key = pairKey(fresh.geomA[i], fresh.geomB[i]);
     const unsigned int at = keyLowerBound(old.keys, key);
     if (keyAt(old.keys, at, key)) {

@@ -42,11 +42,11 @@ struct DetectionReport {
 // What one step reports.
 struct StepOutcome {
     size_t realContacts = 0, realSphereSphere = 0;  // pairs with overlap > 0 after the step's force pass
-    float maxSpeed = 0.f;     // fastest geometry point (sizes the next margin)
-    double maxTravel = 0.0;   // largest travel of any owner since the set in use was detected
-    bool fault = false;       // some owner diverged or left the domain (faultOwner, faultFlags)
-    size_t faultOwner = 0;    // lowest internal owner id with a fault
-    uint8_t faultFlags = 0;   // OwnerStepFlag bits of that owner
+    float maxSpeed = 0.f;                           // fastest geometry point (sizes the next margin)
+    double maxTravel = 0.0;                         // largest travel of any owner since the set in use was detected
+    bool fault = false;                             // some owner diverged or left the domain (faultOwner, faultFlags)
+    size_t faultOwner = 0;                          // lowest internal owner id with a fault
+    uint8_t faultFlags = 0;                         // OwnerStepFlag bits of that owner
     unsigned int kernelError = 0, kernelErrorItem = 0;  // GPU only: KernelError bits and the sphere
 };
 

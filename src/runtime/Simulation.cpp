@@ -158,10 +158,10 @@ void Simulation::reportFault(const StepOutcome& r) const {
     const double3 p = ownerPosition(s, (bodyID_t)r.faultOwner);
     const float3 v = s.owners.vel[r.faultOwner];
     throwError("DoDynamics", "simulation diverged at t = " + std::to_string(m_time) + " s: owner " +
-                                 std::to_string(s.ownerInternalToUser[r.faultOwner]) + " " + what +
-                                 "; position (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
-                                 std::to_string(p.z) + "), velocity (" + std::to_string(v.x) + ", " +
-                                 std::to_string(v.y) + ", " + std::to_string(v.z) + ")");
+                                 std::to_string(s.ownerInternalToUser[r.faultOwner]) + " " + what + "; position (" +
+                                 std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
+                                 "), velocity (" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " +
+                                 std::to_string(v.z) + ")");
 }
 
 void Simulation::clearTrackerLoads() {

@@ -14,25 +14,25 @@
 #include <deme/VariableTypes.h>
 
 // Owners (paper §2.4): clumps, then analytical objects, then meshes, in a space-filling-curve order.
-#define DEME_OWNER_FIELDS(X)                                                                           \
-    X(voxel, voxelID_t, EVOLVES)   /* compact position (§2.3): voxel index ... */                      \
-    X(subX, subVoxelPos_t, EVOLVES) /* ... and sub-voxel offsets */                                    \
-    X(subY, subVoxelPos_t, EVOLVES)                                                                    \
-    X(subZ, subVoxelPos_t, EVOLVES)                                                                    \
-    X(oriQ, oriQ_t, EVOLVES)                                                                           \
-    X(vel, float3, EVOLVES)    /* global frame */                                                      \
-    X(angVel, float3, EVOLVES) /* local (body) frame */                                                \
-    X(family, family_t, INPUT)                                                                         \
-    X(type, uint8_t, INPUT)         /* OwnerType */                                                    \
-    X(dynamic, uint8_t, INPUT)      /* 1: moved by forces (clumps, free meshes); 0: kinematic */       \
-    X(inertia, inertiaID_t, INPUT)  /* index into the mass properties */                               \
-    X(extent, float, INPUT)         /* largest distance from the owner centre to its geometry */       \
-    X(contactForce, float3, EVOLVES)  /* contact force of the last step (global), for trackers */      \
-    X(contactTorque, float3, EVOLVES) /* contact torque of the last step (global) */                   \
-    X(extraAcc, float3, INPUT)    /* tracker loads (AddAcc) applied during the next DoDynamics call */ \
-    X(extraAngAcc, float3, INPUT)                                                                      \
-    /* Path length travelled since the start (bounds every point of its geometry); the travel     */  \
-    /* since a contact detection is the difference to a snapshot taken then.                      */  \
+#define DEME_OWNER_FIELDS(X)                                                                               \
+    X(voxel, voxelID_t, EVOLVES)    /* compact position (§2.3): voxel index ... */                        \
+    X(subX, subVoxelPos_t, EVOLVES) /* ... and sub-voxel offsets */                                        \
+    X(subY, subVoxelPos_t, EVOLVES)                                                                        \
+    X(subZ, subVoxelPos_t, EVOLVES)                                                                        \
+    X(oriQ, oriQ_t, EVOLVES)                                                                               \
+    X(vel, float3, EVOLVES)    /* global frame */                                                          \
+    X(angVel, float3, EVOLVES) /* local (body) frame */                                                    \
+    X(family, family_t, INPUT)                                                                             \
+    X(type, uint8_t, INPUT)           /* OwnerType */                                                      \
+    X(dynamic, uint8_t, INPUT)        /* 1: moved by forces (clumps, free meshes); 0: kinematic */         \
+    X(inertia, inertiaID_t, INPUT)    /* index into the mass properties */                                 \
+    X(extent, float, INPUT)           /* largest distance from the owner centre to its geometry */         \
+    X(contactForce, float3, EVOLVES)  /* contact force of the last step (global), for trackers */          \
+    X(contactTorque, float3, EVOLVES) /* contact torque of the last step (global) */                       \
+    X(extraAcc, float3, INPUT)        /* tracker loads (AddAcc) applied during the next DoDynamics call */ \
+    X(extraAngAcc, float3, INPUT)                                                                          \
+    /* Path length travelled since the start (bounds every point of its geometry); the travel     */       \
+    /* since a contact detection is the difference to a snapshot taken then.                      */       \
     X(travel, double, EVOLVES)
 
 // Mass properties, shared by owners of one template.
@@ -40,31 +40,31 @@
     X(mass, float, INPUT)   \
     X(moi, float3, INPUT) /* principal moments, owner frame */
 
-#define DEME_SPHERE_FIELDS(X)                                     \
-    X(owner, bodyID_t, INPUT)                                     \
-    X(relPos, float3, INPUT) /* centre in the owner's frame */    \
-    X(radius, float, INPUT)                                       \
+#define DEME_SPHERE_FIELDS(X)                                  \
+    X(owner, bodyID_t, INPUT)                                  \
+    X(relPos, float3, INPUT) /* centre in the owner's frame */ \
+    X(radius, float, INPUT)                                    \
     X(material, materialID_t, INPUT)
 
-#define DEME_ANALYTICAL_FIELDS(X)                                                       \
-    X(owner, bodyID_t, INPUT)                                                           \
-    X(type, uint8_t, INPUT)    /* AnalyticalType */                                     \
-    X(relPos, float3, INPUT)   /* a point of the surface, owner frame */                \
-    X(relDir, float3, INPUT)   /* plane normal (towards grains) or cylinder axis */     \
-    X(radius, float, INPUT)    /* cylinder radius */                                    \
-    X(inside, uint8_t, INPUT)  /* cylinder: 1 if grains live inside */                  \
+#define DEME_ANALYTICAL_FIELDS(X)                                                  \
+    X(owner, bodyID_t, INPUT)                                                      \
+    X(type, uint8_t, INPUT)   /* AnalyticalType */                                 \
+    X(relPos, float3, INPUT)  /* a point of the surface, owner frame */            \
+    X(relDir, float3, INPUT)  /* plane normal (towards grains) or cylinder axis */ \
+    X(radius, float, INPUT)   /* cylinder radius */                                \
+    X(inside, uint8_t, INPUT) /* cylinder: 1 if grains live inside */              \
     X(material, materialID_t, INPUT)
 
 // Mesh triangles. Vertices are welded by position within each mesh; vertTris lists, per welded
 // vertex, the triangles that use it (from vertTriStart): the topology of the smooth-surface rule.
-#define DEME_TRIANGLE_FIELDS(X)                                        \
-    X(owner, bodyID_t, INPUT)                                          \
-    X(v0, float3, INPUT) /* owner frame */                             \
-    X(v1, float3, INPUT)                                               \
-    X(v2, float3, INPUT)                                               \
-    X(material, materialID_t, INPUT)                                   \
-    X(vert, uint32_t, INPUT) /* 3 welded vertex ids per triangle */    \
-    X(vertTriStart, uint32_t, INPUT)                                   \
+#define DEME_TRIANGLE_FIELDS(X)                                     \
+    X(owner, bodyID_t, INPUT)                                       \
+    X(v0, float3, INPUT) /* owner frame */                          \
+    X(v1, float3, INPUT)                                            \
+    X(v2, float3, INPUT)                                            \
+    X(material, materialID_t, INPUT)                                \
+    X(vert, uint32_t, INPUT) /* 3 welded vertex ids per triangle */ \
+    X(vertTriStart, uint32_t, INPUT)                                \
     X(vertTris, uint32_t, INPUT)
 
 // The active-contact set, sorted by key = (geomA << 32) | geomB with geometry ids in one space:
@@ -74,37 +74,37 @@
 #define DEME_CONTACT_FIELDS(X)                                                                          \
     X(geomA, bodyID_t, EVOLVES)                                                                         \
     X(geomB, bodyID_t, EVOLVES)                                                                         \
-    X(type, uint8_t, EVOLVES)      /* ContactType */                                                    \
-    X(wildcards, float, EVOLVES)   /* numWildcards values per contact, contact-major */                 \
-    /* 1: the pair stays in the set when detection no longer finds it, until the force model      */   \
-    /* clears the flag or the user removes it (DEMSolver::MarkPersistentContact).                 */   \
+    X(type, uint8_t, EVOLVES)    /* ContactType */                                                      \
+    X(wildcards, float, EVOLVES) /* numWildcards values per contact, contact-major */                   \
+    /* 1: the pair stays in the set when detection no longer finds it, until the force model      */    \
+    /* clears the flag or the user removes it (DEMSolver::MarkPersistentContact).                 */    \
     X(persistent, uint8_t, EVOLVES)                                                                     \
-    /* Sphere-triangle contacts: bit 0 set if it counted this step, bit 1 if in the previous one. */   \
+    /* Sphere-triangle contacts: bit 0 set if it counted this step, bit 1 if in the previous one. */    \
     X(meshState, uint8_t, EVOLVES)                                                                      \
-    X(force, float3, EVOLVES) /* on A, global (the GPU stores it in steps the host reads) */            \
+    X(force, float3, EVOLVES)            /* on A, global (the GPU stores it in steps the host reads) */ \
     X(meshContacts, uint32_t, HOST)      /* indices of the sphere-triangle contacts */                  \
     X(meshContactGroups, uint32_t, HOST) /* where each sphere's run in meshContacts starts, + end */    \
     X(torqueA, float3, HOST)             /* about each owner's centre, global */                        \
     X(torqueB, float3, HOST)                                                                            \
-    /* For the CPU's force reduction: per owner the contacts it is in, as (contact << 1) | isB.   */   \
+    /* For the CPU's force reduction: per owner the contacts it is in, as (contact << 1) | isB.   */    \
     X(ownerStart, uint32_t, HOST)                                                                       \
     X(ownerEntries, uint32_t, HOST)
 
 // Quantities derived from the owner state, refreshed after every integration step (and after any
 // host-side edit) so that the force pass and contact detection read them instead of recomputing
 // them for every contact.
-#define DEME_CACHE_FIELDS(X)                                                          \
-    X(ownerPos, double3, EVOLVES) /* decoded owner positions */                       \
-    X(ownerAngVelGlobal, float3, EVOLVES)                                             \
-    X(spherePos, double3, EVOLVES) /* sphere centres */                               \
-    X(sphereArm, float3, EVOLVES)  /* sphere centre minus owner centre */             \
-    X(analPos, double3, EVOLVES)   /* analytical components' reference points */      \
-    X(analDir, double3, EVOLVES)   /* analytical normals / axes (unit) */             \
+#define DEME_CACHE_FIELDS(X)                                                     \
+    X(ownerPos, double3, EVOLVES) /* decoded owner positions */                  \
+    X(ownerAngVelGlobal, float3, EVOLVES)                                        \
+    X(spherePos, double3, EVOLVES) /* sphere centres */                          \
+    X(sphereArm, float3, EVOLVES)  /* sphere centre minus owner centre */        \
+    X(analPos, double3, EVOLVES)   /* analytical components' reference points */ \
+    X(analDir, double3, EVOLVES)   /* analytical normals / axes (unit) */        \
     X(triVert, double3, EVOLVES)   /* 3 global vertices per triangle */
 
 // Per-owner results of the integration sweep that later sweeps of the same step read.
-#define DEME_SCRATCH_FIELDS(X)                                                       \
-    X(flags, uint8_t, SCRATCH)      /* OwnerStepFlag bits */                         \
+#define DEME_SCRATCH_FIELDS(X)                             \
+    X(flags, uint8_t, SCRATCH)    /* OwnerStepFlag bits */ \
     X(midAngVel, float3, SCRATCH) /* midpoint angular velocity, for large rotations */
 
 namespace deme {
@@ -152,9 +152,11 @@ struct ScratchFields {
 // forEach<Group>Field(a, b, f): f(a.field, b.field, role) for every field of the group, in list
 // order, over two storages of the same group (e.g. host arrays and device buffers).
 #define DEME_VISIT_FIELD(name, T, role) f(a.name, b.name, FieldRole::role);
-#define DEME_FIELD_VISITOR(Group, LIST)                   \
-    template <class GA, class GB, class F>                \
-    inline void forEach##Group##Field(GA& a, GB& b, F&& f) { LIST(DEME_VISIT_FIELD) }
+#define DEME_FIELD_VISITOR(Group, LIST)                      \
+    template <class GA, class GB, class F>                   \
+    inline void forEach##Group##Field(GA& a, GB& b, F&& f) { \
+        LIST(DEME_VISIT_FIELD)                               \
+    }
 DEME_FIELD_VISITOR(Owner, DEME_OWNER_FIELDS)
 DEME_FIELD_VISITOR(Mass, DEME_MASS_FIELDS)
 DEME_FIELD_VISITOR(Sphere, DEME_SPHERE_FIELDS)
@@ -168,13 +170,13 @@ DEME_FIELD_VISITOR(Scratch, DEME_SCRATCH_FIELDS)
 
 // Every group of a state, in one call: f(a.group, b.group, visitor) where visitor is the group's
 // forEach<Group>Field (so that code over all groups is written once too).
-#define DEME_STATE_GROUPS(G)                               \
-    G(owners, Owner)                                       \
-    G(massProps, Mass)                                     \
-    G(spheres, Sphere)                                     \
-    G(analytical, Analytical)                              \
-    G(triangles, Triangle)                                 \
-    G(cache, Cache)                                        \
+#define DEME_STATE_GROUPS(G)  \
+    G(owners, Owner)          \
+    G(massProps, Mass)        \
+    G(spheres, Sphere)        \
+    G(analytical, Analytical) \
+    G(triangles, Triangle)    \
+    G(cache, Cache)           \
     G(integrationScratch, Scratch)
 
 }  // namespace deme

@@ -36,8 +36,8 @@ StepOutcome CpuDynamics::step(double time, const Settings& settings, const Famil
     }
     PhaseTimer t(timing, Phase::INTEGRATION);
     families.evaluate(time + settings.dt, m_stepMotion);
-    const IntegrationResult ir = integrateOwners(m_s, m_stepMotion, settings.gravity, settings.dt,
-                                                 settings.errorOutVelocity, m_baseline);
+    const IntegrationResult ir =
+        integrateOwners(m_s, m_stepMotion, settings.gravity, settings.dt, settings.errorOutVelocity, m_baseline);
     out.maxSpeed = ir.maxSurfaceSpeed;
     out.maxTravel = ir.maxTravel;
     if (ir.fault != OwnerFault::NONE) {

@@ -15,7 +15,8 @@ CpuKinematics::~CpuKinematics() {
 
 void CpuKinematics::setGeometry(const SimState& /*the live state*/, const BinGrid& grid, const FamilyRules& families,
                                 const Settings& settings) {
-    if (!m_mailbox.idle()) throwError("DoDynamics", "internal: the kinematics geometry changed while an order was in flight");
+    if (!m_mailbox.idle())
+        throwError("DoDynamics", "internal: the kinematics geometry changed while an order was in flight");
     m_grid = grid;
     m_familyMask.assign(families.contactMask(), families.contactMask() + NUM_FAMILIES * NUM_FAMILIES);
     m_familyExtraMargin.assign(settings.familyExtraMargin, settings.familyExtraMargin + NUM_FAMILIES);

@@ -70,8 +70,8 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     std::vector<uint8_t> meshState(nNew), persistent(nNew);
 #pragma omp parallel for schedule(static) if (nNew > PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < nNew; i++)
-        carryPairHistory(s, freshKeys, fresh.type.data(), old, (unsigned int)i, wildcards.data() + i * W,
-                         meshState[i], persistent[i]);
+        carryPairHistory(s, freshKeys, fresh.type.data(), old, (unsigned int)i, wildcards.data() + i * W, meshState[i],
+                         persistent[i]);
     c.geomA.swap(fresh.geomA);
     c.geomB.swap(fresh.geomB);
     c.type.swap(fresh.type);

@@ -81,7 +81,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
 #pragma omp for simd schedule(static)
         for (size_t i = 0; i < nSpheres; i++) placeSphere(s, i);
 
-        // Triangle vertices of meshes that moved.
+            // Triangle vertices of meshes that moved.
 #pragma omp for schedule(static)
         for (size_t t = 0; t < nTris; t++)
             if (flags[s.triangles.owner[t]] & STEP_MOVED) placeTriangle(s, t);

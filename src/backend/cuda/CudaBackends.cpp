@@ -16,8 +16,8 @@ Backends makeCudaBackends(const ModelLayout& model, const Settings& settings, in
     const int kinematicsDevice = ids.size() > 1 ? ids[1] : device;
     if (ids.size() > 2)
         log(Verbosity::WARNING, std::to_string(ids.size()) + " GPUs were given; the CUDA backend uses two (GPU " +
-                                    std::to_string(device) + " for dynamics, GPU " +
-                                    std::to_string(kinematicsDevice) + " for contact detection)");
+                                    std::to_string(device) + " for dynamics, GPU " + std::to_string(kinematicsDevice) +
+                                    " for contact detection)");
     const auto t0 = std::chrono::steady_clock::now();
     auto dynamics = std::make_unique<CudaDynamics>(device, model);
     // kT starts with dT's GPU current: the exchange buffers and the event go there.
@@ -30,12 +30,12 @@ Backends makeCudaBackends(const ModelLayout& model, const Settings& settings, in
             (cached ? " loaded from the cache" : " compiled") + " in " +
             std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) +
             " s; contact detection on GPU " + std::to_string(kinematicsDevice) +
-            (kinematicsDevice == device      ? " (its own stream)"
+            (kinematicsDevice == device ? " (its own stream)"
              : kinematics->peerAccess() ? " (peer access to GPU " + std::to_string(device) + ")"
-                                             : " (no peer access: transfers through the host)") +
+                                        : " (no peer access: transfers through the host)") +
             (settings.asyncDetection ? ", asynchronous" : ", synchronous"));
-    log(Verbosity::INFO, "force model: " + model.description() +
-                             (model.builtIn() ? " (built in)" : " (compiled for the GPU by NVRTC)"));
+    log(Verbosity::INFO,
+        "force model: " + model.description() + (model.builtIn() ? " (built in)" : " (compiled for the GPU by NVRTC)"));
     Backends b;
     b.dynamics = std::move(dynamics);
     b.kinematics = std::move(kinematics);

@@ -89,25 +89,24 @@ StepOutcome CudaDynamics::step(double time, const Settings& settings, const Fami
                                TimingStats& timing) {
     const Stream st = m_stream;
     const unsigned int nO = m_view.numOwners, nS = m_view.numSpheres, nT = m_view.numTriangles;
-    const StepConstants consts{settings.gravity, (float)settings.dt, settings.dt,
-                               settings.errorOutVelocity * settings.errorOutVelocity, m_view.frame,
-                               m_view.domainSize};
+    const StepConstants consts{settings.gravity, (float)settings.dt,
+                               settings.dt,      settings.errorOutVelocity * settings.errorOutVelocity,
+                               m_view.frame,     m_view.domainSize};
     if (m_steps++ == m_profileFromStep) startProfilerCapture();
     const double t0 = now();
     DEME_CUDA_CHECK(CALL, cudaEventRecord(static_cast<cudaEvent_t>(m_forceStart), static_cast<cudaStream_t>(st)));
     launch(kFamilyMotion, 1, NUM_FAMILIES, 0, st, time + settings.dt, m_motion.data());
     StepReduction* red = m_reduction.data();
     launch(kResetReduction, 1, 32, 0, st, red);
-    if (nT && m_numContacts)
-        launch(kResolveMesh, blocksFor(m_numContacts, THREADS), THREADS, 0, st, m_view, red);
+    if (nT && m_numContacts) launch(kResolveMesh, blocksFor(m_numContacts, THREADS), THREADS, 0, st, m_view, red);
     launch(kClearLoads, blocksFor(nO, THREADS), THREADS, 0, st, m_view);
     StateView stepView = m_view;
     if (!storeContactForces) stepView.contacts.force = nullptr;
     m_model.launch(stepView, (float)time, (float)settings.dt, m_numClumps, nO - m_numClumps, red, st,
                    settings.threadsPerBlock);
     DEME_CUDA_CHECK(CALL, cudaEventRecord(static_cast<cudaEvent_t>(m_forceEnd), static_cast<cudaStream_t>(st)));
-    launch(kIntegrate, blocksFor(nO, THREADS), THREADS, 0, st, m_view, (const FamilyStepMotion*)m_motion.data(),
-           consts, (const double*)m_baseline.data(), red);
+    launch(kIntegrate, blocksFor(nO, THREADS), THREADS, 0, st, m_view, (const FamilyStepMotion*)m_motion.data(), consts,
+           (const double*)m_baseline.data(), red);
     launch(kLargeRot, blocksFor(nO, THREADS), THREADS, 0, st, m_view, (float)settings.dt);
     launch(kPlaceSpheres, blocksFor(nS, THREADS), THREADS, 0, st, m_view);
     if (nT) launch(kPlaceTris, blocksFor(nT, THREADS), THREADS, 0, st, m_view);

@@ -123,8 +123,8 @@ unsigned int CudaKinematics::Work::readCount(const DeviceBuffer<unsigned int>& o
 }
 
 // The rules of kinematics/DetectionRules.h in kernels (kernels/Detection.cu), bins sorted with CUB.
-void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, KinematicsInbox& in,
-                                  KinematicsOutbox& out, DetectionReport& r) {
+void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, KinematicsInbox& in, KinematicsOutbox& out,
+                                  DetectionReport& r) {
     const double t0 = now();
     // The snapshot is complete once dT's stream has passed the event (an event of another GPU is
     // fine for cudaStreamWaitEvent).
@@ -176,8 +176,8 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
         if (entries) {
             launch(kBinEntries, blocksFor(n, THREADS), THREADS, 0, stream, grid, n, (const int*)b.lo.data(),
                    (const int*)b.hi.data(), (const unsigned int*)b.offset.data(), b.keys.data(), b.items.data());
-            prim.sortPairs(b.keys.data(), b.sortedKeys.data(), b.items.data(), b.sortedItems.data(), entries, stream,
-                           0, bitsFor(numBins));
+            prim.sortPairs(b.keys.data(), b.sortedKeys.data(), b.items.data(), b.sortedItems.data(), entries, stream, 0,
+                           bitsFor(numBins));
         }
         // Each bin's first entry in the sorted order: the entries per bin, summed (in place).
         b.start.resizeDiscarding(numBins + 1);
@@ -202,8 +202,8 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     r.binningSeconds = t1 - t0;
 
     // 2. Pair search: count, offsets, fill.
-    args.sphereBins = BinsView{sphereBins.lo.data(), sphereBins.hi.data(), sphereBins.start.data(),
-                               sphereBins.sortedItems.data()};
+    args.sphereBins =
+        BinsView{sphereBins.lo.data(), sphereBins.hi.data(), sphereBins.start.data(), sphereBins.sortedItems.data()};
     if (nT)
         args.triangleBins =
             BinsView{triBins.lo.data(), triBins.hi.data(), triBins.start.data(), triBins.sortedItems.data()};

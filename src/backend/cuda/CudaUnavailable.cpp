@@ -27,7 +27,8 @@ const DeviceQuery& queryDevices() {
 }
 
 // ---- CudaBackends.h
-Backends makeCudaBackends(const ModelLayout&, const Settings&, int, const std::function<void(Verbosity, const std::string&)>&) {
+Backends makeCudaBackends(const ModelLayout&, const Settings&, int,
+                          const std::function<void(Verbosity, const std::string&)>&) {
     notBuilt("Initialize");
 }
 

@@ -74,9 +74,17 @@ void DeviceForceModel::upload(const SimState& s) {
     synchronize(nullptr);
     m_numOwnerWildcards = s.wildcards.owner.size();
     m_numGeometryWildcards = s.wildcards.geometry.size();
-    m_params = ForceModelParams{m_mu.data(),    m_Crr.data(),       m_E_eff.data(),          m_G_eff.data(),
-                                m_beta_CoR.data(), m_props.data(),  m_pairProps.data(),      m_ownerWildcards.data(),
-                                m_geometryWildcards.data(), (unsigned int)nM, (unsigned int)nOwners,
+    m_params = ForceModelParams{m_mu.data(),
+                                m_Crr.data(),
+                                m_E_eff.data(),
+                                m_G_eff.data(),
+                                m_beta_CoR.data(),
+                                m_props.data(),
+                                m_pairProps.data(),
+                                m_ownerWildcards.data(),
+                                m_geometryWildcards.data(),
+                                (unsigned int)nM,
+                                (unsigned int)nOwners,
                                 (unsigned int)nGeometries};
 }
 

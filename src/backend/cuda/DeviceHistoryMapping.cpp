@@ -43,8 +43,8 @@ unsigned int DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, uns
     m_any.resize(1, stream);
     m_isMissing.zeroAsync(stream);
     m_any.zeroAsync(stream);
-    launch(m_missing, blocksFor(nOld, THREADS), THREADS, 0, stream, fresh, old, (const uint8_t*)oldSet.persistent.data(),
-           m_isMissing.data(), m_any.data());
+    launch(m_missing, blocksFor(nOld, THREADS), THREADS, 0, stream, fresh, old,
+           (const uint8_t*)oldSet.persistent.data(), m_isMissing.data(), m_any.data());
     prim.exclusiveSum(m_isMissing.data(), m_missingBefore.data(), (size_t)nOld + 1, stream);
     unsigned int counts[2] = {0, 0};  // missing pairs, any persistent
     m_missingBefore.downloadAsync(&counts[0], 1, stream, nOld);
