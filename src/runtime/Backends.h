@@ -73,7 +73,7 @@ class DynamicsBackend {
   public:
     virtual ~DynamicsBackend() = default;
     // The host state becomes the one the steps run on (after Initialize and host-side edits).
-    virtual void upload(const SimState& s, const Settings& settings, const FamilyRules& families) = 0;
+    virtual void upload(const SimState& s) = 0;
     // The evolved state (and contact set) into `s`.
     virtual void download(SimState& s) = 0;
     // Tracker loads (AddAcc) of `s` for the coming call, or zeros.

@@ -80,8 +80,8 @@ void Simulation::uploadIfEdited() {
     // The order in flight was detected from the state being replaced: let it finish unseen, so the
     // kinematics side is idle while its geometry changes.
     m_contacts.dropOrderInFlight();
+    m_backends.dynamics->upload(m_state);  // (the GPU's makes dT's GPU current for what follows)
     m_backends.kinematics->setGeometry(m_state, m_grid, families, settings);
-    m_backends.dynamics->upload(m_state, settings, families);
     m_contacts.invalidate();
     m_backendStale = false;
 }

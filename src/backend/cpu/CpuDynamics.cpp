@@ -14,7 +14,7 @@ namespace deme {
 CpuDynamics::CpuDynamics(SimState& s, CpuForceModel model, CpuKinematics& kinematics)
     : m_s(s), m_model(std::move(model)), m_kinematics(kinematics) {}
 
-void CpuDynamics::upload(const SimState& s, const Settings&, const FamilyRules&) {
+void CpuDynamics::upload(const SimState& s) {
     // The steps run on the host state itself; travel is measured from now until the next set.
     m_baseline = s.owners.travel;
     m_orderBaseline = s.owners.travel;

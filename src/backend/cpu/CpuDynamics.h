@@ -20,7 +20,7 @@ class CpuDynamics : public DynamicsBackend {
     // Steps `s` (the host state: nothing is copied) with `model`; installs what `kinematics` detects.
     CpuDynamics(SimState& s, CpuForceModel model, CpuKinematics& kinematics);
 
-    void upload(const SimState& s, const Settings& settings, const FamilyRules& families) override;
+    void upload(const SimState& s) override;
     void download(SimState&) override {}
     void uploadTrackerLoads(const SimState&) override {}
     void beginRun(const Settings&, const FamilyRules&) override {}

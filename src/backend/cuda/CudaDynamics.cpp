@@ -26,9 +26,7 @@ void CudaDynamics::refreshView() {
     viewContacts(m_contacts[m_current], m_numContacts, m_view);
 }
 
-void CudaDynamics::upload(const SimState& s, const Settings& settings, const FamilyRules& families) {
-    (void)settings;
-    (void)families;
+void CudaDynamics::upload(const SimState& s) {
     select();
     const Stream st = m_stream;
     m_state.upload(s, st);

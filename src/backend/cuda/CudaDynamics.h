@@ -37,7 +37,7 @@ class CudaDynamics : public DynamicsBackend {
     // The kinematics side whose results install() takes (made after this, on dT's stream).
     void setKinematics(CudaKinematics* kinematics) { m_kinematics = kinematics; }
 
-    void upload(const SimState& s, const Settings& settings, const FamilyRules& families) override;
+    void upload(const SimState& s) override;
     void download(SimState& s) override;
     void uploadTrackerLoads(const SimState& s) override;
     void beginRun(const Settings& settings, const FamilyRules& families) override;
