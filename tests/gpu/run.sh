@@ -3,7 +3,8 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|unit|suite|bench|timing|gpus|settled|profile|compile|filter ...]   (default: build unit suite)
+#   tests/gpu/run.sh [build|baseline|unit|suite|bench|timing|gpus|settled|profile|compile|filter ...]
+#   (default: build unit suite)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 OUT="${OUT:-$PWD/gpu-test-out}"
@@ -23,6 +24,18 @@ for step in "${steps[@]}"; do
             exit 1
         }
         echo "build: ok"
+        ;;
+    baseline)
+        # An earlier commit's source in $BASE (default .base, e.g. `git archive <commit> | tar -x -C
+        # .base`, ignored and carried), its mixer benchmark built beside, for before/after runs in one
+        # command (`MIXERS=".base/build-gpu/bench/mixer ./build-gpu/bench/mixer" tests/gpu/run.sh settled`).
+        base="${BASE:-.base}"
+        (cmake -S "$base" -B "$base/build-gpu" -DCMAKE_BUILD_TYPE=Release -DDEME_ENABLE_CUDA=ON -DDEME_BUILD_TESTS=OFF \
+            -DDEME_BUILD_DEMOS=OFF && cmake --build "$base/build-gpu" -j"$jobs" --target mixer) >"$OUT/baseline-build.log" 2>&1 || {
+            tail -n 40 "$OUT/baseline-build.log"
+            exit 1
+        }
+        echo "baseline build: ok"
         ;;
     unit)
         ./build-gpu/tests/deme_tests --gtest_filter='Cuda*:GpuParity*' >"$OUT/unit.log" 2>&1
@@ -77,11 +90,15 @@ for step in "${steps[@]}"; do
     settled)
         # The settled variant: 0.25 s of mixing as 125000 warm-up steps of 2e-6 s (the grains land on
         # the floor), then 2000 timed steps of 5e-7 s. SETTLED="r:kind[:mode] ..." picks the cases
-        # (mode auto, sync or async; auto by default).
+        # (mode auto, sync or async; auto by default); MIXERS lists the benchmark binaries, each run
+        # on every case in turn (a baseline's and this build's: same machine, same command).
         for spec in ${SETTLED:-0.004:spheres 0.004:clumps}; do
             IFS=: read -r r kind mode <<<"$spec"
-            timeout "${SETTLED_TIMEOUT:-550}" ./build-gpu/bench/mixer .benchdata/internal_mixer.obj "$r" "$kind" 125000 2000 2e-6 1 "${mode:-auto}" 2>&1 |
-                tee -a "$OUT/settled.jsonl" | tail -n 3
+            for bin in ${MIXERS:-./build-gpu/bench/mixer}; do
+                echo "{\"binary\": \"$bin\"}" >>"$OUT/settled.jsonl"
+                timeout "${SETTLED_TIMEOUT:-550}" "$bin" .benchdata/internal_mixer.obj "$r" "$kind" 125000 2000 2e-6 1 "${mode:-auto}" 2>&1 |
+                    tee -a "$OUT/settled.jsonl" | tail -n 2
+            done
         done
         ;;
     profile)
