@@ -66,16 +66,21 @@ inline bool loadNumbers(py::handle src, float* out, size_t n) {
 }
 
 // An (N, cols) float32 C-order array from an array or nested lists; N = 0 also from an empty list.
-inline py::array_t<float> loadRows(py::handle src, size_t cols) {
-    if (isTextOrNone(src)) return {};
+// (A default-constructed array_t is an empty array, not a null handle: hence the flag.)
+inline bool loadRows(py::handle src, size_t cols, py::array_t<float>& out) {
+    if (isTextOrNone(src)) return false;
     auto arr = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(src);
     if (!arr) {
         PyErr_Clear();
-        return {};
+        return false;
     }
-    if (arr.size() == 0 && arr.ndim() <= 2) return py::array_t<float>(std::vector<py::ssize_t>{0, (py::ssize_t)cols});
-    if (arr.ndim() != 2 || (size_t)arr.shape(1) != cols) return {};
-    return arr;
+    if (arr.size() == 0 && arr.ndim() <= 2) {
+        out = py::array_t<float>(std::vector<py::ssize_t>{0, (py::ssize_t)cols});
+        return true;
+    }
+    if (arr.ndim() != 2 || (size_t)arr.shape(1) != cols) return false;
+    out = arr;
+    return true;
 }
 
 template <class T, size_t Cols>
@@ -119,8 +124,8 @@ template <>
 struct type_caster<std::vector<deme::float3>> {
     PYBIND11_TYPE_CASTER(std::vector<deme::float3>, const_name("Float3Array"));
     bool load(handle src, bool) {
-        auto arr = deme_py::loadRows(src, 3);
-        if (!arr) return false;
+        array_t<float> arr;
+        if (!deme_py::loadRows(src, 3, arr)) return false;
         value.resize((size_t)arr.shape(0));
         if (!value.empty()) std::memcpy(value.data(), arr.data(), value.size() * sizeof(deme::float3));
         return true;
@@ -134,8 +139,8 @@ template <>
 struct type_caster<std::vector<deme::float4>> {
     PYBIND11_TYPE_CASTER(std::vector<deme::float4>, const_name("QuaternionArray"));
     bool load(handle src, bool) {
-        auto arr = deme_py::loadRows(src, 4);
-        if (!arr) return false;
+        array_t<float> arr;
+        if (!deme_py::loadRows(src, 4, arr)) return false;
         value.resize((size_t)arr.shape(0));
         if (!value.empty()) std::memcpy(value.data(), arr.data(), value.size() * sizeof(deme::float4));
         return true;

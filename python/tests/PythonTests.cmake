@@ -28,3 +28,13 @@ foreach(test_file ${deme_py_tests})
            WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/test-runs)
   set_tests_properties(python.${name} PROPERTIES TIMEOUT 300 LABELS python ENVIRONMENT "${deme_py_test_env}")
 endforeach()
+
+# The pip route into a fresh virtual environment (pip_install_test.sh): it builds the library and
+# the module again (CPU-only, without tests, demos and benchmarks), a minute or two on 2 cores.
+find_program(DEME_BASH bash)
+if(DEME_BASH)
+  add_test(NAME python.pip_install
+           COMMAND ${DEME_BASH} ${CMAKE_CURRENT_SOURCE_DIR}/tests/pip_install_test.sh ${PROJECT_SOURCE_DIR}
+                   ${CMAKE_CURRENT_BINARY_DIR}/pip_install_test ${Python3_EXECUTABLE})
+  set_tests_properties(python.pip_install PROPERTIES TIMEOUT 900 LABELS "python;package")
+endif()
