@@ -23,6 +23,8 @@ import numpy as _np
 from ._deme import *  # noqa: F401,F403  (the compiled API)
 from ._deme import Error, GetDEMEDataFile, GetDEMEDataDirs, __version__  # noqa: F401
 
+Error.__module__ = "deme"  # tracebacks say deme.Error, the name to catch
+
 # The names used in the signatures help() shows (see the module docstring).
 Float3 = Union[Sequence[float], _np.ndarray]
 Quaternion = Union[Sequence[float], _np.ndarray]
