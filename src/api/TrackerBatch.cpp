@@ -7,7 +7,6 @@
 #include <string>
 
 #include "api/Validate.h"
-#include "backend/cpu/Parallel.h"
 #include "physics/CompactPosition.h"
 #include "physics/Quaternion.h"
 #include "runtime/Simulation.h"
@@ -18,12 +17,12 @@ namespace {
 
 // out[i] = value(internal id of offset i), for every owner of the tracker. Owners are stored in a
 // space-filling-curve order, users see them in the order they added them: each row is looked up.
+// One thread: a million rows take about 2 ms (bench/tracker_batch.py), and waking the OpenMP team
+// for them measured slower on a busy 2-core machine (8 ms), not faster.
 template <class T, class F>
 void gather(const SimState& s, size_t first, size_t count, T* out, F value) {
     const bodyID_t* toInternal = s.ownerUserToInternal.data() + first;
-    const long long n = (long long)count;
-#pragma omp parallel for schedule(static) if (count >= PARALLEL_MIN_ITEMS)
-    for (long long i = 0; i < n; i++) out[i] = value((size_t)toInternal[i]);
+    for (size_t i = 0; i < count; i++) out[i] = value((size_t)toInternal[i]);
 }
 
 bool allFinite(const float3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
