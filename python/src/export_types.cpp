@@ -1,4 +1,4 @@
-// Constants and enums of deme/VariableTypes.h, and the helpers of deme/Utils.h.
+// Constants and enums of deme/VariableTypes.h, and the functions of deme/Utils.h.
 #include "Exports.h"
 
 #include <deme/Utils.h>
