@@ -4,6 +4,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "VariableTypes.h"
 
@@ -45,6 +46,30 @@ class DEMTracker {
     void SetOwnerWildcardValue(const std::string& name, float value, size_t offset = 0);
     float GetOwnerWildcardValue(const std::string& name, size_t offset = 0) const;
 
+    // ---- Batch forms: every owner of the tracker in one pass, in offset order (offset 0 first) ----
+    // The pointer forms fill the caller's buffer of GetNumOwners() elements (a numpy array's memory,
+    // for instance); the others return a new vector. On the GPU backend the state comes back from
+    // the device once per call, not once per owner.
+    void Positions(float3* out) const;
+    void Velocities(float3* out) const;
+    void AngularVelocities(float3* out) const;  // global frame, as AngVelGlobal
+    void OriQs(float4* out) const;
+    void ContactForces(float3* out) const;   // global, as ContactForce
+    void ContactTorques(float3* out) const;  // global, as ContactTorque
+    std::vector<float3> Positions() const;
+    std::vector<float3> Velocities() const;
+    std::vector<float3> AngularVelocities() const;
+    std::vector<float4> OriQs() const;
+    std::vector<float3> ContactForces() const;
+    std::vector<float3> ContactTorques() const;
+    // Set every owner at once from GetNumOwners() values. All values are checked before any is
+    // applied, so a bad one (not finite, outside the domain) changes nothing; the contact set is
+    // refreshed once, not once per owner as SetPos / SetVel in a loop would.
+    void SetPositions(const float3* pos);
+    void SetVelocities(const float3* vel);
+    void SetPositions(const std::vector<float3>& pos);
+    void SetVelocities(const std::vector<float3>& vel);
+
     size_t GetNumOwners() const { return m_count; }
     // The owner's id in user order: clumps in the order they were added, then external objects.
     size_t GetOwnerID(size_t offset = 0) const;
@@ -53,6 +78,7 @@ class DEMTracker {
     size_t internalID(size_t offset) const;  // where the owner is stored
     Simulation& sim() const;                 // the solver's simulation; an error once the solver is gone
     std::weak_ptr<Simulation> m_owner;       // expired once the solver is destroyed
+    size_t firstOwnerID(const char* call) const;  // user id of offset 0; checks the solver is initialized
     Simulation* m_sim;
     std::function<size_t()> m_resolve;
     size_t m_count;

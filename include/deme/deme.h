@@ -3,6 +3,7 @@
 
 #include "ClumpTemplate.h"
 #include "DEMSolver.h"
+#include "DataFiles.h"
 #include "Error.h"
 #include "ExternalObject.h"
 #include "ForceModel.h"

@@ -3,14 +3,14 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|bench|timing|gpus|settled|profile|compile|filter ...]
-#   (default: build unit suite)
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|bench|timing|gpus|settled|profile|compile|filter ...]
+#   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 OUT="${OUT:-$PWD/gpu-test-out}"
 mkdir -p "$OUT"
 steps=("$@")
-[ ${#steps[@]} -eq 0 ] && steps=(build unit suite)
+[ ${#steps[@]} -eq 0 ] && steps=(build unit suite python)
 export DEME_CACHE_DIR="${DEME_CACHE_DIR:-/tmp/deme-kernel-cache}"
 jobs="$(nproc)"
 
@@ -52,6 +52,26 @@ for step in "${steps[@]}"; do
             >"$OUT/suite.log" 2>&1
         echo "suite (cuda instances and demos): rc $?"
         grep -E 'tests passed|\(Failed\)|\(Timeout\)|\(SEGFAULT\)|Exception' "$OUT/suite.log" | head -40
+        ;;
+    python)
+        # The Python module built in build-gpu (the build step builds it where pybind11 and numpy
+        # are found): its pytest suite and the paper's Python listing (demos/python/mixer.py, two
+        # steps), both with DEME_BACKEND=cuda. The installed-package and pip tests are left out
+        # (they rebuild on the CPU and test packaging, not the backend).
+        if ! ls build-gpu/python/deme/_deme*.so >/dev/null 2>&1; then
+            echo "python: module not built in build-gpu ($(grep -h 'Python module' "$OUT/configure.log" 2>/dev/null || echo 'see configure.log'))"
+            continue
+        fi
+        DEME_BACKEND=cuda PYTHONPATH="$PWD/build-gpu/python" DEME_TEST_SOURCE_DIR="$PWD" \
+            DEME_CACHE_DIR="$DEME_CACHE_DIR" /usr/bin/python3 -m pytest -v -p no:cacheprovider python/tests \
+            -k 'not installed_package and not cpp_install' >"$OUT/python.log" 2>&1
+        echo "python tests (DEME_BACKEND=cuda): rc $? ($(tail -n 1 "$OUT/python.log"))"
+        grep -E 'FAILED|ERROR' "$OUT/python.log" | head -20
+        mkdir -p "$OUT/python-listing"
+        (cd "$OUT/python-listing" && DEME_BACKEND=cuda PYTHONPATH="$OLDPWD/build-gpu/python" \
+            /usr/bin/python3 "$OLDPWD/demos/python/mixer.py" --quick >listing.log 2>&1)
+        echo "python listing (DEME_BACKEND=cuda): rc $? ($(grep -c '^Frame' "$OUT/python-listing/listing.log") frame(s); $(grep -m1 -o 'CUDA backend[^;]*\|CPU backend[^;]*' "$OUT/python-listing/listing.log"))"
+        rm -f "$OUT"/python-listing/DemoOutput_Mixer/*.csv
         ;;
     bench)
         obj=.benchdata/internal_mixer.obj
