@@ -6,6 +6,8 @@
 #include <iostream>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "api/Expression.h"
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
@@ -13,7 +15,8 @@
 #include "backend/cpu/Parallel.h"
 #include "io/ClumpCsvReader.h"
 #include "io/ObjReader.h"
-#include "io/OutputWriters.h"
+#include "io/OutputManager.h"
+#include "io/ProgressReporter.h"
 #include "backend/cuda/DeviceBuffer.h"
 #include "runtime/BackendSelection.h"
 #include "runtime/ContactEdits.h"
@@ -46,7 +49,11 @@ void applyWildcardValuesGivenEarly(const Scene& scene, const ModelLayout& layout
 
 }  // namespace
 
-DEMSolver::DEMSolver() : m_scene(new Scene()), m_sim(new Simulation()) {}
+DEMSolver::DEMSolver()
+    : m_scene(new Scene()), m_sim(new Simulation()), m_output(new OutputManager()),
+      m_progress(new ProgressReporter(std::cout, ::isatty(STDOUT_FILENO) == 1)) {
+    attachProgressHooks();
+}
 DEMSolver::DEMSolver(unsigned int nGPUs) : DEMSolver() {
     if (nGPUs == 0) throwError("DEMSolver", "the number of GPUs must be at least 1");
     for (unsigned int i = 0; i < nGPUs; i++) m_sim->settings.deviceIds.push_back((int)i);
@@ -77,49 +84,6 @@ void DEMSolver::SetVerbosity(const std::string& level) {
     if (it == levels.end())
         throwError("SetVerbosity", "unknown level \"" + level + "\" (QUIET, ERROR, WARNING, INFO, STEP_METRIC)");
     m_sim->settings.verbosity = it->second;
-}
-
-void DEMSolver::SetOutputFormat(const std::string& format) {
-    if (format != "CSV") throwError("SetOutputFormat", "unsupported format \"" + format + "\" (CSV)");
-}
-
-void DEMSolver::SetOutputContent(const std::string& content) {
-    std::vector<std::string> items;
-    std::string cur;
-    for (char ch : content + " ") {
-        if (ch == ' ' || ch == '|' || ch == ',') {
-            if (!cur.empty()) items.push_back(cur);
-            cur.clear();
-        } else {
-            cur += ch;
-        }
-    }
-    SetOutputContent(items);
-}
-
-void DEMSolver::SetOutputContent(const std::vector<std::string>& content) {
-    Settings& s = m_sim->settings;
-    for (const auto& c : content) {
-        if (c == "XYZ")
-            continue;  // always written
-        else if (c == "ABSV")
-            s.outAbsv = true;
-        else if (c == "VEL")
-            s.outVel = true;
-        else if (c == "ANG_VEL")
-            s.outAngVel = true;
-        else if (c == "FAMILY")
-            s.outFamily = true;
-        else if (c == "OWNER")
-            s.outOwner = true;
-        else if (c == "MAT")
-            s.outMat = true;
-        else if (c == "QUAT")
-            s.outQuat = true;
-        else
-            throwError("SetOutputContent",
-                       "unknown content \"" + c + "\" (XYZ, ABSV, VEL, ANG_VEL, FAMILY, OWNER, MAT, QUAT)");
-    }
 }
 
 // ---------------------------------------------------------------- time stepping
@@ -247,6 +211,7 @@ void DEMSolver::DoDynamics(double duration) {
         throwError(call,
                    "duration " + std::to_string(duration) + " s is too many steps of " + std::to_string(dt) + " s");
     m_sim->advance((unsigned long long)steps);
+    rethrowCallbackError();
 }
 
 void DEMSolver::DoDynamicsThenSync(double duration) {
@@ -257,6 +222,7 @@ void DEMSolver::DoDynamicsThenSync(double duration) {
 void DEMSolver::DoStepDynamics() {
     requireInitialized("DoStepDynamics");
     m_sim->advance(1);
+    rethrowCallbackError();
 }
 
 void DEMSolver::SetInterruptCheck(std::function<bool()> check) {
@@ -289,20 +255,6 @@ double DEMSolver::GetAvgSphContacts() const {
     return (double)(2 * ss + (m_sim->numRealContacts() - ss)) / (double)nS;
 }
 float3 DEMSolver::GetGravitationalAcceleration() const { return m_sim->settings.gravity; }
-
-// ---------------------------------------------------------------- output
-void DEMSolver::WriteSphereFile(const std::string& path) const {
-    requireInitialized("WriteSphereFile");
-    writeSphereCsv(*m_sim, path);
-}
-void DEMSolver::WriteClumpFile(const std::string& path) const {
-    requireInitialized("WriteClumpFile");
-    writeClumpCsv(*m_sim, path);
-}
-void DEMSolver::WriteContactFile(const std::string& path) const {
-    requireInitialized("WriteContactFile");
-    writeContactCsv(*m_sim, path);
-}
 
 void DEMSolver::ShowTimingStats() const { std::cout << timingReport(*m_sim) << std::endl; }
 

@@ -15,7 +15,6 @@
 #include "forcemodel/Identifiers.h"
 #include "io/ClumpCsvReader.h"
 #include "io/ObjReader.h"
-#include "io/OutputWriters.h"
 #include "runtime/Simulation.h"
 #include "runtime/StatsReport.h"
 
@@ -139,15 +138,6 @@ std::shared_ptr<DEMMeshConnected> DEMSolver::AddWavefrontMeshObject(const DEMMes
     auto m = std::make_shared<DEMMeshConnected>(mesh);
     m_scene->meshes.push_back(m);
     return m;
-}
-
-void DEMSolver::SetMeshOutputFormat(const std::string& format) {
-    if (format != "VTK") throwError("SetMeshOutputFormat", "unsupported format \"" + format + "\" (VTK)");
-}
-
-void DEMSolver::WriteMeshFile(const std::string& path) const {
-    requireInitialized("WriteMeshFile");
-    writeMeshVtk(*m_sim, path);
 }
 
 // ---------------------------------------------------------------- clump templates and clumps
