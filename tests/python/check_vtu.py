@@ -5,6 +5,8 @@ against the CSV files of the same frame, value by value.
   check_vtu.py frame <dir> <time>       every <kind>_<variant>.vtu in dir against <kind>.csv
   check_vtu.py series <pvd> <t0> <t1>.. the .pvd lists one frame per time, in order, each a file whose
                                         TimeValue is that time
+  check_vtu.py complete <vtu> <n> <t>.. the file reads as a whole frame of n points written at one of
+                                        the times
 
 Every value printed as the CSV prints it (%.9g) must give the CSV's text, integers must be equal, and
 every array must have its documented type (Float64 points and overlap, Float32 other reals, Int32
@@ -182,9 +184,26 @@ def check_series(pvd, times):
     print(f"checked {len(sets)} frames of {os.path.basename(pvd)}")
 
 
+def check_complete(path, n, times):
+    """A whole frame: it reads, has n points, and is one of the frames written (by its time)."""
+    try:
+        mesh = meshio.read(path)
+    except Exception as e:  # a truncated or corrupt file
+        fail(f"{path}: unreadable: {e}")
+        return
+    if len(mesh.points) != n:
+        fail(f"{path}: {len(mesh.points)} points, expected {n}")
+    t = float(np.asarray(mesh.field_data["TimeValue"]).ravel()[0])
+    if t not in times:
+        fail(f"{path}: TimeValue {t!r} is none of the frames written")
+    print(f"{os.path.basename(path)}: a whole frame of {n} points at t = {t!r}")
+
+
 if __name__ == "__main__":
     if sys.argv[1] == "frame":
         check_frame(sys.argv[2], float(sys.argv[3]))
+    elif sys.argv[1] == "complete":
+        check_complete(sys.argv[2], int(sys.argv[3]), [float(t) for t in sys.argv[4:]])
     else:
         check_series(sys.argv[2], [float(t) for t in sys.argv[3:]])
     sys.exit(1 if failures else 0)
