@@ -162,7 +162,9 @@ void drawTriangle(Target& t, const View& v, const float3* w, const Rgb& base, in
             const float b0 = ((p[1].x - cx) * (p[2].y - cy) - (p[1].y - cy) * (p[2].x - cx)) * inv;
             const float b1 = ((p[2].x - cx) * (p[0].y - cy) - (p[2].y - cy) * (p[0].x - cx)) * inv;
             const float b2 = 1.f - b0 - b1;
-            if (b0 < 0.f || b1 < 0.f || b2 < 0.f) continue;
+            // A little slack, so that rounding never opens a crack along an edge two triangles share.
+            const float slack = -1e-4f;
+            if (b0 < slack || b1 < slack || b2 < slack) continue;
             const float depth = b0 * p[0].z + b1 * p[1].z + b2 * p[2].z;
             if (v.clip && !v.inside(v.world(cx, cy, depth))) continue;
             t.plot(x, y, depth, c);
