@@ -47,7 +47,7 @@ void fillRect(RgbImage& img, int x0, int y0, int x1, int y1, Rgb c) {
 
 Rgb textColor(Rgb bg) { return bg[0] + bg[1] + bg[2] > 3 * 128 ? Rgb{20, 20, 20} : Rgb{235, 235, 235}; }
 
-int fontScale(int imageHeight) { return std::max(1, imageHeight / 360); }
+int fontScale(int imageHeight) { return std::max(1, (int)std::lround(imageHeight / 360.0)); }
 
 std::string shortNumber(float v) {
     char b[32];
@@ -67,7 +67,7 @@ Rgb colorMap(float t) {
     const int i = std::min(7, (int)s);
     const float f = s - (float)i;
     Rgb c;
-    for (int k = 0; k < 3; k++) c[k] = (uint8_t)std::lround(P[i][k] + f * (P[i + 1][k] - P[i][k]));
+    for (int k = 0; k < 3; k++) c[k] = (uint8_t)(P[i][k] + f * (P[i + 1][k] - P[i][k]) + 0.5f);
     return c;
 }
 

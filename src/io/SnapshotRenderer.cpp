@@ -65,8 +65,17 @@ View makeView(const SnapshotScene& s, const SnapshotOptions& o) {
             lo = make_float3(std::min(lo.x, p.x - r), std::min(lo.y, p.y - r), std::min(lo.z, p.z - r));
             hi = make_float3(std::max(hi.x, p.x + r), std::max(hi.y, p.y + r), std::max(hi.z, p.z + r));
         };
-        for (size_t i = 0; i < s.spherePos.size(); i++)
-            if (std::isfinite(s.spherePos[i].x + s.spherePos[i].y + s.spherePos[i].z)) grow(s.spherePos[i], s.sphereRadius[i]);
+        float lx = inf, ly = inf, lz = inf, hx = -inf, hy = -inf, hz = -inf;
+        const long n = (long)s.spherePos.size();
+#pragma omp parallel for reduction(min : lx, ly, lz) reduction(max : hx, hy, hz) if (n > 4096)
+        for (long i = 0; i < n; i++) {
+            const float3 p = s.spherePos[i];
+            const float r = s.sphereRadius[i];
+            if (!std::isfinite(p.x + p.y + p.z)) continue;
+            lx = std::min(lx, p.x - r), ly = std::min(ly, p.y - r), lz = std::min(lz, p.z - r);
+            hx = std::max(hx, p.x + r), hy = std::max(hy, p.y + r), hz = std::max(hz, p.z + r);
+        }
+        if (n) grow(make_float3(lx, ly, lz), 0.f), grow(make_float3(hx, hy, hz), 0.f);
         for (const float3& p : s.triVert) grow(p, 0.f);
         if (!(hi.x >= lo.x)) lo = make_float3(-1.f, -1.f, -1.f), hi = make_float3(1.f, 1.f, 1.f);  // nothing to draw
     }
@@ -128,12 +137,13 @@ void drawDisc(Target& t, const Disc& d, int y0, int y1) {
         const float dy = (float)y + 0.5f - d.y;
         const float half = std::sqrt(std::max(0.f, d.R * d.R - dy * dy));
         const int xs = std::max(0, (int)std::ceil(d.x - half - 0.5f)), xe = std::min(W - 1, (int)std::floor(d.x + half - 0.5f));
+        const size_t row = (size_t)y * W;
         for (int x = xs; x <= xe; x++) {
+            if (d.depth - d.r >= t.z[row + x]) continue;  // behind what is there wherever it is hit
             const float nx = ((float)x + 0.5f - d.x) * inv, ny = -dy * inv;
             const float nz = std::sqrt(std::max(0.f, 1.f - nx * nx - ny * ny));
             const float depth = d.depth - d.r * nz;
-            const size_t i = (size_t)y * W + x;
-            if (depth < t.z[i]) t.plot(x, y, depth, shade(d.color, make_float3(nx, ny, nz), 0.3f));
+            if (depth < t.z[row + x]) t.plot(x, y, depth, shade(d.color, make_float3(nx, ny, nz), 0.3f));
         }
     }
 }
@@ -224,15 +234,38 @@ RgbImage renderSnapshot(const SnapshotScene& s, const SnapshotOptions& o) {
                                   : colorMap(hi > lo ? (s.value[i] - lo) / (hi - lo) : 0.5f);
     }
 
-    const int bands = 32;
+    // The discs nearest first (sorted by depth into 1024 buckets, O(n)), so that a hidden sphere's
+    // pixels fail the depth test before any shading; each band then picks those that reach into it.
+    const int bands = 16, nb = 1024;
+    float dmin = std::numeric_limits<float>::infinity(), dmax = -dmin;
+#pragma omp parallel for reduction(min : dmin) reduction(max : dmax) if (n > 4096)
+    for (long i = 0; i < n; i++)
+        if (discs[i].R >= 0.f) dmin = std::min(dmin, discs[i].depth), dmax = std::max(dmax, discs[i].depth);
+    const float k = dmax > dmin ? (float)(nb - 1) / (dmax - dmin) : 0.f;
+    std::vector<uint16_t> key(n);
+#pragma omp parallel for if (n > 4096)
+    for (long i = 0; i < n; i++)
+        key[i] = discs[i].R >= 0.f ? (uint16_t)std::min(nb - 1, std::max(0, (int)((discs[i].depth - dmin) * k))) : (uint16_t)nb;
+    std::vector<uint32_t> start(nb + 2, 0);
+    for (long i = 0; i < n; i++) start[key[i] + 1]++;
+    for (int b = 0; b <= nb; b++) start[b + 1] += start[b];
+    std::vector<Disc> sorted(start[nb]);  // the culled ones (key nb) are left out
+    std::vector<float> rows(2 * sorted.size());  // each disc's top and bottom row, scanned by every band
+    for (long i = 0; i < n; i++)
+        if (key[i] < nb) {
+            const Disc& d = discs[i];
+            const uint32_t at = start[key[i]]++;
+            sorted[at] = d;
+            rows[2 * at] = d.y - d.R - 1.f, rows[2 * at + 1] = d.y + d.R + 1.f;
+        }
     const long nTri = (long)(s.triVert.size() / 3);
 #pragma omp parallel for schedule(dynamic, 1)
     for (int b = 0; b < bands; b++) {
         const int y0 = o.height * b / bands, y1 = o.height * (b + 1) / bands;
         Target t{img, z};
-        for (const Disc& d : discs)
-            if (d.R >= 0.f && d.y + d.R + 1.f >= (float)y0 && d.y - d.R - 1.f < (float)y1) drawDisc(t, d, y0, y1);
         for (long k = 0; k < nTri; k++) drawTriangle(t, v, &s.triVert[3 * k], o.meshColor, y0, y1);
+        for (size_t i = 0; i < sorted.size(); i++)
+            if (rows[2 * i + 1] >= (float)y0 && rows[2 * i] < (float)y1) drawDisc(t, sorted[i], y0, y1);
     }
 
     if (o.colorBar && o.colorBy != "none") {
