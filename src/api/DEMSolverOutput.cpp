@@ -11,31 +11,29 @@
 
 namespace deme {
 
+// The format settings take effect with the next output call: a file already handed to the writer
+// thread is written as it was staged.
 void DEMSolver::SetOutputFormat(const std::string& format) {
     if (format != "CSV" && format != "VTU")
         throwError("SetOutputFormat", "unsupported format \"" + format + "\" (CSV, VTU)");
-    m_output->flush("SetOutputFormat");  // the file being written keeps the format it was staged with anyway
     m_output->options.vtu = format == "VTU";
 }
 
 void DEMSolver::SetVTUEncoding(const std::string& encoding) {
     if (encoding != "appended" && encoding != "base64")
         throwError("SetVTUEncoding", "unknown encoding \"" + encoding + "\" (appended, base64)");
-    m_output->flush("SetVTUEncoding");
     m_output->options.vtuOptions.base64 = encoding == "base64";
 }
 
 void DEMSolver::SetVTUCompression(const std::string& compression) {
     if (compression != "none" && compression != "zlib")
         throwError("SetVTUCompression", "unknown compression \"" + compression + "\" (none, zlib)");
-    m_output->flush("SetVTUCompression");
     m_output->options.vtuOptions.zlib = compression == "zlib";
 }
 
 void DEMSolver::SetMeshOutputFormat(const std::string& format) {
     if (format != "VTK" && format != "VTU")
         throwError("SetMeshOutputFormat", "unsupported format \"" + format + "\" (VTK, VTU)");
-    m_output->flush("SetMeshOutputFormat");
     m_output->options.meshVtu = format == "VTU";
 }
 
