@@ -86,6 +86,53 @@ void DEMSolver::SetVerbosity(const std::string& level) {
     m_sim->settings.verbosity = it->second;
 }
 
+// The format settings take effect with the next output call: a file already handed to the writer
+// thread is written as it was staged.
+void DEMSolver::SetOutputFormat(const std::string& format) {
+    if (format != "CSV" && format != "VTU")
+        throwError("SetOutputFormat", "unsupported format \"" + format + "\" (CSV, VTU)");
+    m_output->options.vtu = format == "VTU";
+}
+
+void DEMSolver::SetOutputContent(const std::string& content) {
+    std::vector<std::string> items;
+    std::string cur;
+    for (char ch : content + " ") {
+        if (ch == ' ' || ch == '|' || ch == ',') {
+            if (!cur.empty()) items.push_back(cur);
+            cur.clear();
+        } else {
+            cur += ch;
+        }
+    }
+    SetOutputContent(items);
+}
+
+void DEMSolver::SetOutputContent(const std::vector<std::string>& content) {
+    Settings& s = m_sim->settings;
+    for (const auto& c : content) {
+        if (c == "XYZ")
+            continue;  // always written
+        else if (c == "ABSV")
+            s.outAbsv = true;
+        else if (c == "VEL")
+            s.outVel = true;
+        else if (c == "ANG_VEL")
+            s.outAngVel = true;
+        else if (c == "FAMILY")
+            s.outFamily = true;
+        else if (c == "OWNER")
+            s.outOwner = true;
+        else if (c == "MAT")
+            s.outMat = true;
+        else if (c == "QUAT")
+            s.outQuat = true;
+        else
+            throwError("SetOutputContent",
+                       "unknown content \"" + c + "\" (XYZ, ABSV, VEL, ANG_VEL, FAMILY, OWNER, MAT, QUAT)");
+    }
+}
+
 // ---------------------------------------------------------------- time stepping
 void DEMSolver::SetInitTimeStep(double dt) {
     requirePositive("SetInitTimeStep", "time step", dt);
@@ -255,6 +302,20 @@ double DEMSolver::GetAvgSphContacts() const {
     return (double)(2 * ss + (m_sim->numRealContacts() - ss)) / (double)nS;
 }
 float3 DEMSolver::GetGravitationalAcceleration() const { return m_sim->settings.gravity; }
+
+// ---------------------------------------------------------------- output
+void DEMSolver::WriteSphereFile(const std::string& path) const {
+    requireInitialized("WriteSphereFile");
+    m_output->write(OutputKind::SPHERES, *m_sim, path, "WriteSphereFile");
+}
+void DEMSolver::WriteClumpFile(const std::string& path) const {
+    requireInitialized("WriteClumpFile");
+    m_output->write(OutputKind::CLUMPS, *m_sim, path, "WriteClumpFile");
+}
+void DEMSolver::WriteContactFile(const std::string& path) const {
+    requireInitialized("WriteContactFile");
+    m_output->write(OutputKind::CONTACTS, *m_sim, path, "WriteContactFile");
+}
 
 void DEMSolver::ShowTimingStats() const { std::cout << timingReport(*m_sim) << std::endl; }
 

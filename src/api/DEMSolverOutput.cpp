@@ -1,5 +1,6 @@
-// DEMSolver's output calls: file formats and contents, the files themselves (written in the
-// background by io/OutputManager), snapshots, and the progress report with its run summary.
+// DEMSolver's output options beyond the format (VTU encoding, series), FlushOutput, snapshots, and
+// the progress report with its run summary. The files are written in the background by
+// io/OutputManager.
 #include <deme/DEMSolver.h>
 
 #include <cmath>
@@ -10,14 +11,6 @@
 #include "runtime/Simulation.h"
 
 namespace deme {
-
-// The format settings take effect with the next output call: a file already handed to the writer
-// thread is written as it was staged.
-void DEMSolver::SetOutputFormat(const std::string& format) {
-    if (format != "CSV" && format != "VTU")
-        throwError("SetOutputFormat", "unsupported format \"" + format + "\" (CSV, VTU)");
-    m_output->options.vtu = format == "VTU";
-}
 
 void DEMSolver::SetVTUEncoding(const std::string& encoding) {
     if (encoding != "appended" && encoding != "base64")
@@ -31,67 +24,6 @@ void DEMSolver::SetVTUCompression(const std::string& compression) {
     m_output->options.vtuOptions.zlib = compression == "zlib";
 }
 
-void DEMSolver::SetMeshOutputFormat(const std::string& format) {
-    if (format != "VTK" && format != "VTU")
-        throwError("SetMeshOutputFormat", "unsupported format \"" + format + "\" (VTK, VTU)");
-    m_output->options.meshVtu = format == "VTU";
-}
-
-void DEMSolver::SetOutputContent(const std::string& content) {
-    std::vector<std::string> items;
-    std::string cur;
-    for (char ch : content + " ") {
-        if (ch == ' ' || ch == '|' || ch == ',') {
-            if (!cur.empty()) items.push_back(cur);
-            cur.clear();
-        } else {
-            cur += ch;
-        }
-    }
-    SetOutputContent(items);
-}
-
-void DEMSolver::SetOutputContent(const std::vector<std::string>& content) {
-    Settings& s = m_sim->settings;
-    for (const auto& c : content) {
-        if (c == "XYZ")
-            continue;  // always written
-        else if (c == "ABSV")
-            s.outAbsv = true;
-        else if (c == "VEL")
-            s.outVel = true;
-        else if (c == "ANG_VEL")
-            s.outAngVel = true;
-        else if (c == "FAMILY")
-            s.outFamily = true;
-        else if (c == "OWNER")
-            s.outOwner = true;
-        else if (c == "MAT")
-            s.outMat = true;
-        else if (c == "QUAT")
-            s.outQuat = true;
-        else
-            throwError("SetOutputContent",
-                       "unknown content \"" + c + "\" (XYZ, ABSV, VEL, ANG_VEL, FAMILY, OWNER, MAT, QUAT)");
-    }
-}
-
-void DEMSolver::WriteSphereFile(const std::string& path) const {
-    requireInitialized("WriteSphereFile");
-    m_output->write(OutputKind::SPHERES, *m_sim, path, "WriteSphereFile");
-}
-void DEMSolver::WriteClumpFile(const std::string& path) const {
-    requireInitialized("WriteClumpFile");
-    m_output->write(OutputKind::CLUMPS, *m_sim, path, "WriteClumpFile");
-}
-void DEMSolver::WriteContactFile(const std::string& path) const {
-    requireInitialized("WriteContactFile");
-    m_output->write(OutputKind::CONTACTS, *m_sim, path, "WriteContactFile");
-}
-void DEMSolver::WriteMeshFile(const std::string& path) const {
-    requireInitialized("WriteMeshFile");
-    m_output->write(OutputKind::MESHES, *m_sim, path, "WriteMeshFile");
-}
 void DEMSolver::FlushOutput() const { m_output->flush("FlushOutput"); }
 
 void DEMSolver::SetOutputSeries(const std::string& kind, const std::string& pvdPath) {

@@ -15,6 +15,7 @@
 #include "forcemodel/Identifiers.h"
 #include "io/ClumpCsvReader.h"
 #include "io/ObjReader.h"
+#include "io/OutputManager.h"
 #include "runtime/Simulation.h"
 #include "runtime/StatsReport.h"
 
@@ -138,6 +139,17 @@ std::shared_ptr<DEMMeshConnected> DEMSolver::AddWavefrontMeshObject(const DEMMes
     auto m = std::make_shared<DEMMeshConnected>(mesh);
     m_scene->meshes.push_back(m);
     return m;
+}
+
+void DEMSolver::SetMeshOutputFormat(const std::string& format) {
+    if (format != "VTK" && format != "VTU")
+        throwError("SetMeshOutputFormat", "unsupported format \"" + format + "\" (VTK, VTU)");
+    m_output->options.meshVtu = format == "VTU";
+}
+
+void DEMSolver::WriteMeshFile(const std::string& path) const {
+    requireInitialized("WriteMeshFile");
+    m_output->write(OutputKind::MESHES, *m_sim, path, "WriteMeshFile");
 }
 
 // ---------------------------------------------------------------- clump templates and clumps
