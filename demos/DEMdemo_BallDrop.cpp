@@ -127,15 +127,16 @@ int main(int argc, char** argv) {
         std::snprintf(name, sizeof(name), "DEMdemo_output_%04d.vtu", frame);
         DEMSim.WriteSphereFile((out_dir / name).string());
     };
-    // Pictures beside the data: the bed cut open at y = 0 (only spheres whose centres lie at y >= 0
-    // are drawn) and seen from the cut side, slightly from above, coloured by speed on a fixed scale
-    // so that the pictures compare.
+    // Pictures beside the data: the bed cut open through the ball's path (only spheres whose centres
+    // lie at y >= -1 cm are drawn: the ball, whose centre may drift a little off y = 0, stays in)
+    // and seen from the cut side, slightly from above, coloured by speed on a fixed scale so that
+    // the pictures compare.
     std::vector<std::string> snapshots;
     auto snapshot = [&](const std::string& name) {
         SnapshotOptions o;
-        o.width = 960, o.height = 540;
+        o.width = 760, o.height = 540;
         o.direction = make_float3(0.f, 1.f, -0.35f);
-        o.boxMin = make_float3(-half_width, -1e-4f, 0.f);
+        o.boxMin = make_float3(-half_width, -0.01f, 0.f);
         o.boxMax = make_float3(half_width, half_width, ball_z0 + 1.2f * ball_radius);
         o.colorBy = "speed";
         o.colorMin = 0.f, o.colorMax = 0.5f;
