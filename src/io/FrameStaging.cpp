@@ -65,10 +65,12 @@ OutputFrame stageSphereFrame(const Simulation& sim) {
     const std::vector<FrameColumn*> wild = addOwnerWildcardColumns(f, sim);
     const bool needVel = absv || vel;
 
-    // Rows in user order: owners as added, each owner's spheres in template order.
+    // Rows in user order (owners as added, each owner's spheres in template order), filled in the
+    // state's own order: the state is then read front to back and only the rows are scattered,
+    // about twice as fast for millions of spheres as gathering in row order.
 #pragma omp parallel for schedule(static) if ((long)n > PARALLEL_MIN_ROWS)
-    for (long k = 0; k < (long)n; k++) {
-        const bodyID_t i = s.sphereUserToInternal[k];
+    for (long i = 0; i < (long)n; i++) {
+        const size_t k = s.sphereInternalToUser[i];
         const bodyID_t ow = s.spheres.owner[i];
         const float4 q = s.owners.oriQ[ow];
         putPoint(xyz, k, s.cache.spherePos[i]);
