@@ -2,7 +2,8 @@
 // seen from the side shows grain colour below its top and background above it (the rows computed
 // here from the zoom box, which maps onto the image exactly); coloured by height it runs from the
 // colour map's low end at the bottom to its high end at the top; seen from above, a mesh floor
-// shows around the bed. Runs on the backend in effect ($DEME_BACKEND).
+// shows around the bed; coloured by an owner wildcard, its values map onto the colour map. Runs on
+// the backend in effect ($DEME_BACKEND).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -105,6 +106,36 @@ TEST_F(Snapshot, MeshFloorAroundTheBedFromAbove) {
     bed.sim.FlushOutput();
     // Column = (x + 0.1) * 2000, row = (0.075 - y) * 2000.
     expectPng("pixels " + top + " 400 300 200,150,grain 340,50,mesh 60,250,mesh 390,10,bg 5,295,bg");
+}
+
+// Colour by an owner wildcard of the force model over a given range: the owner at the range's
+// bottom is drawn in the colour map's low end, the one at its top in the high end.
+TEST_F(Snapshot, ColourByAnOwnerWildcard) {
+    DEMSolver sim;
+    sim.SetVerbosity("QUIET");
+    // The model and material names of test_force_models_errors.cpp: the same generated code, compiled once.
+    auto mat = sim.LoadMaterial({{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}});
+    auto model = sim.DefineContactForceModel("force += make_float3(0.f, 0.f, 0.f);");
+    model->SetPerContactWildcards({"c"});
+    model->SetPerOwnerWildcards({"Q"});
+    model->SetPerGeometryWildcards({"g"});
+    sim.InstructBoxDomainDimension(1, 1, 1);
+    sim.AddClumps(sim.LoadSphereType(1.f, 0.01f, mat), {make_float3(-0.02f, 0, 0), make_float3(0.02f, 0, 0)});
+    sim.SetInitTimeStep(1e-5);
+    sim.Initialize();
+    sim.SetOwnerWildcardValue("Q", 0, {0.f, 1.f});
+    SnapshotOptions o;
+    o.width = 400, o.height = 200;  // x in [-0.04, 0.04], z in [-0.02, 0.02]: 5000 pixels per metre
+    o.direction = make_float3(0, 1, 0);
+    o.boxMin = make_float3(-0.04f, -0.1f, -0.02f), o.boxMax = make_float3(0.04f, 0.1f, 0.02f);
+    o.colorBy = "Q";
+    o.colorMin = 0.f, o.colorMax = 1.f;
+    o.colorBar = false;
+    const std::string path = (dir / "wildcard.png").string();
+    sim.WriteSnapshot(path, o);
+    sim.FlushOutput();
+    // Sphere centres at columns 100 and 300 of row 100; the gap between them at column 200.
+    expectPng("pixels " + path + " 400 200 100,100,low 300,100,high 200,100,bg");
 }
 
 TEST(SnapshotOptionsCheck, BadOptionsNameTheCall) {

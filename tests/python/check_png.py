@@ -12,7 +12,8 @@
       the same bed coloured by height: the viridis map runs from blue-violet at the bottom to
       green-yellow at the top, so red + green grows with height and blue dominates low down
   check_png.py pixels <png> <width> <height> <x>,<y>,<bg|grain|mesh> ...
-      the background colour (white), a grain colour (r > g > b) or a mesh colour (grey-blue: r < g < b)
+      the background colour (white), a grain colour (r > g > b), a mesh colour (grey-blue: r < g < b),
+      or the colour map's low end (violet: b > r > g) or high end (yellow: r > b and g > b)
 Rows and columns are pixel indices, fractional ones rounded inwards by a pixel.
 """
 import math
@@ -61,7 +62,8 @@ def main(args):
             x, y, kind = spec.split(",")
             c = px[int(x), int(y)]
             ok = {"bg": c == (255, 255, 255), "grain": c != (255, 255, 255) and c[0] > c[1] > c[2],
-                  "mesh": c != (255, 255, 255) and c[0] < c[1] < c[2]}[kind]
+                  "mesh": c != (255, 255, 255) and c[0] < c[1] < c[2],
+                  "low": c[2] > c[0] > c[1], "high": c[0] > c[2] + 60 and c[1] > c[2] + 60}[kind]
             if not ok:
                 fail(f"pixel ({x}, {y}) is {c}, expected {kind}")
         print(f"pixels: {len(args) - 4} checked")
