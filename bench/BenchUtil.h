@@ -9,6 +9,8 @@
 
 #include <sys/resource.h>
 
+#include <deme/RunSummary.h>
+
 namespace deme_bench {
 
 inline double seconds() {
@@ -41,6 +43,7 @@ class JsonLine {
         return raw(k, os.str());
     }
     std::string str() const { return "{" + m_body + "}"; }
+    bool has(const std::string& k) const { return m_body.find("\"" + k + "\": ") != std::string::npos; }
 
   private:
     JsonLine& raw(const std::string& k, const std::string& v) {
@@ -50,5 +53,17 @@ class JsonLine {
     }
     std::string m_body;
 };
+
+// The run summary's figures (DEMSolver::GetRunSummary, of the last DoDynamics / DoStepDynamics
+// call) under the keys every benchmark shares; a key the benchmark set itself (its own timed loop's
+// wall time and steps) is kept as it is.
+inline void addRunSummary(JsonLine& j, const deme::RunSummary& r) {
+    if (!j.has("wall_s")) j.add("wall_s", r.wallSeconds);
+    if (!j.has("steps")) j.add("steps", (double)r.steps);
+    if (!j.has("sphere_steps_per_s")) j.add("sphere_steps_per_s", r.sphereStepsPerSecond);
+    if (!j.has("contacts_per_sphere")) j.add("contacts_per_sphere", r.contactsPerSphere);
+    j.add("peak_host_rss_mib", (double)r.peakHostBytes / (1 << 20));
+    j.add("device_bytes", (double)r.deviceBytes).add("device_peak_bytes", (double)r.deviceBytesPeak);
+}
 
 }  // namespace deme_bench

@@ -115,6 +115,7 @@ int main(int argc, char** argv) {
         .add("weight_N", weight)
         .add("floor_over_weight", floorForce / weight)
         .add("update_freq", (double)sim.GetUpdateFreq());
+    addRunSummary(j, sim.GetRunSummary());
     std::cout << j.str() << std::endl;
     if (std::getenv("DEME_BENCH_TIMING")) {
         sim.ShowTimingStats();

@@ -144,6 +144,7 @@ void run(const Options& o, bool meshFloor) {
         .add("floor_force_avg_N", floorForce)
         .add("weight_N", weight)
         .add("floor_over_weight", floorForce / weight);
+    addRunSummary(j, sim.GetRunSummary());
     std::cout << j.str() << std::endl;
     if (std::getenv("DEME_BENCH_TIMING")) sim.ShowTimingStats();
 }

@@ -116,6 +116,7 @@ int main(int argc, char** argv) {
         .add("device_bytes_per_sphere", (double)sim.GetDeviceMemUsage() / spheres)
         .add("peak_host_mem_mib", deme_bench::peakMemoryMiB())
         .add("initialize_s", initSeconds);
+    deme_bench::addRunSummary(j, sim.GetRunSummary());
     std::printf("%s\n", j.str().c_str());
     // The phases (binning and pair search are kT's, history mapping and the force pass dT's) and the
     // collaboration counters, for a case whose wait share needs explaining.

@@ -1,45 +1,18 @@
-// A tiny, self-contained PNG writer for line plots (no plotting library is available): an RGB canvas,
-// straight lines, and a PNG file whose zlib stream uses stored (uncompressed) deflate blocks, with the
-// CRC-32 of each chunk and the Adler-32 of the image data computed here. Files are larger than a
-// compressed PNG would be (3 bytes per pixel), which is no concern for a plot.
+// Line plots for the demos (no plotting library is available): an RGB canvas, straight lines, and the
+// library's PNG writer (deme/PngImage.h).
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <deme/PngImage.h>
+
 namespace png_plot {
-
-// CRC-32 (ISO 3309, polynomial 0xEDB88320) as PNG chunks use it.
-inline uint32_t crc32(const uint8_t* data, size_t n, uint32_t crc = 0) {
-    static const std::array<uint32_t, 256> table = [] {
-        std::array<uint32_t, 256> t{};
-        for (uint32_t i = 0; i < 256; i++) {
-            uint32_t c = i;
-            for (int k = 0; k < 8; k++) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            t[i] = c;
-        }
-        return t;
-    }();
-    crc = ~crc;
-    for (size_t i = 0; i < n; i++) crc = table[(crc ^ data[i]) & 0xFFu] ^ (crc >> 8);
-    return ~crc;
-}
-
-// Adler-32 (RFC 1950), the checksum at the end of a zlib stream.
-inline uint32_t adler32(const uint8_t* data, size_t n) {
-    uint32_t a = 1, b = 0;
-    for (size_t i = 0; i < n; i++) {
-        a = (a + data[i]) % 65521u;
-        b = (b + a) % 65521u;
-    }
-    return (b << 16) | a;
-}
 
 struct Rgb {
     uint8_t r, g, b;
@@ -97,63 +70,10 @@ class Canvas {
     std::vector<uint8_t> m_rgb;
 };
 
-namespace detail {
-
-inline void put32(std::vector<uint8_t>& out, uint32_t v) {
-    for (int s = 24; s >= 0; s -= 8) out.push_back((uint8_t)(v >> s));
-}
-
-inline void chunk(std::vector<uint8_t>& out, const char* type, const std::vector<uint8_t>& data) {
-    put32(out, (uint32_t)data.size());
-    const size_t start = out.size();
-    out.insert(out.end(), type, type + 4);
-    out.insert(out.end(), data.begin(), data.end());
-    put32(out, crc32(out.data() + start, out.size() - start));  // over type and data
-}
-
-}  // namespace detail
-
-// The whole PNG file of a canvas: 8-bit RGB, no interlace, each row with filter 0 (none).
-inline std::vector<uint8_t> encodePng(const Canvas& c) {
-    std::vector<uint8_t> raw;
-    raw.reserve((size_t)c.height() * (1 + 3 * (size_t)c.width()));
-    for (int y = 0; y < c.height(); y++) {
-        raw.push_back(0);
-        const uint8_t* row = c.pixels().data() + (size_t)y * c.width() * 3;
-        raw.insert(raw.end(), row, row + (size_t)c.width() * 3);
-    }
-    // zlib stream: header (deflate, 32 KiB window, no dictionary; a multiple of 31), stored blocks of
-    // at most 65535 bytes (BFINAL on the last, BTYPE 00, LEN, ~LEN, bytes), Adler-32 of the raw data.
-    std::vector<uint8_t> z = {0x78, 0x01};
-    size_t at = 0;
-    do {
-        const size_t len = std::min<size_t>(65535, raw.size() - at);
-        z.push_back(at + len == raw.size() ? 1 : 0);
-        z.push_back((uint8_t)(len & 0xFF));
-        z.push_back((uint8_t)(len >> 8));
-        z.push_back((uint8_t)(~len & 0xFF));
-        z.push_back((uint8_t)((~len >> 8) & 0xFF));
-        z.insert(z.end(), raw.begin() + (long)at, raw.begin() + (long)(at + len));
-        at += len;
-    } while (at < raw.size());
-    detail::put32(z, adler32(raw.data(), raw.size()));
-
-    std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-    std::vector<uint8_t> ihdr;
-    detail::put32(ihdr, (uint32_t)c.width());
-    detail::put32(ihdr, (uint32_t)c.height());
-    ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0});  // bit depth 8, colour type 2 (RGB), deflate, filter 0, no interlace
-    detail::chunk(png, "IHDR", ihdr);
-    detail::chunk(png, "IDAT", z);
-    detail::chunk(png, "IEND", {});
-    return png;
-}
-
+// The canvas as a PNG file (the library's encoder: zlib-compressed, written to a temporary name and
+// renamed); throws deme::Error if it cannot be written.
 inline void writePng(const std::string& path, const Canvas& c) {
-    const std::vector<uint8_t> png = encodePng(c);
-    std::ofstream out(path, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(png.data()), (std::streamsize)png.size());
-    if (!out) throw std::runtime_error("cannot write " + path);
+    deme::WritePng(path, c.width(), c.height(), c.pixels(), "writePng");
 }
 
 // A line plot of y against x: a frame, grid lines at tenths of each axis's range (which starts at 0

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Installs what the build needs (Debian packages) if it is missing, then configures and builds the
-# engine, its Python module, tests, demos and benchmarks in ./build (Release).
+# Installs what the build and the tests need (Debian packages) if it is missing, then configures and
+# builds the engine, its Python module, tests, demos and benchmarks in ./build (Release).
 # The Python module is built for Debian's /usr/bin/python3 (the python3 first on PATH may be
 # another interpreter, without Debian's packages): PYTHONPATH=build/python imports it from the
 # build tree.
@@ -26,6 +26,11 @@ py_has pip || need+=(python3-pip)
 dpkg-query -W -f='${Status}' python3-venv 2>/dev/null | grep -q "ok installed" || need+=(python3-venv)
 py_has setuptools || need+=(python3-setuptools)
 py_has wheel || need+=(python3-wheel)
+[ -f /usr/include/zlib.h ] || need+=(zlib1g-dev)  # PNG snapshots, compressed VTU
+# The tests read output back with readers the engine has no part in: meshio (VTU) and PIL (PNG),
+# for Debian's own /usr/bin/python3.
+/usr/bin/python3 -c "import meshio" 2>/dev/null || need+=(python3-meshio)
+/usr/bin/python3 -c "import PIL" 2>/dev/null || need+=(python3-pil)
 if [ ${#need[@]} -gt 0 ]; then
     echo "installing: ${need[*]}"
     SUDO=""

@@ -11,7 +11,7 @@ namespace deme_test {
 
 // The text of tests/kernels/<name>; fails the test if it cannot be read.
 inline std::string testKernelText(const std::string& name) {
-    std::ifstream in(std::string(DEME_TESTS_DIR) + "/kernels/" + name);
+    std::ifstream in(std::string(DEME_TEST_SOURCE_DIR) + "/kernels/" + name);
     if (!in) ADD_FAILURE() << "cannot read tests/kernels/" << name;
     std::ostringstream text;
     text << in.rdbuf();

@@ -90,6 +90,8 @@ TEST_F(ForceModelBitIdentity, DefaultModelAsSnippetMatchesBuiltIn) {
         const auto a = dir / ("a" + std::to_string(frame) + ".csv"), b = dir / ("b" + std::to_string(frame) + ".csv");
         builtIn.sim.WriteClumpFile(a.string());
         custom.sim.WriteClumpFile(b.string());
+        builtIn.sim.FlushOutput();  // files are written in the background
+        custom.sim.FlushOutput();
         ASSERT_EQ(readText(a), readText(b)) << "frame " << frame;
         ASSERT_EQ(builtIn.sim.GetNumContacts(), custom.sim.GetNumContacts()) << "frame " << frame;
         contacts = builtIn.sim.GetNumContacts();

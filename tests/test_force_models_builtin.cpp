@@ -67,6 +67,7 @@ DEME_BACKEND_TEST(ForceModelOutput, OwnerWildcardColumns) {
     sim.SetOwnerWildcardValue("Q", 0, {0.25f, -2.f});
     sim.WriteClumpFile((dir / "clumps.csv").string());
     sim.WriteSphereFile((dir / "spheres.csv").string());
+    sim.FlushOutput();  // files are written in the background
     auto lines = [](const std::filesystem::path& p) {
         std::ifstream in(p);
         std::vector<std::string> v;

@@ -130,6 +130,7 @@ DEME_BACKEND_TEST(MeshContact, BallInVGrooveBalancesWeight) {
     sim.DoDynamics(0.2);
     EXPECT_NEAR(-tg->ContactForce().z, m * G, 0.01 * m * G);
     sim.WriteContactFile(dir + "/c.csv");
+    sim.FlushOutput();  // files are written in the background
     std::ifstream in(dir + "/c.csv");
     std::string line;
     std::getline(in, line);

@@ -55,6 +55,7 @@ DEME_BACKEND_TEST(Output, FilesListOwnersInUserOrderWithHeaders) {
     sim.WriteSphereFile(dir + "/spheres.csv");
     sim.WriteClumpFile(dir + "/clumps.csv");
     sim.WriteContactFile(dir + "/contacts.csv");
+    sim.FlushOutput();  // files are written in the background
 
     const auto sph = readCsv(dir + "/spheres.csv");
     ASSERT_EQ(sph.size(), 5u);  // header + 1 + 1 + 2 spheres

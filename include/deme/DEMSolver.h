@@ -3,6 +3,7 @@
 // Initialize) or to the running simulation.
 #pragma once
 
+#include <exception>
 #include <functional>
 #include <initializer_list>
 #include <map>
@@ -18,6 +19,8 @@
 #include "Materials.h"
 #include "Mesh.h"
 #include "RunProgress.h"
+#include "RunSummary.h"
+#include "Snapshot.h"
 #include "Tracker.h"
 #include "VariableTypes.h"
 
@@ -25,6 +28,8 @@ namespace deme {
 
 class Scene;
 class Simulation;
+class OutputManager;
+class ProgressReporter;
 
 class DEMSolver {
   public:
@@ -40,7 +45,13 @@ class DEMSolver {
     // ---- Messages and output ----
     // "QUIET", "ERROR", "WARNING", "INFO", "STEP_METRIC" (each includes the ones before it).
     void SetVerbosity(const std::string& level);
-    void SetOutputFormat(const std::string& format);  // "CSV"
+    // Files of WriteSphereFile, WriteClumpFile and WriteContactFile: "CSV" (default) or "VTU" (VTK XML
+    // unstructured grids that ParaView opens as they are; docs/paraview.md).
+    void SetOutputFormat(const std::string& format);
+    // VTU data: "appended" (raw binary after the XML, default: fastest) or "base64" (text inside the
+    // XML); compression "none" (default) or "zlib" (smaller, slower; worth it on slow storage).
+    void SetVTUEncoding(const std::string& encoding);
+    void SetVTUCompression(const std::string& compression);
     // Extra sphere-file columns: "XYZ" (always written), "ABSV", "VEL", "ANG_VEL", "FAMILY", "OWNER",
     // "MAT", "QUAT". A single string may list several separated by spaces or '|'.
     void SetOutputContent(const std::string& content);
@@ -132,8 +143,10 @@ class DEMSolver {
                                                              const std::shared_ptr<DEMMaterial>& mat);
     // Adds a mesh built in code (its material must be set).
     std::shared_ptr<DEMMeshConnected> AddWavefrontMeshObject(const DEMMeshConnected& mesh);
-    void SetMeshOutputFormat(const std::string& format);  // "VTK"
-    // Every mesh in its current pose, as one legacy VTK file (cell data: owner id).
+    // "VTK" (legacy ASCII, default) or "VTU" (as SetOutputFormat's, with its encoding options).
+    void SetMeshOutputFormat(const std::string& format);
+    // Every mesh in its current pose, as one file (cell data: owner id); written in the background
+    // like the other output files (see WriteSphereFile).
     void WriteMeshFile(const std::string& path) const;
 
     // ---- Clump templates and clumps ----
@@ -220,6 +233,16 @@ class DEMSolver {
     void SetInterruptCheck(std::function<bool()> check);
     // Whether the last DoDynamics / DoStepDynamics call was stopped by the interrupt check.
     bool WasInterrupted() const;
+    // At verbosity INFO and above, a call running longer than intervalSeconds of wall time prints a
+    // progress line (simulated time and target, percent, sphere-steps/s, ETA) at most every
+    // intervalSeconds, redrawn in place on a terminal, and a run summary at its end (on by default).
+    void SetProgressReport(bool enable, double intervalSeconds = 5.0);
+    // A function given the call's progress at every poll of the interrupt check's schedule (at most
+    // every 50 ms) and once at the end (finished = true); for GUIs and the Python module. An
+    // exception it throws stops the call after the current step and is rethrown by it. Empty: none.
+    void SetProgressCallback(std::function<void(const RunProgress&)> callback);
+    // What the last DoDynamics / DoStepDynamics call did and cost (the run summary's figures).
+    RunSummary GetRunSummary() const;
 
     // ---- Queries ----
     double GetSimTime() const;
@@ -232,10 +255,26 @@ class DEMSolver {
     double GetAvgSphContacts() const;
     float3 GetGravitationalAcceleration() const;
 
-    // ---- Output ----
+    // ---- Output (README "Output files", docs/paraview.md) ----
+    // Each call copies what the file needs and returns; a writer thread writes it to a temporary
+    // name and renames it, while the simulation goes on. The next output call (or FlushOutput, or
+    // the solver's destruction) waits for it first; a failure to write is thrown as deme::Error by
+    // that next call, which then writes nothing itself.
     void WriteSphereFile(const std::string& path) const;
     void WriteClumpFile(const std::string& path) const;
     void WriteContactFile(const std::string& path) const;
+    // Waits until every file handed to the writer thread is written; throws the failure of one that
+    // could not be.
+    void FlushOutput() const;
+    // Files written from now on by WriteSphereFile ("spheres"), WriteClumpFile ("clumps"),
+    // WriteContactFile ("contacts") or WriteMeshFile ("meshes") are listed, with their simulated
+    // time, in the ParaView collection pvdPath, rewritten after each frame. VTU files only. An
+    // empty path ends the series.
+    void SetOutputSeries(const std::string& kind, const std::string& pvdPath);
+    // A PNG picture of the spheres and meshes (analytical boundaries are not drawn), rendered on the
+    // CPU; the default view looks at everything from the side and above, coloured by speed.
+    void WriteSnapshot(const std::string& path) const;
+    void WriteSnapshot(const std::string& path, const SnapshotOptions& options) const;
     void ShowTimingStats() const;
     // Bytes of GPU memory the engine holds now (0 on the CPU backend), and a report of it.
     size_t GetDeviceMemUsage() const;
@@ -254,9 +293,17 @@ class DEMSolver {
     void requireNotInitialized(const char* call) const;
     void requireInitialized(const char* call) const;
     std::shared_ptr<DEMForceModel> chooseForceModel(const char* call, std::shared_ptr<DEMForceModel> model);
+    void attachProgressHooks();
+    void rethrowCallbackError();
+    RunSummary runSummary(const RunProgress& p) const;
     std::unique_ptr<Scene> m_scene;
     std::shared_ptr<Simulation> m_sim;  // shared with trackers and inspectors as weak references
-    int m_interruptHook = -1;
+    // Declared after the simulation, so destroyed first: the solver's end waits for the writer thread.
+    std::unique_ptr<OutputManager> m_output;
+    std::unique_ptr<ProgressReporter> m_progress;
+    std::function<void(const RunProgress&)> m_progressCallback;
+    std::exception_ptr m_callbackError;
+    int m_interruptHook = -1, m_progressHook = -1, m_callbackHook = -1;
 };
 
 }  // namespace deme

@@ -6,6 +6,8 @@
 #include <iostream>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "codegen/Expression.h"
 #include "api/Scene.h"
 #include "api/ForceModelSetup.h"
@@ -14,7 +16,8 @@
 #include "parallel/Parallel.h"
 #include "io/ClumpCsvReader.h"
 #include "io/ObjReader.h"
-#include "io/OutputWriters.h"
+#include "io/OutputManager.h"
+#include "io/ProgressReporter.h"
 #include "backend/cuda/DeviceBuffer.h"
 #include "backend/BackendSelection.h"
 #include "runtime/ContactEdits.h"
@@ -47,7 +50,11 @@ void applyWildcardValuesGivenEarly(const Scene& scene, const ModelLayout& layout
 
 }  // namespace
 
-DEMSolver::DEMSolver() : m_scene(new Scene()), m_sim(new Simulation()) {}
+DEMSolver::DEMSolver()
+    : m_scene(new Scene()), m_sim(new Simulation()), m_output(new OutputManager()),
+      m_progress(new ProgressReporter(std::cout, ::isatty(STDOUT_FILENO) == 1)) {
+    attachProgressHooks();
+}
 DEMSolver::DEMSolver(unsigned int nGPUs) : DEMSolver() {
     if (nGPUs == 0) throwError("DEMSolver", "the number of GPUs must be at least 1");
     for (unsigned int i = 0; i < nGPUs; i++) m_sim->settings.deviceIds.push_back((int)i);
@@ -80,8 +87,12 @@ void DEMSolver::SetVerbosity(const std::string& level) {
     m_sim->settings.verbosity = it->second;
 }
 
+// The format settings take effect with the next output call: a file already handed to the writer
+// thread is written as it was staged.
 void DEMSolver::SetOutputFormat(const std::string& format) {
-    if (format != "CSV") throwError("SetOutputFormat", "unsupported format \"" + format + "\" (CSV)");
+    if (format != "CSV" && format != "VTU")
+        throwError("SetOutputFormat", "unsupported format \"" + format + "\" (CSV, VTU)");
+    m_output->options.vtu = format == "VTU";
 }
 
 void DEMSolver::SetOutputContent(const std::string& content) {
@@ -251,6 +262,7 @@ void DEMSolver::DoDynamics(double duration) {
         throwError(call,
                    "duration " + std::to_string(duration) + " s is too many steps of " + std::to_string(dt) + " s");
     m_sim->advance((unsigned long long)steps);
+    rethrowCallbackError();
 }
 
 void DEMSolver::DoDynamicsThenSync(double duration) {
@@ -261,6 +273,7 @@ void DEMSolver::DoDynamicsThenSync(double duration) {
 void DEMSolver::DoStepDynamics() {
     requireInitialized("DoStepDynamics");
     m_sim->advance(1);
+    rethrowCallbackError();
 }
 
 void DEMSolver::SetInterruptCheck(std::function<bool()> check) {
@@ -297,15 +310,15 @@ float3 DEMSolver::GetGravitationalAcceleration() const { return m_sim->settings.
 // ---------------------------------------------------------------- output
 void DEMSolver::WriteSphereFile(const std::string& path) const {
     requireInitialized("WriteSphereFile");
-    writeSphereCsv(*m_sim, path);
+    m_output->write(OutputKind::SPHERES, *m_sim, path, "WriteSphereFile");
 }
 void DEMSolver::WriteClumpFile(const std::string& path) const {
     requireInitialized("WriteClumpFile");
-    writeClumpCsv(*m_sim, path);
+    m_output->write(OutputKind::CLUMPS, *m_sim, path, "WriteClumpFile");
 }
 void DEMSolver::WriteContactFile(const std::string& path) const {
     requireInitialized("WriteContactFile");
-    writeContactCsv(*m_sim, path);
+    m_output->write(OutputKind::CONTACTS, *m_sim, path, "WriteContactFile");
 }
 
 void DEMSolver::ShowTimingStats() const { std::cout << timingReport(*m_sim) << std::endl; }

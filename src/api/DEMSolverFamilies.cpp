@@ -14,7 +14,6 @@
 #include "parallel/Parallel.h"
 #include "io/ClumpCsvReader.h"
 #include "io/ObjReader.h"
-#include "io/OutputWriters.h"
 #include "runtime/Simulation.h"
 #include "runtime/StatsReport.h"
 

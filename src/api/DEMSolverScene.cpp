@@ -15,7 +15,7 @@
 #include "forcemodel/Identifiers.h"
 #include "io/ClumpCsvReader.h"
 #include "io/ObjReader.h"
-#include "io/OutputWriters.h"
+#include "io/OutputManager.h"
 #include "runtime/Simulation.h"
 #include "runtime/StatsReport.h"
 
@@ -142,12 +142,14 @@ std::shared_ptr<DEMMeshConnected> DEMSolver::AddWavefrontMeshObject(const DEMMes
 }
 
 void DEMSolver::SetMeshOutputFormat(const std::string& format) {
-    if (format != "VTK") throwError("SetMeshOutputFormat", "unsupported format \"" + format + "\" (VTK)");
+    if (format != "VTK" && format != "VTU")
+        throwError("SetMeshOutputFormat", "unsupported format \"" + format + "\" (VTK, VTU)");
+    m_output->options.meshVtu = format == "VTU";
 }
 
 void DEMSolver::WriteMeshFile(const std::string& path) const {
     requireInitialized("WriteMeshFile");
-    writeMeshVtk(*m_sim, path);
+    m_output->write(OutputKind::MESHES, *m_sim, path, "WriteMeshFile");
 }
 
 // ---------------------------------------------------------------- clump templates and clumps

@@ -1,11 +1,11 @@
 #include "io/VtkWriter.h"
 
+#include "io/AtomicFile.h"
+
 #include <deme/Error.h>
 
-#include <cerrno>
 #include <charconv>
 #include <cstdio>
-#include <cstring>
 
 namespace deme {
 namespace {
@@ -42,15 +42,12 @@ void writeVtkTriangles(const std::string& path, const std::vector<double3>& poin
                                  " indexes a point outside 0.." + std::to_string(np - 1));
     }
 
-    std::FILE* fp = std::fopen(path.c_str(), "wb");  // binary mode: '\n' line ends on every platform
-    if (!fp) throwError(call, "cannot open '" + path + "' for writing: " + std::strerror(errno));
-
+    AtomicFile file(path, call);
     std::string s;
-    bool ok = true;
     // Text is built in ~1 MiB chunks so memory stays flat for huge meshes.
     auto flush = [&](bool force) {
         if (!force && s.size() < (1u << 20)) return;
-        ok = ok && std::fwrite(s.data(), 1, s.size(), fp) == s.size();
+        file.write(s);
         s.clear();
     };
 
@@ -91,9 +88,7 @@ void writeVtkTriangles(const std::string& path, const std::vector<double3>& poin
         flush(false);
     }
     flush(true);
-    ok = !std::ferror(fp) && ok;
-    ok = std::fclose(fp) == 0 && ok;  // a full disk often shows up only when the last buffer is flushed
-    if (!ok) throwError(call, "failed writing '" + path + "' (disk full or I/O error)");
+    file.commit();
 }
 
 }  // namespace deme

@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|bench|timing|gpus|settled|profile|compile|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|timing|gpus|settled|profile|compile|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -133,6 +133,18 @@ for step in "${steps[@]}"; do
     compile)
         # A custom force model's Initialize cost on the GPU backend (NVRTC plus the host build).
         ./build-gpu/bench/model_compile - cuda 2>&1 | tee -a "$OUT/compile.jsonl" | tail -n 3
+        ;;
+    output)
+        # The output tests on the GPU backend: VTU files read back by meshio against the CSV, the
+        # .pvd series, failed writes, snapshots read by PIL; the writers read the state the device
+        # has moved on to (downloaded on demand). Needs Debian's python3-meshio and python3-pil.
+        /usr/bin/python3 -c "import meshio, PIL" 2>/dev/null ||
+            echo "output: /usr/bin/python3 lacks meshio or PIL (apt-get install python3-meshio python3-pil): the read-back tests will fail"
+        DEME_BACKEND=cuda ./build-gpu/tests/deme_tests --gtest_filter='VtuOutput*:OutputFailure*:Snapshot*:Output.*:ProgressReport.Callback*' \
+            >"$OUT/output.log" 2>&1
+        echo "output (DEME_BACKEND=cuda): rc $? ($(grep -c '^\[       OK' "$OUT/output.log") ok)"
+        grep -E '^\[  FAILED|^\[  SKIPPED' "$OUT/output.log" | head -20
+        timeout 300 ./build-gpu/bench/output_write solver 1000000 /tmp 2>&1 | tee -a "$OUT/output.jsonl" | tail -n 2
         ;;
     filter)
         # The gtest filter in FILTER, with DEME_BACKEND=cuda for the tests that are not backend tests

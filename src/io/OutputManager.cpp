@@ -1,0 +1,95 @@
+#include "io/OutputManager.h"
+
+#include <deme/Error.h>
+
+#include "io/AtomicFile.h"
+#include "io/CsvFrameWriter.h"
+#include "io/FrameStaging.h"
+#include "io/PngEncoder.h"
+#include "io/SnapshotScene.h"
+#include "io/VtkWriter.h"
+
+namespace deme {
+
+namespace {
+
+const char* kindName(OutputKind k) {
+    static const char* names[] = {"spheres", "clumps", "contacts", "meshes"};
+    return names[(int)k];
+}
+
+// Legacy VTK of a staged mesh frame: the writer's arrays (points, index triples, owners).
+void writeFrameLegacyVtk(const OutputFrame& f, const std::string& path) {
+    const FrameColumn& pts = f.columns[f.pointsColumn];
+    std::vector<double3> points(f.rows);
+    for (size_t i = 0; i < f.rows; i++) {
+        const double* p = pts.values<double>() + 3 * i;
+        points[i] = make_double3(p[0], p[1], p[2]);
+    }
+    const size_t nT = f.cells();
+    std::vector<int3> tris(nT);
+    std::vector<int> owner(nT);
+    for (size_t t = 0; t < nT; t++) {
+        tris[t] = make_int3((int)(3 * t), (int)(3 * t + 1), (int)(3 * t + 2));
+        owner[t] = f.cellColumns[0].values<int32_t>()[t];
+    }
+    writeVtkTriangles(path, points, tris, owner, f.call);
+}
+
+}  // namespace
+
+void OutputManager::write(OutputKind kind, const Simulation& sim, const std::string& path, const char* call) {
+    m_queue.wait(call);
+    if (path.empty()) throwError(call, "empty file name");
+    PvdSeries* series = m_series[(int)kind].get();
+    const bool vtu = isVtu(kind);
+    if (series && !vtu)
+        throwError(call, "the series \"" + series->path() + "\" lists VTU files, but the output format is " +
+                             (kind == OutputKind::MESHES ? "VTK: call SetMeshOutputFormat(\"VTU\")"
+                                                         : "CSV: call SetOutputFormat(\"VTU\")") +
+                             " (or end the series with SetOutputSeries(\"" + kindName(kind) + "\", \"\"))");
+    // Staged here, between steps; from here on the writer thread needs nothing of the simulation.
+    auto frame = std::make_shared<OutputFrame>(kind == OutputKind::SPHERES    ? stageSphereFrame(sim)
+                                               : kind == OutputKind::CLUMPS   ? stageClumpFrame(sim)
+                                               : kind == OutputKind::CONTACTS ? stageContactFrame(sim)
+                                                                              : stageMeshFrame(sim));
+    const VtuOptions vo = options.vtuOptions;
+    const bool mesh = kind == OutputKind::MESHES;
+    m_queue.submit([frame, path, vtu, vo, mesh, series]() {
+        if (mesh && !vtu) {
+            writeFrameLegacyVtk(*frame, path);
+        } else {
+            AtomicFile file(path, frame->call);
+            if (vtu)
+                writeFrameVtu(*frame, vo, file);
+            else
+                writeFrameCsv(*frame, file);
+            file.commit();
+        }
+        // Only a frame that is in place joins the series.
+        if (series) series->add(path, frame->time, frame->call);
+    });
+}
+
+void OutputManager::writeSnapshot(const Simulation& sim, const std::string& path, const SnapshotOptions& o,
+                                  const char* call) {
+    m_queue.wait(call);
+    if (path.empty()) throwError(call, "empty file name");
+    validateSnapshotOptions(o, call);
+    // Rendered here (with the OpenMP threads, between steps); encoded and written in the background.
+    auto img = std::make_shared<RgbImage>(renderSnapshot(stageSnapshotScene(sim, o, call), o));
+    const std::string c = call;
+    m_queue.submit([img, path, c]() {
+        const std::vector<uint8_t> png = encodePng(img->width, img->height, img->rgb.data());
+        AtomicFile file(path, c);
+        file.write(png.data(), png.size());
+        file.commit();
+    });
+}
+
+void OutputManager::setSeries(OutputKind kind, const std::string& pvdPath, const char* call) {
+    m_queue.wait(call);  // the writer thread may be adding to the series being replaced
+    m_series[(int)kind] = pvdPath.empty() ? nullptr : std::make_unique<PvdSeries>(pvdPath);
+}
+
+}  // namespace deme

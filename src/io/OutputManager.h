@@ -1,0 +1,47 @@
+// The solver's output: stages a frame on the calling thread (between steps), then has the writer
+// thread encode and write it (CSV, VTU or legacy VTK; PNG for snapshots) to a temporary name and
+// rename it, and add it to its .pvd series if one is set. Every call first waits for the previous
+// file and reports its failure (docs/paraview.md, "Output in the background").
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include <deme/Snapshot.h>
+
+#include "io/OutputQueue.h"
+#include "io/PvdSeries.h"
+#include "io/VtuWriter.h"
+
+namespace deme {
+
+class Simulation;
+
+enum class OutputKind { SPHERES = 0, CLUMPS = 1, CONTACTS = 2, MESHES = 3 };
+
+struct OutputOptions {
+    bool vtu = false;      // SetOutputFormat: "VTU" or "CSV" (default)
+    bool meshVtu = false;  // SetMeshOutputFormat: "VTU" or "VTK" (legacy, default)
+    VtuOptions vtuOptions;
+};
+
+class OutputManager {
+  public:
+    OutputOptions options;
+
+    void write(OutputKind kind, const Simulation& sim, const std::string& path, const char* call);
+    void writeSnapshot(const Simulation& sim, const std::string& path, const SnapshotOptions& o, const char* call);
+    // Frames of `kind` written from now on are listed in `pvdPath` (empty: no series).
+    void setSeries(OutputKind kind, const std::string& pvdPath, const char* call);
+    // Waits for the file being written; throws its failure.
+    void flush(const char* call) { m_queue.wait(call); }
+
+  private:
+    bool isVtu(OutputKind kind) const { return kind == OutputKind::MESHES ? options.meshVtu : options.vtu; }
+    // Declared before the queue, whose destructor waits for the job that may still add to a series.
+    std::array<std::unique_ptr<PvdSeries>, 4> m_series;
+    OutputQueue m_queue;
+};
+
+}  // namespace deme
