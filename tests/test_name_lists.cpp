@@ -31,6 +31,7 @@ class OutputContentList : public ScratchDirTest {
         sim.Initialize();
         const std::string path = (dir / ("spheres" + std::to_string(files++) + ".csv")).string();
         sim.WriteSphereFile(path);
+        sim.FlushOutput();  // files are written by the writer thread
         std::ifstream in(path);
         std::string header;
         std::getline(in, header);

@@ -22,8 +22,15 @@ DEME_HD inline int binCoord(double x, double origin, double size, int n) {
     return (int)f;
 }
 
+// 64-bit on the host; 32-bit in GPU code, where 64-bit multiplies are several instructions in the
+// pair search's inner loops and exact anyway: the CUDA backend refuses grids of 2^32 bins or more
+// (its bin keys are 32-bit).
 DEME_HD inline uint64_t binIndex(const BinGrid& g, int x, int y, int z) {
+#if defined(__CUDACC_RTC__)
+    return (uint32_t)x + (uint32_t)g.nx * ((uint32_t)y + (uint32_t)g.ny * (uint32_t)z);
+#else
     return (uint64_t)x + (uint64_t)g.nx * ((uint64_t)y + (uint64_t)g.ny * (uint64_t)z);
+#endif
 }
 
 // The bins a box [lo, hi] touches: lo[a]..hi[a] along each axis a.
