@@ -114,10 +114,10 @@ TEST_F(CudaForceModelNvrtc, ErrorsNameTheSnippetLine) {
     const std::string syntax = deme_test::demeErrorMessage(
         [&] { compileModel(customLayout("const float k = 2.f;\nforce += k * B2A +;\n")); });
     EXPECT_EQ(syntax.rfind("Initialize (contact force model): ", 0), 0u) << syntax;
-    EXPECT_NE(syntax.find("force_model(2)"), std::string::npos) << syntax;
+    EXPECT_NE(syntax.find("force_model:2: error"), std::string::npos) << syntax;
     const std::string unknown = deme_test::demeErrorMessage(
         [&] { compileModel(customLayout("const float k = 2.f;\n\nforce += stifness * B2A;\n")); });
-    EXPECT_NE(unknown.find("force_model(3)"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("force_model:3: error"), std::string::npos) << unknown;
     EXPECT_NE(unknown.find("stifness"), std::string::npos) << unknown;
 }
 

@@ -220,7 +220,7 @@ TEST_F(CudaNvrtc, ErrorsPointIntoTheMarkedSnippet) {
         "}\n";
     const std::string msg = deme_test::demeErrorMessage([&] { compile("generated_force_kernel", source, "compute_90"); });
     EXPECT_EQ(msg.rfind("test: ", 0), 0u) << msg;  // names the call
-    EXPECT_NE(msg.find("force_model(1)"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("force_model:1: error"), std::string::npos) << msg;
     EXPECT_NE(msg.find("generated_force_kernel"), std::string::npos) << msg;
     EXPECT_NE(msg.find("NVRTC"), std::string::npos) << msg;
     EXPECT_TRUE(cache->stats().published == 0u);

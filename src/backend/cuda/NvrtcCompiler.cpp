@@ -106,6 +106,7 @@ void runNvrtc(const std::string& call, const std::string& programName, const std
     std::string log(logSize, '\0');
     if (logSize > 0) nvrtcGetProgramLog(prog.program, log.data());
     while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+    log = jit::gccStyleLocations(log);
     if (compiled != NVRTC_SUCCESS)
         throwError(call, "compiling CUDA program '" + programName + "' for " + result.architecture + " failed (NVRTC " +
                              nvrtcVersionString() + ", " + nvrtcGetErrorString(compiled) + "):\n" +
