@@ -21,5 +21,6 @@ void export_samplers(py::module_& m);
 void export_solver(py::module_& m);  // DEMSolver: settings, scene, running, output
 void export_solver_scene(py::class_<PySolver>& cls);
 void export_solver_wildcards(py::class_<PySolver>& cls);
+void export_output(py::module_& m, py::class_<PySolver>& cls);  // VTU/PVD, snapshots, progress
 
 }  // namespace deme_py

@@ -65,6 +65,12 @@ class PySolver : public deme::DEMSolver {
         body();
     }
 
+    template <class Body>
+    void runWithoutGilConst(Body&& body) const {
+        py::gil_scoped_release release;
+        body();
+    }
+
   private:
     py::object m_userCheck = py::none();
 };

@@ -14,16 +14,22 @@ using D = deme::DEMSolver;
 void exportMessagesAndOutput(py::class_<S>& c) {
     c.def("SetVerbosity", &D::SetVerbosity, py::arg("level"),
           "QUIET, ERROR, WARNING, INFO or STEP_METRIC (each includes the ones before it).")
-        .def("SetOutputFormat", &D::SetOutputFormat, py::arg("format"), "Output file format: \"CSV\".")
+        .def("SetOutputFormat", &D::SetOutputFormat, py::arg("format"),
+             "Sphere, clump and contact files: \"CSV\" (default) or \"VTU\" (ParaView).")
         .def("SetOutputContent", py::overload_cast<const std::string&>(&D::SetOutputContent), py::arg("content"),
-             "Extra sphere-file columns in one string (\"ABSV VEL\"): XYZ, ABSV, VEL, ANG_VEL, FAMILY, OWNER, MAT, QUAT.")
+             "Extra sphere-file columns in one string (\"ABSV VEL\"): XYZ, ABSV, VEL, ANG_VEL, FAMILY, OWNER, MAT, "
+             "QUAT.")
         .def("SetOutputContent", py::overload_cast<const std::vector<std::string>&>(&D::SetOutputContent),
              py::arg("content"), "Extra sphere-file columns as a list of names.")
-        .def("SetMeshOutputFormat", &D::SetMeshOutputFormat, py::arg("format"), "Mesh file format: \"VTK\".")
-        .def("WriteMeshFile", &D::WriteMeshFile, py::arg("path"), "Every mesh in its current pose, one legacy VTK file.")
-        .def("WriteSphereFile", &D::WriteSphereFile, py::arg("path"), "One CSV row per sphere.")
-        .def("WriteClumpFile", &D::WriteClumpFile, py::arg("path"), "One CSV row per clump.")
-        .def("WriteContactFile", &D::WriteContactFile, py::arg("path"), "One CSV row per geometry pair in contact.")
+        .def("SetMeshOutputFormat", &D::SetMeshOutputFormat, py::arg("format"),
+             "Mesh file format: \"VTK\" (legacy, default) or \"VTU\".")
+        .def("WriteMeshFile", &D::WriteMeshFile, py::arg("path"),
+             "Every mesh in its current pose, one file (VTK or VTU).")
+        .def("WriteSphereFile", &D::WriteSphereFile, py::arg("path"),
+             "One row (CSV) or point (VTU) per sphere; written by the writer thread.")
+        .def("WriteClumpFile", &D::WriteClumpFile, py::arg("path"), "One row or point per clump.")
+        .def("WriteContactFile", &D::WriteContactFile, py::arg("path"),
+             "One row or point per geometry pair in contact.")
         .def("ShowTimingStats", &D::ShowTimingStats, "Prints the time per phase and the throughput.")
         .def("GetDeviceMemUsage", &D::GetDeviceMemUsage, "Bytes of GPU memory the engine holds (0 on the CPU).")
         .def("ShowMemStats", &D::ShowMemStats, "Prints the memory report.")
@@ -105,6 +111,7 @@ void export_solver(py::module_& m) {
     exportQueries(c);
     export_solver_scene(c);
     export_solver_wildcards(c);
+    export_output(m, c);
 }
 
 }  // namespace deme_py
