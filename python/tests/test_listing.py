@@ -114,4 +114,5 @@ def test_the_listing_calls_from_here(tmp_path):
     assert np.all(np.isfinite(torque))
     sim.WriteSphereFile(str(tmp_path / "s.csv"))
     sim.WriteMeshFile(str(tmp_path / "m.vtk"))
+    sim.FlushOutput()  # files are written by the writer thread
     assert (tmp_path / "s.csv").stat().st_size > 0 and (tmp_path / "m.vtk").stat().st_size > 0
