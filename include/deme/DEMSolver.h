@@ -212,7 +212,7 @@ class DEMSolver {
     // Extra margin for the geometries of a family's owners: pairs within reach enter the contact set.
     void SetFamilyExtraMargin(unsigned int family, float margin);
     void SetInitBinSize(double size);
-    // GPU tuning hint; recorded for the CUDA backend, no effect on the CPU.
+    // The block size of the GPU's force-pass kernel (1..1024, default 256); no effect on the CPU.
     void SetForceCalcThreadsPerBlock(unsigned int n);
     // CPU threads for the parallel loops (default: OpenMP's default).
     void SetCPUThreads(unsigned int n);
