@@ -14,11 +14,29 @@ steps=("$@")
 export DEME_CACHE_DIR="${DEME_CACHE_DIR:-/tmp/deme-kernel-cache}"
 jobs="$(nproc)"
 
+# The Python module's interpreter: /usr/bin/python3 where it has numpy and pybind11 is found;
+# otherwise the Debian packages carried in .pydebs/ (tests/gpu/python-deps.sh), unpacked into a prefix
+# of this checkout (never into /) and used through PYTHONHOME.
+PY=/usr/bin/python3
+PY_CMAKE_ARGS=()
+if [ -d .pydebs ] && ! { /usr/bin/python3 -c "import numpy" 2>/dev/null && [ -d /usr/lib/cmake/pybind11 ]; }; then
+    prefix="$PWD/.pyprefix"
+    if [ ! -x "$prefix/usr/bin/python3.11" ]; then
+        mkdir -p "$prefix"
+        for f in .pydebs/*.deb; do dpkg -x "$f" "$prefix"; done
+    fi
+    export PYTHONHOME="$prefix/usr"
+    multiarch="$prefix/usr/lib/x86_64-linux-gnu"
+    export LD_LIBRARY_PATH="$multiarch:$multiarch/blas:$multiarch/lapack${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+    PY="$prefix/usr/bin/python3.11"
+    PY_CMAKE_ARGS=(-DPython3_EXECUTABLE="$PY" -Dpybind11_DIR="$prefix/usr/lib/cmake/pybind11")
+fi
+
 for step in "${steps[@]}"; do
     case "$step" in
     build)
         nvidia-smi >"$OUT/nvidia-smi.txt" 2>&1
-        cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=Release -DDEME_ENABLE_CUDA=ON >"$OUT/configure.log" 2>&1 &&
+        cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=Release -DDEME_ENABLE_CUDA=ON "${PY_CMAKE_ARGS[@]}" >"$OUT/configure.log" 2>&1 &&
             cmake --build build-gpu -j"$jobs" >"$OUT/build.log" 2>&1 || {
             tail -n 60 "$OUT/build.log"
             exit 1
@@ -63,13 +81,13 @@ for step in "${steps[@]}"; do
             continue
         fi
         DEME_BACKEND=cuda PYTHONPATH="$PWD/build-gpu/python" DEME_TEST_SOURCE_DIR="$PWD" \
-            DEME_CACHE_DIR="$DEME_CACHE_DIR" /usr/bin/python3 -m pytest -v -p no:cacheprovider python/tests \
+            DEME_CACHE_DIR="$DEME_CACHE_DIR" "$PY" -m pytest -v -p no:cacheprovider python/tests \
             -k 'not installed_package and not cpp_install' >"$OUT/python.log" 2>&1
         echo "python tests (DEME_BACKEND=cuda): rc $? ($(tail -n 1 "$OUT/python.log"))"
         grep -E 'FAILED|ERROR' "$OUT/python.log" | head -20
         mkdir -p "$OUT/python-listing"
         (cd "$OUT/python-listing" && DEME_BACKEND=cuda PYTHONPATH="$OLDPWD/build-gpu/python" \
-            /usr/bin/python3 "$OLDPWD/demos/python/mixer.py" --quick >listing.log 2>&1)
+            "$PY" "$OLDPWD/demos/python/mixer.py" --quick >listing.log 2>&1)
         echo "python listing (DEME_BACKEND=cuda): rc $? ($(grep -c '^Frame' "$OUT/python-listing/listing.log") frame(s); $(grep -m1 -o 'CUDA backend[^;]*\|CPU backend[^;]*' "$OUT/python-listing/listing.log"))"
         rm -f "$OUT"/python-listing/DemoOutput_Mixer/*.csv
         ;;
