@@ -90,3 +90,16 @@ def test_bad_output_settings_are_deme_errors(sim):
         sim.SetOutputFormat("XLSX")
     with pytest.raises(deme.Error, match="SetVTUEncoding"):
         sim.SetVTUEncoding("hex")
+
+
+def test_compressed_base64_vtu_and_progress_report_switch(tmp_path):
+    meshio = pytest.importorskip("meshio")
+    sim, _, n = falling_column(tmp_path)
+    sim.SetVTUEncoding("base64")
+    sim.SetVTUCompression("zlib")
+    sim.SetProgressReport(False)
+    sim.SetProgressReport(True, 1.0)
+    sim.WriteSphereFile(str(tmp_path / "packed.vtu"))
+    sim.FlushOutput()
+    m = meshio.read(str(tmp_path / "packed.vtu"))
+    assert m.points.shape == (n, 3) and np.allclose(m.point_data["r"], 0.005)
