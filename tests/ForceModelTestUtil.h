@@ -15,6 +15,18 @@
 namespace deme_test {
 
 // The text of an embedded source, e.g. the default model's body "physics/models/HertzMindlin.inl".
+// An owner wildcard "Q" (with contact wildcard "c" and geometry wildcard "g") on a model that
+// exerts no force, and the material it reads: the names of test_force_models_errors.cpp, so that the
+// generated code is the same and compiled once. Returns the material.
+inline std::shared_ptr<DEMMaterial> useOwnerWildcardModel(DEMSolver& sim) {
+    auto mat = sim.LoadMaterial({{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}});
+    auto model = sim.DefineContactForceModel("force += make_float3(0.f, 0.f, 0.f);");
+    model->SetPerContactWildcards({"c"});
+    model->SetPerOwnerWildcards({"Q"});
+    model->SetPerGeometryWildcards({"g"});
+    return mat;
+}
+
 inline std::string embeddedText(const std::string& path) {
     for (const deme::jit::EmbeddedFile& f : deme::jit::embeddedSources())
         if (path == f.path) return std::string(f.text, f.size);

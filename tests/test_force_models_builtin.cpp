@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "BackendFixture.h"
+#include "ForceModelTestUtil.h"
 #include "TestHelpers.h"
 
 using namespace deme;
@@ -52,12 +53,7 @@ DEME_BACKEND_TEST(ForceModelOutput, OwnerWildcardColumns) {
     const std::filesystem::path dir = scratchDir();
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
-    // The model and material names of test_force_models_errors.cpp: the same generated code, compiled once.
-    auto mat = sim.LoadMaterial({{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}});
-    auto model = sim.DefineContactForceModel("force += make_float3(0.f, 0.f, 0.f);");
-    model->SetPerContactWildcards({"c"});
-    model->SetPerOwnerWildcards({"Q"});
-    model->SetPerGeometryWildcards({"g"});
+    auto mat = useOwnerWildcardModel(sim);
     sim.InstructBoxDomainDimension(1, 1, 1);
     auto tmpl = sim.LoadSphereType(1.f, 0.01f, mat);
     sim.AddClumps(tmpl, {make_float3(0, 0, 0), make_float3(0.1f, 0, 0)});

@@ -11,6 +11,7 @@
 #include "MeshBuilders.h"
 #include "PythonCheck.h"
 #include "ScratchDirTest.h"
+#include "ForceModelTestUtil.h"
 #include "TestHelpers.h"
 
 using namespace deme;
@@ -97,12 +98,7 @@ TEST_F(VtuOutput, EveryEncodingReadsBackAsTheCsv) {
 TEST_F(VtuOutput, OwnerWildcardArrays) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
-    // The model and material names of test_force_models_errors.cpp: the same generated code, compiled once.
-    auto mat = sim.LoadMaterial({{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}});
-    auto model = sim.DefineContactForceModel("force += make_float3(0.f, 0.f, 0.f);");
-    model->SetPerContactWildcards({"c"});
-    model->SetPerOwnerWildcards({"Q"});
-    model->SetPerGeometryWildcards({"g"});
+    auto mat = useOwnerWildcardModel(sim);
     sim.InstructBoxDomainDimension(1, 1, 1);
     sim.AddClumps(sim.LoadSphereType(1.f, 0.01f, mat), {make_float3(0, 0, 0), make_float3(0.1f, 0, 0)});
     sim.SetInitTimeStep(1e-5);
