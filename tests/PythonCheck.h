@@ -1,10 +1,12 @@
 // Runs one of the Python check scripts of tests/python/ with Debian's /usr/bin/python3 (the one with
-// python3-meshio and python3-pil, which scripts/setup.sh installs) and returns its exit status and
-// output, for the tests that have files read back by readers the engine has no part in.
+// python3-meshio and python3-pil, which scripts/setup.sh installs; DEME_TEST_PYTHON names another, as
+// tests/gpu/run.sh does on a GPU machine without them) and returns its exit status and output, for the
+// tests that have files read back by readers the engine has no part in.
 #pragma once
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <sys/wait.h>
 
@@ -16,7 +18,9 @@ struct ScriptResult {
 };
 
 inline ScriptResult runPythonCheck(const std::string& script, const std::string& args) {
-    const std::string cmd = "/usr/bin/python3 " DEME_TEST_SOURCE_DIR "/python/" + script + " " + args + " 2>&1";
+    const char* python = std::getenv("DEME_TEST_PYTHON");
+    const std::string cmd = std::string(python && *python ? python : "/usr/bin/python3") +
+                            " " DEME_TEST_SOURCE_DIR "/python/" + script + " " + args + " 2>&1";
     ScriptResult r;
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <random>
 
@@ -141,6 +142,8 @@ TEST(GpuParity, AsyncSettledBedAgreesWithTheCpu) {
     expectSameBed(cpu, gpu);
     EXPECT_GT(gpu.asyncUpdates, 0u);
     EXPECT_LT(gpu.waitShare, kMaxAsyncWaitShare);
+    std::printf("async bed on the GPU: dT wait share %.4f, %llu asynchronous sets, update frequency %u\n",
+                gpu.waitShare, gpu.asyncUpdates, gpu.updateFreq);
 }
 
 // Two GPUs (DEMSolver(2)): kinematics on the second, reading the snapshot from and writing the

@@ -156,9 +156,9 @@ for step in "${steps[@]}"; do
         # The output tests on the GPU backend: VTU files read back by meshio against the CSV, the
         # .pvd series, failed writes, snapshots read by PIL; the writers read the state the device
         # has moved on to (downloaded on demand). Needs Debian's python3-meshio and python3-pil.
-        /usr/bin/python3 -c "import meshio, PIL" 2>/dev/null ||
-            echo "output: /usr/bin/python3 lacks meshio or PIL (apt-get install python3-meshio python3-pil): the read-back tests will fail"
-        DEME_BACKEND=cuda ./build-gpu/tests/deme_tests --gtest_filter='VtuOutput*:OutputFailure*:Snapshot*:Output.*:ProgressReport.Callback*' \
+        "$PY" -c "import meshio, PIL" 2>/dev/null ||
+            echo "output: $PY lacks meshio or PIL (apt-get install python3-meshio python3-pil, or tests/gpu/python-deps.sh): the read-back tests will fail"
+        DEME_TEST_PYTHON="$PY" DEME_BACKEND=cuda ./build-gpu/tests/deme_tests --gtest_filter='VtuOutput*:OutputFailure*:Snapshot*:Output.*:ProgressReport.Callback*' \
             >"$OUT/output.log" 2>&1
         echo "output (DEME_BACKEND=cuda): rc $? ($(grep -c '^\[       OK' "$OUT/output.log") ok)"
         grep -E '^\[  FAILED|^\[  SKIPPED' "$OUT/output.log" | head -20
