@@ -104,10 +104,12 @@ int main(int argc, char** argv) {
         return 2;
     }
     const bool drum = which == "drum";
-    const unsigned long warm = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : (drum ? 20000 : 40000);
-    const unsigned long steps = argc > 3 ? std::strtoul(argv[3], nullptr, 10) : (drum ? 20000 : 200000);
-    const std::string backend = argc > 4 ? argv[4] : "auto";
-    const std::string mode = argc > 5 ? argv[5] : "auto";
+    // An argument left out or given as "" takes its default.
+    auto arg = [&](int i) { return argc > i && *argv[i] ? std::string(argv[i]) : std::string(); };
+    const unsigned long warm = arg(2).empty() ? (drum ? 20000 : 40000) : std::stoul(arg(2));
+    const unsigned long steps = arg(3).empty() ? (drum ? 20000 : 200000) : std::stoul(arg(3));
+    const std::string backend = arg(4).empty() ? "auto" : arg(4);
+    const std::string mode = arg(5).empty() ? "auto" : arg(5);
 
     DEMSolver sim;
     sim.SetVerbosity("WARNING");

@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|timing|gpus|settled|profile|compile|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|timing|gpus|settled|profile|compile|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -112,6 +112,17 @@ for step in "${steps[@]}"; do
             timeout 200 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 spheres 125000 2000 2e-6 $g async 2>&1 |
                 tee -a "$OUT/gpus.jsonl" | tail -n 2
         done
+        ;;
+    small)
+        # SMALL-SYSTEMS on the GPU: the drum and the impact (default warm-up and timed steps), with
+        # the phase timings, each in both detection modes.
+        for c in drum impact; do
+            for mode in sync async; do
+                DEME_BENCH_TIMING=1 timeout 200 ./build-gpu/bench/small_systems $c "" "" cuda $mode >>"$OUT/small.log" 2>&1
+                echo "small $c $mode: rc $?"
+            done
+        done
+        grep -E '^\{' "$OUT/small.log" | cut -c1-400
         ;;
     timing)
         # The phase timings (kinematics' binning and pair search, dynamics' force pass...) and the
