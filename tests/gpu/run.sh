@@ -16,7 +16,9 @@ jobs="$(nproc)"
 
 # The Python module's interpreter: /usr/bin/python3 where it has numpy and pybind11 is found;
 # otherwise the Debian packages carried in .pydebs/ (tests/gpu/python-deps.sh), unpacked into a prefix
-# of this checkout (never into /) and used through PYTHONHOME.
+# of this checkout (never into /) and run through a wrapper that sets PYTHONHOME and the library path
+# for that interpreter only (exported for the whole script they would break the machine's own Python,
+# which CMake's configure runs).
 PY=/usr/bin/python3
 PY_CMAKE_ARGS=()
 if [ -d .pydebs ] && ! { /usr/bin/python3 -c "import numpy" 2>/dev/null && [ -d /usr/lib/cmake/pybind11 ]; }; then
@@ -25,10 +27,15 @@ if [ -d .pydebs ] && ! { /usr/bin/python3 -c "import numpy" 2>/dev/null && [ -d 
         mkdir -p "$prefix"
         for f in .pydebs/*.deb; do dpkg -x "$f" "$prefix"; done
     fi
-    export PYTHONHOME="$prefix/usr"
     multiarch="$prefix/usr/lib/x86_64-linux-gnu"
-    export LD_LIBRARY_PATH="$multiarch:$multiarch/blas:$multiarch/lapack${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-    PY="$prefix/usr/bin/python3.11"
+    cat >"$prefix/python3" <<WRAPPER
+#!/bin/sh
+export PYTHONHOME="$prefix/usr"
+export LD_LIBRARY_PATH="$multiarch:$multiarch/blas:$multiarch/lapack\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}"
+exec "$prefix/usr/bin/python3.11" "\$@"
+WRAPPER
+    chmod +x "$prefix/python3"
+    PY="$prefix/python3"
     PY_CMAKE_ARGS=(-DPython3_EXECUTABLE="$PY" -Dpybind11_DIR="$prefix/usr/lib/cmake/pybind11")
 fi
 
