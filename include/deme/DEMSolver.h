@@ -282,6 +282,9 @@ class DEMSolver {
     // How the kinematics and dynamics sides worked together: waits, contact-set updates, n_max,
     // false-positive share of the contact set.
     void ShowThreadCollaborationStats() const;
+    // Starts those counters (and GetDynamicsWaitShare) afresh, e.g. after a settling phase, so that
+    // they describe the run that follows.
+    void ClearThreadCollaborationStats();
     // Share (0 to 1) of the step loop's wall time that the dynamics side spent waiting for a contact
     // set it could not step without (0 when detection is fully hidden behind the steps).
     double GetDynamicsWaitShare() const;

@@ -33,6 +33,8 @@ void exportMessagesAndOutput(py::class_<S>& c) {
         .def("ShowTimingStats", &D::ShowTimingStats, "Prints the time per phase and the throughput.")
         .def("GetDeviceMemUsage", &D::GetDeviceMemUsage, "Bytes of GPU memory the engine holds (0 on the CPU).")
         .def("ShowMemStats", &D::ShowMemStats, "Prints the memory report.")
+        .def("ClearThreadCollaborationStats", &D::ClearThreadCollaborationStats,
+             "Starts the collaboration counters and GetDynamicsWaitShare afresh (after a settling phase).")
         .def("ShowThreadCollaborationStats", &D::ShowThreadCollaborationStats,
              "Prints how the kinematics and dynamics sides worked together.")
         .def("GetDynamicsWaitShare", &D::GetDynamicsWaitShare,

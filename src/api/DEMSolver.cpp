@@ -354,6 +354,8 @@ void DEMSolver::ShowMemStats() const {
 
 void DEMSolver::ShowThreadCollaborationStats() const { std::cout << collaborationReport(*m_sim) << std::endl; }
 
+void DEMSolver::ClearThreadCollaborationStats() { m_sim->clearCollaborationStats(); }
+
 double DEMSolver::GetDynamicsWaitShare() const {
     const CollaborationStats& c = m_sim->contactSets().stats();
     return c.dynamicsSeconds > 0.0 ? std::min(1.0, c.dynamicsWaitSeconds / c.dynamicsSeconds) : 0.0;

@@ -53,6 +53,8 @@ class Simulation {
     double currentMargin() const { return m_contacts.margin(); }
     unsigned int updateFreq() const { return m_contacts.nMax(); }  // the n_max in use
     const ContactSetManager& contactSets() const { return m_contacts; }
+    // The counters only; the schedule's own measurements (latency, n_max) go on.
+    void clearCollaborationStats() { m_contacts.stats() = CollaborationStats{}; }
     const ModelLayout& forceModel() const { return m_model; }
     // Makes s.contacts the set the next step would start from (waiting for the kinematics side or
     // detecting now), for host-side edits of the contacts.
