@@ -146,7 +146,8 @@ DEME_BACKEND_TEST(SceneEdits, FiveLayerPourSettlesToTheSameFloorForceAsOnePour) 
 // A hopper (demos/HopperGeometry.h) empties through its orifice; grains leaving through the domain's
 // floor are removed. Nothing is lost: removed mass + mass left == initial mass, exactly (each mass is
 // a float, and sums of a few hundred floats are exact in double precision, whatever their order).
-DEME_BACKEND_TEST(SceneEdits, HopperDischargeRemovesLeavingGrainsAndConservesMass) {
+// With asynchronous detection, each removal also drops the kinematics thread's order in flight.
+void dischargeHopper(bool async) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     HopperSpec spec;
@@ -154,7 +155,9 @@ DEME_BACKEND_TEST(SceneEdits, HopperDischargeRemovesLeavingGrainsAndConservesMas
     sim.SetInitTimeStep(2e-5);
     sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
     sim.SetDomainExitPolicy("remove");
+    sim.SetSynchronousContactDetection(!async);
     sim.Initialize();
+    ASSERT_EQ(sim.UsesAsyncContactDetection(), async);
     auto mass = sim.CreateInspector("clump_mass");
     auto lowest = sim.CreateInspector("clump_min_z");
     const double initial = mass->GetValue();
@@ -185,6 +188,10 @@ DEME_BACKEND_TEST(SceneEdits, HopperDischargeRemovesLeavingGrainsAndConservesMas
     EXPECT_EQ(alive, sim.GetNumClumps());
     EXPECT_DOUBLE_EQ(sim.GetRemovedMass(), (double)last * (double)(float)h.grainMass);
 }
+
+DEME_BACKEND_TEST(SceneEdits, HopperDischargeRemovesLeavingGrainsAndConservesMass) { dischargeHopper(false); }
+
+DEME_BACKEND_TEST(SceneEdits, HopperDischargeWithAsynchronousDetection) { dischargeHopper(true); }
 
 // The default policy stops the run at the first grain that leaves, naming it.
 DEME_BACKEND_TEST(SceneEdits, DefaultExitPolicyStopsTheRunNamingTheGrain) {
