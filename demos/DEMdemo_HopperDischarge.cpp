@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
         spec.nx = spec.ny = 10;
         spec.nz = 10;
         spec.halfWidth = 0.17f;
-        spec.orificeHalf = 0.04f;
+        spec.orificeHalf = 0.06f;  // 7.5 grain diameters: no arch holds
         spec.spacing = 0.0325f;
         spec.domainTop = 0.6f;
     }

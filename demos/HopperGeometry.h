@@ -6,6 +6,7 @@
 
 #include <deme/deme.h>
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -58,12 +59,21 @@ inline Hopper buildHopper(deme::DEMSolver& sim, const HopperSpec& s) {
     const float r = s.grainRadius;
     h.grainMass = s.density * 4.0 / 3.0 * deme::PI * r * r * r;
     auto grain = sim.LoadSphereType((float)h.grainMass, r, mat);
+    // A grid with a fixed pseudo-random sideways offset of up to half a radius per grain: grains
+    // dropped exactly above each other would stack into columns that never fall over.
     std::vector<deme::float3> pos;
+    uint32_t state = 12345u;
+    auto jitter = [&state, r]() {
+        state = state * 1664525u + 1013904223u;  // Numerical Recipes' LCG: the same on every platform
+        return r * ((float)(state >> 8) / 16777216.f - 0.5f);
+    };
     for (int k = 0; k < s.nz; k++)
         for (int j = 0; j < s.ny; j++)
-            for (int i = 0; i < s.nx; i++)
-                pos.push_back(make_float3((i - 0.5f * (s.nx - 1)) * s.spacing, (j - 0.5f * (s.ny - 1)) * s.spacing,
-                                          s.floorZ + 2.f * r + k * s.spacing));
+            for (int i = 0; i < s.nx; i++) {
+                const float dx = jitter(), dy = jitter();
+                pos.push_back(make_float3((i - 0.5f * (s.nx - 1)) * s.spacing + dx,
+                                          (j - 0.5f * (s.ny - 1)) * s.spacing + dy, s.floorZ + 2.f * r + k * s.spacing));
+            }
     h.grains = sim.AddClumps(grain, pos);
     return h;
 }
