@@ -231,16 +231,20 @@ TEST_F(BadInputFiles, ValidCsvLoads) {
 
 // ---------------------------------------------------------------- order of calls
 
-TEST(BadInput, AddClumpsAfterInitialize) {
+TEST(BadInput, SceneBuildingCallsAfterInitialize) {
     Scene1 s;
     s.sim.Initialize();
-    EXPECT_DEME_ERROR([&] { s.sim.AddClumps(s.type, {make_float3(0.1f, 0, 0)}); }, {"AddClumps", "Initialize"});
-    // Also the other scene-building calls.
     EXPECT_DEME_ERROR([&] { s.sim.LoadMaterial(goodMaterial()); }, {"LoadMaterial", "Initialize"});
-    EXPECT_DEME_ERROR([&] { s.sim.LoadSphereType(1.f, 0.01f, s.mat); }, {"LoadSphereType", "before Initialize"});
     EXPECT_DEME_ERROR([&] { s.sim.Initialize(); }, {"Initialize", "before Initialize"});
     EXPECT_DEME_ERROR([&] { s.batch->SetVel(make_float3(1, 0, 0)); }, {"DEMClumpBatch::SetVel"});
+    // Templates and clumps may be added during a run (docs/scene-changes.md): a batch waits for
+    // UpdateClumps, and a clump outside the domain is refused at once.
+    auto tmpl = s.sim.LoadSphereType(1.f, 0.01f, s.mat);
+    s.sim.AddClumps(tmpl, {make_float3(0.1f, 0, 0)});
+    EXPECT_DEME_ERROR([&] { s.sim.AddClumps(tmpl, {make_float3(1e3f, 0, 0)}); }, {"AddClumps", "outside"});
     EXPECT_EQ(s.sim.GetNumClumps(), 1u);
+    s.sim.UpdateClumps();
+    EXPECT_EQ(s.sim.GetNumClumps(), 2u);
 }
 
 TEST(BadInput, SetInitTimeStepNonPositive) {

@@ -164,6 +164,25 @@ class DEMSolver {
     std::shared_ptr<DEMClumpBatch> AddClumps(const std::vector<std::shared_ptr<DEMClumpTemplate>>& types,
                                              const std::vector<float3>& positions);
 
+    // ---- Scenes that change while they run (docs/scene-changes.md) ----
+    // AddClumps after Initialize: the batch (checked at once: its clumps must lie inside the domain)
+    // waits, and may still be given velocities and families, until UpdateClumps() puts every
+    // waiting batch into the simulation between DoDynamics calls. New clumps get user ids after all
+    // ids issued so far (GetOwnerOffset; Track works as for any batch); existing contacts keep their
+    // history. DoDynamics with batches still waiting is an error. Templates may be loaded after
+    // Initialize too, from the materials loaded before it.
+    void UpdateClumps();
+    // Removes every clump of the family now (between calls) with its spheres and contacts; returns
+    // how many. The ids of the others do not change; a removed clump's tracker rows say so.
+    size_t RemoveClumpsInFamily(unsigned int family);
+    // What happens to a clump that leaves the domain: "error" (default) stops the run naming it;
+    // "remove" removes it at the step it leaves, and the run goes on.
+    void SetDomainExitPolicy(const std::string& policy);
+    // Clumps removed since Initialize (RemoveClumpsInFamily and the "remove" exit policy), and their
+    // total mass.
+    size_t GetNumRemovedClumps() const;
+    double GetRemovedMass() const;
+
     // ---- Families (tags 0..255) ----
     void SetFamilyFixed(unsigned int family);
     // Each string is an expression of the simulation time t, or "none" to leave that component free.
@@ -295,6 +314,7 @@ class DEMSolver {
   private:
     void requireNotInitialized(const char* call) const;
     void requireInitialized(const char* call) const;
+    void addClumpsDuringRun(const std::shared_ptr<DEMClumpBatch>& batch, const char* call);
     std::shared_ptr<DEMForceModel> chooseForceModel(const char* call, std::shared_ptr<DEMForceModel> model);
     void attachProgressHooks();
     void rethrowCallbackError();

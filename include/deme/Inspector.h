@@ -9,7 +9,8 @@ namespace deme {
 class Simulation;
 
 // Kinds: "clump_max_z", "clump_min_z" (of clump centres), "clump_max_absv" (largest speed),
-// "clump_kinetic_energy" (translational + rotational, summed), "num_contacts".
+// "clump_kinetic_energy" (translational + rotational, summed), "clump_mass" (total mass of the
+// clumps in the simulation now), "num_contacts".
 class DEMInspector {
   public:
     // An inspector outliving its solver says so (deme::Error) instead of reading freed memory.

@@ -21,6 +21,7 @@ void export_samplers(py::module_& m);
 void export_solver(py::module_& m);  // DEMSolver: settings, scene, running, output
 void export_solver_scene(py::class_<PySolver>& cls);
 void export_solver_wildcards(py::class_<PySolver>& cls);
+void export_scene_edits(py::class_<PySolver>& cls);  // clumps added and removed during a run
 void export_output(py::module_& m, py::class_<PySolver>& cls);  // VTU/PVD, snapshots, progress
 
 }  // namespace deme_py

@@ -113,6 +113,7 @@ void export_solver(py::module_& m) {
     exportQueries(c);
     export_solver_scene(c);
     export_solver_wildcards(c);
+    export_scene_edits(c);
     export_output(m, c);
 }
 

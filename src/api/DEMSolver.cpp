@@ -254,6 +254,7 @@ void DEMSolver::Initialize() {
 void DEMSolver::DoDynamics(double duration) {
     const char* call = "DoDynamics";
     requireInitialized(call);
+    if (!m_scene->pendingBatches.empty()) throwError(call, "clumps added by AddClumps wait for UpdateClumps()");
     if (!(duration >= 0.0) || !std::isfinite(duration)) throwError(call, "duration must be >= 0 and finite");
     // Steps to the nearest whole step, so that repeated frames do not drift.
     const double dt = m_sim->settings.dt;
@@ -272,6 +273,8 @@ void DEMSolver::DoDynamicsThenSync(double duration) {
 
 void DEMSolver::DoStepDynamics() {
     requireInitialized("DoStepDynamics");
+    if (!m_scene->pendingBatches.empty())
+        throwError("DoStepDynamics", "clumps added by AddClumps wait for UpdateClumps()");
     m_sim->advance(1);
     rethrowCallbackError();
 }

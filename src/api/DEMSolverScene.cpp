@@ -170,8 +170,7 @@ std::shared_ptr<DEMClumpTemplate> DEMSolver::LoadClumpType(float mass, const flo
                                                            const std::vector<float>& radii,
                                                            const std::vector<float3>& positions,
                                                            const std::vector<std::shared_ptr<DEMMaterial>>& mats) {
-    const char* call = "LoadClumpType";
-    requireNotInitialized(call);
+    const char* call = "LoadClumpType";  // also after Initialize, for clumps added during a run
     requirePositive(call, "mass", mass);
     requirePositive3(call, "MOI", moi);
     if (radii.empty()) throwError(call, "a clump needs at least one sphere");
@@ -196,7 +195,6 @@ std::shared_ptr<DEMClumpTemplate> DEMSolver::LoadClumpType(float mass, const flo
 std::shared_ptr<DEMClumpTemplate> DEMSolver::LoadSphereType(float mass, float radius,
                                                             const std::shared_ptr<DEMMaterial>& mat) {
     const char* call = "LoadSphereType";
-    requireNotInitialized(call);
     requirePositive(call, "radius", radius);
     requirePositive(call, "mass", mass);
     if (!mat) throwError(call, "material is null");
@@ -214,7 +212,6 @@ std::shared_ptr<DEMClumpBatch> DEMSolver::AddClumps(const std::shared_ptr<DEMClu
 std::shared_ptr<DEMClumpBatch> DEMSolver::AddClumps(const std::vector<std::shared_ptr<DEMClumpTemplate>>& types,
                                                     const std::vector<float3>& positions) {
     const char* call = "AddClumps";
-    requireNotInitialized(call);
     if (types.size() != positions.size())
         throwError(call, "got " + std::to_string(types.size()) + " templates for " + std::to_string(positions.size()) +
                              " positions");
@@ -225,6 +222,7 @@ std::shared_ptr<DEMClumpBatch> DEMSolver::AddClumps(const std::vector<std::share
         requireFinite3(call, "clump position", positions[i]);
     }
     auto batch = std::make_shared<DEMClumpBatch>(types, positions);
+    if (m_sim->initialized()) addClumpsDuringRun(batch, call);  // api/DEMSolverSceneChanges.cpp
     m_scene->batches.push_back(batch);
     return batch;
 }

@@ -8,6 +8,7 @@
 #include "api/Validate.h"
 #include "api/WildcardLookup.h"
 #include "runtime/ContactEdits.h"
+#include "runtime/SceneEdits.h"
 #include "runtime/Simulation.h"
 
 namespace deme {
@@ -34,10 +35,10 @@ void DEMSolver::SetOwnerWildcardValue(const std::string& name, size_t firstOwner
     requireInitialized(call);
     SimState& s = m_sim->editState();
     const unsigned int w = wildcardIndex(*m_sim, call, WildcardKind::OWNER, name);
-    requireIdRange(call, "owner", firstOwnerID, values.size(), s.owners.size());
+    requireIdRange(call, "owner", firstOwnerID, values.size(), s.ownerUserToInternal.size());
     for (float v : values) requireFiniteValue(call, v);
-    for (size_t k = 0; k < values.size(); k++)
-        s.wildcards.owner[w][s.ownerUserToInternal[firstOwnerID + k]] = values[k];
+    for (size_t k = 0; k < values.size(); k++) liveOwner(s, firstOwnerID + k, call);  // all checked first
+    for (size_t k = 0; k < values.size(); k++) s.wildcards.owner[w][s.ownerUserToInternal[firstOwnerID + k]] = values[k];
 }
 
 void DEMSolver::SetFamilyOwnerWildcardValue(unsigned int family, const std::string& name, float value) {
@@ -63,9 +64,9 @@ std::vector<float> DEMSolver::GetOwnerWildcardValue(const std::string& name, siz
     requireInitialized(call);
     const SimState& s = m_sim->state();
     const unsigned int w = wildcardIndex(*m_sim, call, WildcardKind::OWNER, name);
-    requireIdRange(call, "owner", firstOwnerID, count, s.owners.size());
+    requireIdRange(call, "owner", firstOwnerID, count, s.ownerUserToInternal.size());
     std::vector<float> out(count);
-    for (size_t k = 0; k < count; k++) out[k] = s.wildcards.owner[w][s.ownerUserToInternal[firstOwnerID + k]];
+    for (size_t k = 0; k < count; k++) out[k] = s.wildcards.owner[w][liveOwner(s, firstOwnerID + k, call)];
     return out;
 }
 
@@ -79,6 +80,7 @@ void setGeometry(Simulation& sim, const char* call, const char* what, const std:
     const unsigned int w = wildcardIndex(sim, call, WildcardKind::GEOMETRY, name);
     requireIdRange(call, what, first, values.size(), total);
     for (float v : values) requireFiniteValue(call, v);
+    for (size_t k = 0; k < values.size(); k++) toGeometry(first + k);  // every id checked before any is set
     for (size_t k = 0; k < values.size(); k++) sim.editState().wildcards.geometry[w][toGeometry(first + k)] = values[k];
 }
 
@@ -103,8 +105,8 @@ void DEMSolver::SetSphereWildcardValue(const std::string& name, size_t firstSphe
     const char* call = "SetSphereWildcardValue";
     requireInitialized(call);
     const SimState& s = m_sim->state();
-    setGeometry(*m_sim, call, "sphere", name, firstSphereID, values, s.spheres.size(),
-                [&](size_t u) { return s.sphereUserToInternal[u]; });
+    setGeometry(*m_sim, call, "sphere", name, firstSphereID, values, s.sphereUserToInternal.size(),
+                [&](size_t u) { return liveSphere(s, u, call); });
 }
 
 float DEMSolver::GetSphereWildcardValue(const std::string& name, size_t sphereID) const {
@@ -116,8 +118,8 @@ std::vector<float> DEMSolver::GetSphereWildcardValue(const std::string& name, si
     const char* call = "GetSphereWildcardValue";
     requireInitialized(call);
     const SimState& s = m_sim->state();
-    return getGeometry(*m_sim, call, "sphere", name, firstSphereID, count, s.spheres.size(),
-                       [&](size_t u) { return s.sphereUserToInternal[u]; });
+    return getGeometry(*m_sim, call, "sphere", name, firstSphereID, count, s.sphereUserToInternal.size(),
+                       [&](size_t u) { return liveSphere(s, u, call); });
 }
 
 void DEMSolver::SetTriWildcardValue(const std::string& name, size_t triangleID, float value) {

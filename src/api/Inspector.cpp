@@ -10,7 +10,8 @@
 namespace deme {
 
 namespace {
-const char* KINDS[] = {"clump_max_z", "clump_min_z", "clump_max_absv", "clump_kinetic_energy", "num_contacts"};
+const char* KINDS[] = {"clump_max_z", "clump_min_z", "clump_max_absv", "clump_kinetic_energy", "clump_mass",
+                       "num_contacts"};
 }
 
 DEMInspector::DEMInspector(std::weak_ptr<Simulation> sim, std::string kind)
@@ -18,7 +19,7 @@ DEMInspector::DEMInspector(std::weak_ptr<Simulation> sim, std::string kind)
     if (std::find(std::begin(KINDS), std::end(KINDS), m_kind) == std::end(KINDS))
         throwError("CreateInspector", "unknown inspector \"" + m_kind +
                                           "\" (clump_max_z, clump_min_z, clump_max_absv, clump_kinetic_energy, "
-                                          "num_contacts)");
+                                          "clump_mass, num_contacts)");
 }
 
 double DEMInspector::GetValue() const {
@@ -41,6 +42,11 @@ double DEMInspector::GetValue() const {
         double v = 0.0;
         for (size_t o = 0; o < n; o++) v = std::max(v, (double)length(s.owners.vel[o]));
         return v;
+    }
+    if (m_kind == "clump_mass") {  // of the clumps in the simulation now (see GetRemovedMass)
+        double m = 0.0;
+        for (size_t o = 0; o < n; o++) m += (double)m_sim->ownerMass(o);
+        return m;
     }
     // clump_kinetic_energy: translational plus rotational (body frame, principal moments).
     double e = 0.0;

@@ -23,6 +23,8 @@ class Scene {
     std::map<std::tuple<std::string, unsigned int, unsigned int>, double> pairProperties;
     std::vector<std::shared_ptr<DEMClumpTemplate>> templates;
     std::vector<std::shared_ptr<DEMClumpBatch>> batches;
+    // Batches added after Initialize (also in `batches`) that UpdateClumps has not inserted yet.
+    std::vector<std::shared_ptr<DEMClumpBatch>> pendingBatches;
     std::vector<std::shared_ptr<DEMExternObj>> externObjs;
     std::vector<std::shared_ptr<DEMMeshConnected>> meshes;
     std::shared_ptr<DEMForceModel> forceModel;  // null: the default (frictional Hertzian)

@@ -3,6 +3,7 @@
 #include "api/Validate.h"
 #include "api/WildcardLookup.h"
 #include "physics/Quaternion.h"
+#include "runtime/SceneEdits.h"
 #include "runtime/Simulation.h"
 
 namespace deme {
@@ -23,7 +24,7 @@ size_t DEMTracker::GetOwnerID(size_t offset) const {
     return m_resolve() + offset;
 }
 
-size_t DEMTracker::internalID(size_t offset) const { return sim().state().ownerUserToInternal[GetOwnerID(offset)]; }
+size_t DEMTracker::internalID(size_t offset) const { return liveOwner(sim().state(), GetOwnerID(offset), "DEMTracker"); }
 
 float3 DEMTracker::Pos(size_t offset) const { return to_float3(sim().ownerPos(internalID(offset))); }
 float3 DEMTracker::Vel(size_t offset) const { return sim().state().owners.vel[internalID(offset)]; }

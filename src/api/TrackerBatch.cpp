@@ -9,6 +9,7 @@
 #include "api/Validate.h"
 #include "physics/CompactPosition.h"
 #include "physics/Quaternion.h"
+#include "runtime/SceneEdits.h"
 #include "runtime/Simulation.h"
 
 namespace deme {
@@ -36,7 +37,11 @@ std::string rowText(size_t i, const float3& v) {
 
 size_t DEMTracker::firstOwnerID(const char* call) const {
     if (!sim().initialized()) throwError(call, "the solver is not initialized yet");
-    return m_resolve();
+    const size_t first = m_resolve();
+    // Every row must be in the simulation: inserted (UpdateClumps) and not removed since.
+    const SimState& s = sim().state();
+    for (size_t i = 0; i < m_count; i++) liveOwner(s, first + i, call);
+    return first;
 }
 
 void DEMTracker::Positions(float3* out) const {

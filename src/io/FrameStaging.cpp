@@ -45,12 +45,37 @@ void fillOwnerWildcards(const std::vector<FrameColumn*>& cols, const SimState& s
     for (size_t w = 0; w < cols.size(); w++) cols[w]->values<float>()[row] = s.wildcards.owner[w][owner];
 }
 
+// Rows in user order over the ids still in use: ids of removed spheres (owners) leave no gap in the
+// file, and clumps inserted during a run (ids after the external objects' and meshes') follow the
+// earlier clumps. rowOf[u] for each live user id u; empty while the ids are 0..n-1 as assigned.
+std::vector<uint32_t> sphereRows(const SimState& s) {
+    std::vector<uint32_t> rowOf;
+    if (s.sphereUserToInternal.size() == s.spheres.size()) return rowOf;
+    rowOf.assign(s.sphereUserToInternal.size(), 0);
+    uint32_t row = 0;
+    for (size_t u = 0; u < rowOf.size(); u++)
+        if (s.sphereUserToInternal[u] != SimState::REMOVED_ID) rowOf[u] = row++;
+    return rowOf;
+}
+
+// The user ids of the clumps, ascending.
+std::vector<bodyID_t> clumpUserIds(const SimState& s) {
+    std::vector<bodyID_t> users;
+    users.reserve(s.numClumps);
+    for (size_t u = 0; u < s.ownerUserToInternal.size(); u++) {
+        const bodyID_t o = s.ownerUserToInternal[u];
+        if (o != SimState::REMOVED_ID && o < s.numClumps) users.push_back((bodyID_t)u);
+    }
+    return users;
+}
+
 }  // namespace
 
 OutputFrame stageSphereFrame(const Simulation& sim) {
     const SimState& s = sim.state();  // downloads from the device where it has moved on
     const Settings& o = sim.settings;
-    const size_t n = s.sphereUserToInternal.size();
+    const size_t n = s.spheres.size();
+    const std::vector<uint32_t> rowOf = sphereRows(s);
     OutputFrame f = newFrame(sim, "WriteSphereFile", n);
     FrameColumn& xyz = f.addColumn("Points", {"X", "Y", "Z"}, ValueType::FLOAT64, n);
     f.pointsColumn = 0;
@@ -70,7 +95,7 @@ OutputFrame stageSphereFrame(const Simulation& sim) {
     // about twice as fast for millions of spheres as gathering in row order.
 #pragma omp parallel for schedule(static) if ((long)n > PARALLEL_MIN_ROWS)
     for (long i = 0; i < (long)n; i++) {
-        const size_t k = s.sphereInternalToUser[i];
+        const size_t k = rowOf.empty() ? s.sphereInternalToUser[i] : rowOf[s.sphereInternalToUser[i]];
         const bodyID_t ow = s.spheres.owner[i];
         const float4 q = s.owners.oriQ[ow];
         putPoint(xyz, k, s.cache.spherePos[i]);
@@ -94,7 +119,8 @@ OutputFrame stageSphereFrame(const Simulation& sim) {
 
 OutputFrame stageClumpFrame(const Simulation& sim) {
     const SimState& s = sim.state();
-    const size_t n = s.numClumps;
+    const std::vector<bodyID_t> users = clumpUserIds(s);
+    const size_t n = users.size();
     OutputFrame f = newFrame(sim, "WriteClumpFile", n);
     FrameColumn& owner = f.addColumn("owner", {"owner"}, ValueType::INT32, n);
     FrameColumn& xyz = f.addColumn("Points", {"X", "Y", "Z"}, ValueType::FLOAT64, n);
@@ -107,8 +133,8 @@ OutputFrame stageClumpFrame(const Simulation& sim) {
     const std::vector<FrameColumn*> wild = addOwnerWildcardColumns(f, sim);
 #pragma omp parallel for schedule(static) if ((long)n > PARALLEL_MIN_ROWS)
     for (long u = 0; u < (long)n; u++) {
-        const bodyID_t o = s.ownerUserToInternal[u];
-        owner.values<int32_t>()[u] = (int32_t)u;
+        const bodyID_t o = s.ownerUserToInternal[users[u]];
+        owner.values<int32_t>()[u] = (int32_t)users[u];
         putPoint(xyz, u, ownerPosition(s, o));
         putQuat(quat, u, s.owners.oriQ[o]);
         put3(vel, u, s.owners.vel[o]);

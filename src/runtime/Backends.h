@@ -14,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "kinematics/BinGrid.h"
 #include "runtime/FamilyRules.h"
@@ -85,6 +86,10 @@ class DynamicsBackend {
     // after which the host may read them).
     virtual StepOutcome step(double time, const Settings& settings, const FamilyRules& families,
                              bool storeContactForces, TimingStats& timing) = 0;
+
+    // The OwnerStepFlag bits of every owner from the last step (dynamics/OwnerStep.h), after a step
+    // that reported a fault: which owners left the domain.
+    virtual void downloadStepFlags(std::vector<uint8_t>& flags) = 0;
 
     // Contact sets. markOrderBaseline(): the owners' travel now is the snapshot of an order sent now.
     virtual void markOrderBaseline() = 0;

@@ -39,6 +39,9 @@ struct Settings {
     bool outAbsv = false, outVel = false, outAngVel = false, outFamily = false, outOwner = false, outMat = false,
          outQuat = false;
     bool outOwnerWildcards = false;  // sphere and clump files: one column per owner wildcard
+    // The domain exit policy (SetDomainExitPolicy): a clump leaving the domain stops the run
+    // ("error", false) or is removed at the step it leaves ("remove", true).
+    bool removeLeavingClumps = false;
 };
 
 }  // namespace deme

@@ -114,7 +114,12 @@ void Simulation::advance(unsigned long long n) {
         m_realSphereSphere = r.realSphereSphere;
         m_lastMaxSpeed = r.maxSpeed;
         m_contacts.afterStep(r.maxTravel);
-        if (r.fault || r.kernelError) reportFault(r);
+        if (r.fault || r.kernelError) {
+            StepOutcome fault = r;
+            if (r.kernelError || !removeLeavingClumps(fault)) reportFault(fault);
+            uploadIfEdited();  // the clumps are gone from the backend's state too
+            dynamics.beginRun(settings, families);
+        }
         if (settings.verbosity >= Verbosity::STEP_METRIC && m_timing.steps % 1000 == 0)
             log(Verbosity::STEP_METRIC,
                 "t = " + std::to_string(m_time) + " s, contacts " + std::to_string(m_realContacts) + ", max speed " +

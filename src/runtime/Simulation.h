@@ -72,6 +72,12 @@ class Simulation {
     // step re-detects contacts instead of trusting the old margin.
     void invalidateContacts();
 
+    // Scene edits between calls (runtime/SceneEdits.h): clumps inserted (`part`: new clumps only,
+    // assembled in this domain) or removed (remove[o] != 0 for internal owner o); the bin grid is
+    // re-sized for an insertion, and the backend gets the whole new state before the next step.
+    void insertClumps(const SimState& part);
+    size_t removeClumps(const std::vector<uint8_t>& remove);
+
     // Owner queries used by trackers, inspectors and writers.
     double3 ownerPos(size_t owner) const;
     void setOwnerPos(size_t owner, const double3& p, const char* call);
@@ -85,6 +91,10 @@ class Simulation {
     void uploadIfEdited();
     void clearTrackerLoads();
     [[noreturn]] void reportFault(const StepOutcome& out) const;
+    // The "remove" domain exit policy: after a step that reported a fault, removes the clumps that
+    // left the domain (true), or says the fault stands (false; `out` then names the first owner
+    // with a fault that is not a clump leaving the domain).
+    bool removeLeavingClumps(StepOutcome& out);
 
     mutable SimState m_state;
     ModelLayout m_model;

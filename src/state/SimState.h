@@ -82,11 +82,18 @@ struct SimState {
     // ids in the order they added things (clumps batch by batch, then external objects).
     std::vector<bodyID_t> ownerUserToInternal, ownerInternalToUser;
     std::vector<bodyID_t> sphereInternalToUser, sphereUserToInternal;
+    // Owners and spheres can be removed during a run (runtime/SceneEdits.h): their user ids stay
+    // taken, mapped to REMOVED_ID, so the ids of the others never change.
+    static constexpr bodyID_t REMOVED_ID = ~bodyID_t(0);
     MaterialTables materials;
     WildcardArrays wildcards;
     unsigned int numWildcards = 0;
     size_t numClumps = 0;  // owners [0, numClumps) are clumps; analytical owners, then meshes follow
     size_t numAnalyticalOwners = 0;
+    // Clumps removed since Initialize (RemoveClumpsInFamily, the "remove" domain exit policy) and
+    // their total mass.
+    size_t numRemovedClumps = 0;
+    double removedMass = 0.0;
     bool hasTrackerLoads = false;  // some owner has extraAcc/extraAngAcc for the coming call
     // First geometry id of each kind in the unified id space of contacts.
     bodyID_t analyticalIdBase() const { return (bodyID_t)spheres.size(); }

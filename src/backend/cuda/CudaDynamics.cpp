@@ -77,6 +77,14 @@ void CudaDynamics::uploadTrackerLoads(const SimState& s) {
     synchronize(m_stream);
 }
 
+void CudaDynamics::downloadStepFlags(std::vector<uint8_t>& flags) {
+    select();
+    const DeviceBuffer<uint8_t>& d = m_state.integrationScratch.flags;
+    flags.resize(d.size());
+    if (!flags.empty()) d.downloadAsync(flags.data(), flags.size(), m_stream);
+    synchronize(m_stream);
+}
+
 void CudaDynamics::beginRun(const Settings&, const FamilyRules& families) {
     // dT's GPU stays current for the call's steps (and the contact-set work between them).
     select();

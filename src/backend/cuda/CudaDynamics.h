@@ -43,6 +43,7 @@ class CudaDynamics : public DynamicsBackend {
     void beginRun(const Settings& settings, const FamilyRules& families) override;
     StepOutcome step(double time, const Settings& settings, const FamilyRules& families, bool storeContactForces,
                      TimingStats& timing) override;
+    void downloadStepFlags(std::vector<uint8_t>& flags) override;
     void markOrderBaseline() override;
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;

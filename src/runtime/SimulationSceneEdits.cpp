@@ -1,0 +1,61 @@
+// Simulation: scenes that change between and during calls (runtime/SceneEdits.h for the edits
+// themselves, docs/scene-changes.md for the user's view).
+#include "runtime/Simulation.h"
+
+#include <algorithm>
+
+#include "dynamics/KinematicCache.h"
+#include "dynamics/OwnerStep.h"
+#include "kinematics/BinGridSizing.h"
+#include "runtime/SceneEdits.h"
+
+namespace deme {
+
+void Simulation::insertClumps(const SimState& part) {
+    SimState& s = editState();  // the device's state first, if it has moved on
+    deme::insertClumps(s, part);
+    refreshKinematicCache(s);
+    // New templates may bring larger spheres than the grid was sized for (uploadIfEdited gives the
+    // kinematics side the new grid with the new geometry).
+    m_grid = makeBinGrid(s, settings.binSize);
+    log(Verbosity::INFO, "inserted " + std::to_string(part.owners.size()) + " clumps (" +
+                             std::to_string(part.spheres.size()) + " spheres); now " + std::to_string(s.numClumps) +
+                             " clumps");
+}
+
+size_t Simulation::removeClumps(const std::vector<uint8_t>& remove) {
+    if (std::find(remove.begin(), remove.end(), 1) == remove.end()) return 0;  // no edit, no re-detection
+    SimState& s = editState();
+    const RemovedClumps r = deme::removeClumps(s, remove);
+    if (r.count) refreshKinematicCache(s);
+    return r.count;
+}
+
+// The step has run for every owner; those that left are taken out here, on the host, and the whole
+// state goes back to the backend before the next step (Simulation::advance). One download and one
+// upload per step in which clumps leave: cheap next to the detection that any edit causes anyway.
+bool Simulation::removeLeavingClumps(StepOutcome& out) {
+    if (!settings.removeLeavingClumps || faultFromFlags(out.faultFlags) != OwnerFault::LEFT_DOMAIN) return false;
+    std::vector<uint8_t> flags;
+    m_backends.dynamics->downloadStepFlags(flags);
+    const SimState& s = state();
+    std::vector<uint8_t> remove(s.owners.size(), 0);
+    for (size_t o = 0; o < flags.size() && o < remove.size(); o++) {
+        const uint8_t f = flags[o];
+        if (!(f & STEP_FAULTS)) continue;
+        // Any other fault, or a non-clump owner outside the encodable range, still stops the run.
+        if ((f & (STEP_NOT_FINITE | STEP_TOO_FAST)) || o >= s.numClumps) {
+            out.faultOwner = o;
+            out.faultFlags = f;
+            return false;
+        }
+        remove[o] = 1;
+    }
+    const size_t n = removeClumps(remove);
+    if (settings.verbosity >= Verbosity::STEP_METRIC)
+        log(Verbosity::STEP_METRIC, "t = " + std::to_string(m_time) + " s: " + std::to_string(n) +
+                                        " clumps left the domain and were removed");
+    return true;
+}
+
+}  // namespace deme
