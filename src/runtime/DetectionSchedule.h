@@ -117,6 +117,8 @@ class DetectionSchedule {
     unsigned long long generation() const { return m_generation; }
     unsigned long long acsStep() const { return m_acsStep; }
     const UpdateFrequency& frequency() const { return m_freq; }
+    // A restart (io/Checkpoint): n_max as the checkpointed run had adapted it.
+    void restoreFrequency(const UpdateFrequency::Learned& l) { m_freq.restore(l); }
 
   private:
     // The counters at one detection, which the cost of the steps after it is measured against.

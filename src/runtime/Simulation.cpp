@@ -31,6 +31,7 @@ Simulation::~Simulation() = default;
 void Simulation::start(SimState&& state, const ModelLayout& model) {
     m_state = std::move(state);
     m_model = model;
+    m_initialScene = sceneFingerprint(m_state, m_model);
     refreshKinematicCache(m_state);
     m_grid = makeBinGrid(m_state, settings.binSize);
     applyDetectionMode();
@@ -184,6 +185,25 @@ void Simulation::setOwnerPos(size_t owner, const double3& p, const char* call) {
         throwError(call, "position (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
                              ") is outside the simulation domain");
     invalidateContacts();
+}
+
+Simulation::Resumable Simulation::resumable() const {
+    return Resumable{m_time, m_step, m_lastMaxSpeed, m_realContacts, m_realSphereSphere, m_contacts.frequency().learned()};
+}
+
+void Simulation::restore(SimState&& state, const Resumable& r) {
+    // The kinematics side may be reading the state being replaced: let it finish unseen first.
+    m_contacts.dropOrderInFlight();
+    m_state = std::move(state);  // in place: the CPU backend steps this very object
+    m_hostStale = false;
+    m_backendStale = true;  // uploaded (and contacts re-detected) before the next step
+    m_contacts.invalidate();
+    m_time = r.time;
+    m_step = r.step;
+    m_lastMaxSpeed = r.lastMaxSpeed;
+    m_realContacts = (size_t)r.realContacts;
+    m_realSphereSphere = (size_t)r.realSphereSphere;
+    m_contacts.restoreFrequency(r.frequency);
 }
 
 }  // namespace deme

@@ -11,6 +11,7 @@
 #include "runtime/ContactSetManager.h"
 #include "runtime/FamilyRules.h"
 #include "runtime/RunMonitor.h"
+#include "runtime/SceneFingerprint.h"
 #include "runtime/Settings.h"
 #include "runtime/TimingStats.h"
 #include "state/SimState.h"
@@ -78,6 +79,23 @@ class Simulation {
 
     void log(Verbosity level, const std::string& msg) const;
 
+    // Checkpoint and restart (io/Checkpoint.h). What the run carries besides its state: the clock,
+    // the step counter, what sizes the next margin and what n_max has adapted to.
+    struct Resumable {
+        double time = 0.0;
+        unsigned long long step = 0;
+        float lastMaxSpeed = 0.f;
+        uint64_t realContacts = 0, realSphereSphere = 0;
+        UpdateFrequency::Learned frequency;
+    };
+    Resumable resumable() const;
+    // The scene as Initialize assembled it (a checkpoint is read only into the same scene).
+    const SceneFingerprint& initialScene() const { return m_initialScene; }
+    // Replaces the whole host state and the counters (ReadCheckpoint). The backend takes the state
+    // before the next step, which re-detects contacts; the restored contact set hands its history
+    // (wildcards, persistence) on to the new one, as any re-detection does.
+    void restore(SimState&& state, const Resumable& r);
+
   private:
     // Gives the backend the host state if the host edited it since (and re-detects then).
     void uploadIfEdited();
@@ -98,6 +116,7 @@ class Simulation {
     size_t m_realContacts = 0, m_realSphereSphere = 0;
     float m_lastMaxSpeed = 0.f;
     RunMonitor m_monitor;
+    SceneFingerprint m_initialScene;
     ContactSetManager m_contacts;
     Backends m_backends;  // last: the kinematics thread stops before the state goes
 };
