@@ -15,6 +15,7 @@ struct CheckpointScene {
     bool shaken = false;       // the container moves with a prescribed velocity of t
     bool customModel = false;  // Hertz-Mindlin plus a contact, an owner and a geometry wildcard
     std::string backend = "cpu";
+    double mu = 0.5;  // the grains' friction coefficient (another value is another scene)
 };
 
 // The default Hertz-Mindlin model (tangential history in four contact wildcards) with an extra
@@ -34,7 +35,7 @@ inline std::shared_ptr<deme::DEMClumpBatch> buildCheckpointScene(deme::DEMSolver
     sim.SetVerbosity("QUIET");
     sim.SetProgressReport(false);
     sim.SetBackend(sc.backend);
-    auto mat = sim.LoadMaterial({{"E", 1e7}, {"nu", 0.3}, {"CoR", 0.4}, {"mu", 0.5}, {"Crr", 0.01}});
+    auto mat = sim.LoadMaterial({{"E", 1e7}, {"nu", 0.3}, {"CoR", 0.4}, {"mu", sc.mu}, {"Crr", 0.01}});
     if (sc.customModel) {
         auto model = sim.DefineContactForceModel(std::string(kCheckpointModelTail) + hertzMindlinBody +
                                                  kCheckpointModelScale);

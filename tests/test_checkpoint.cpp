@@ -19,6 +19,8 @@
 #include "io/CheckpointFile.h"
 #include "io/CheckpointState.h"
 
+#include <zlib.h>
+
 using namespace deme;
 using namespace deme_test;
 
@@ -164,4 +166,200 @@ TEST_F(Checkpoint, RestartCarriesAllWildcardsAndPersistentContacts) {
     CheckpointScene sc;
     sc.customModel = true;
     expectRestartIsExact(sc, dir);
+}
+
+// A real restart: the first half in one process, the second in another (tools/checkpoint_run.cpp),
+// against the straight run in this one.
+TEST_F(Checkpoint, RestartInANewProcessIsBitForBit) {
+    for (bool async : {false, true}) {
+        SCOPED_TRACE(async ? "asynchronous" : "synchronous");
+        CheckpointScene sc;
+        sc.async = async;
+        const std::string mid = (dir / "mid.ckpt").string(), end = (dir / "end.ckpt").string(),
+                          ref = (dir / "ref.ckpt").string(), mode = async ? "async" : "sync";
+        const std::string tool = std::string("\"") + DEME_CHECKPOINT_RUN + "\" ";
+        ASSERT_EQ(std::system((tool + "first \"" + mid + "\" " + std::to_string(N) + " " + mode).c_str()), 0);
+        ASSERT_EQ(std::system((tool + "resume \"" + mid + "\" " + std::to_string(N) + " " + mode + " \"" + end + "\"").c_str()), 0);
+        DEMSolver sim;
+        buildCheckpointScene(sim, sc);
+        checkpointScenePhase1(sim, sc, N);
+        for (size_t k = 0; k < N; k++) sim.DoStepDynamics();
+        sim.WriteCheckpoint(ref);
+        expectSameRun(savedState(ref, 0, 0), savedState(end, 0, 0));
+    }
+}
+
+namespace {
+
+// A solver of the standard scene and a good checkpoint of it, for the tests of bad files.
+struct BadFileSetup {
+    CheckpointScene sc;
+    std::string good, before, after;
+    DEMSolver sim;
+    explicit BadFileSetup(const std::filesystem::path& dir)
+        : good((dir / "good.ckpt").string()), before((dir / "before.ckpt").string()), after((dir / "after.ckpt").string()) {
+        {
+            DEMSolver writer;
+            buildCheckpointScene(writer, sc);
+            checkpointScenePhase1(writer, sc, 200);
+            writer.WriteCheckpoint(good);
+        }
+        buildCheckpointScene(sim, sc);
+        for (int k = 0; k < 50; k++) sim.DoStepDynamics();
+        sim.WriteCheckpoint(before);
+    }
+    // The error that reading `path` gives; the solver must be as it was (the same checkpoint bytes).
+    std::string errorReading(const std::string& path) {
+        const std::string msg = demeErrorMessage([&] { sim.ReadCheckpoint(path); });
+        sim.WriteCheckpoint(after);
+        EXPECT_TRUE(bytesOf(after) == bytesOf(before)) << "the solver changed";
+        EXPECT_NE(msg.find("ReadCheckpoint"), std::string::npos) << msg;
+        EXPECT_NE(msg.find(path), std::string::npos) << msg;
+        return msg;
+    }
+};
+
+bool has(const std::string& msg, const std::string& what) { return msg.find(what) != std::string::npos; }
+
+// The header's version field (bytes 8..11) set to `version`, with the header checksum made right
+// again, so that only the version is wrong.
+std::string withVersion(std::string bytes, uint32_t version) {
+    std::memcpy(&bytes[8], &version, 4);
+    const uint32_t crc = (uint32_t)crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), 28);
+    std::memcpy(&bytes[28], &crc, 4);
+    return bytes;
+}
+
+}  // namespace
+
+TEST_F(Checkpoint, TruncatedFileIsAnErrorAndChangesNothing) {
+    BadFileSetup t(dir);
+    const std::string bytes = bytesOf(t.good), p = (dir / "bad.ckpt").string();
+    writeBytes(p, bytes.substr(0, bytes.size() - 1000));
+    const std::string msg = t.errorReading(p);
+    EXPECT_TRUE(has(msg, "truncated")) << msg;
+    writeBytes(p, bytes.substr(0, 20));
+    EXPECT_TRUE(has(t.errorReading(p), "truncated"));
+    writeBytes(p, "");
+    EXPECT_TRUE(has(t.errorReading(p), "truncated"));
+}
+
+TEST_F(Checkpoint, CorruptedFileIsAChecksumErrorAndChangesNothing) {
+    BadFileSetup t(dir);
+    std::string bytes = bytesOf(t.good);
+    const std::string p = (dir / "bad.ckpt").string();
+    bytes[bytes.size() / 2] ^= 0x10;  // one bit, in the middle of the state
+    writeBytes(p, bytes);
+    const std::string msg = t.errorReading(p);
+    EXPECT_TRUE(has(msg, "corrupted") && has(msg, "checksum")) << msg;
+    std::string header = bytesOf(t.good);
+    header[20] ^= 0x01;  // the payload length
+    writeBytes(p, header);
+    EXPECT_TRUE(has(t.errorReading(p), "checksum"));
+}
+
+TEST_F(Checkpoint, WrongVersionIsAnErrorAndChangesNothing) {
+    BadFileSetup t(dir);
+    const std::string p = (dir / "bad.ckpt").string();
+    writeBytes(p, withVersion(bytesOf(t.good), 99));
+    const std::string msg = t.errorReading(p);
+    EXPECT_TRUE(has(msg, "version 99") && has(msg, "reads version " + std::to_string(CHECKPOINT_FORMAT_VERSION))) << msg;
+}
+
+TEST_F(Checkpoint, OtherSceneIsAnErrorAndChangesNothing) {
+    BadFileSetup t(dir);
+    const std::string p = (dir / "other.ckpt").string();
+    auto writeOther = [&](const CheckpointScene& sc) {
+        DEMSolver other;
+        buildCheckpointScene(other, sc, modelBody(sc));
+        other.DoStepDynamics();
+        other.WriteCheckpoint(p);
+    };
+    CheckpointScene model = t.sc;
+    model.customModel = true;  // five contact wildcards instead of four
+    writeOther(model);
+    std::string msg = t.errorReading(p);
+    EXPECT_TRUE(has(msg, "another scene") && has(msg, "5 contact wildcards in the checkpoint's scene, 4 in this one"))
+        << msg;
+    CheckpointScene friction = t.sc;
+    friction.mu = 0.6;  // the same counts, other material properties
+    writeOther(friction);
+    msg = t.errorReading(p);
+    EXPECT_TRUE(has(msg, "another scene") && has(msg, "material properties differ")) << msg;
+}
+
+TEST_F(Checkpoint, OtherFilesAreErrors) {
+    BadFileSetup t(dir);
+    EXPECT_TRUE(has(t.errorReading(write("notes.txt", "not a checkpoint at all")), "not a checkpoint"));
+    EXPECT_TRUE(has(t.errorReading((dir / "missing.ckpt").string()), "cannot open"));
+    DEMSolver fresh;
+    EXPECT_TRUE(has(demeErrorMessage([&] { fresh.ReadCheckpoint(t.good); }), "after Initialize"));
+    EXPECT_TRUE(has(demeErrorMessage([&] { fresh.WriteCheckpoint(t.good); }), "after Initialize"));
+    // After all that, the good file still continues the run.
+    t.sim.ReadCheckpoint(t.good);
+    t.sim.DoStepDynamics();
+}
+
+// A write that fails midway (a full disk, a crash) leaves the previous checkpoint as it was.
+TEST_F(Checkpoint, FailedWriteKeepsThePreviousCheckpoint) {
+    BadFileSetup t(dir);
+    const std::string p = (dir / "run.ckpt").string();
+    t.sim.WriteCheckpoint(p);
+    const std::string previous = bytesOf(p);
+    for (int k = 0; k < 20; k++) t.sim.DoStepDynamics();
+    failAtomicFilesAfterBytes(4096);
+    const std::string msg = demeErrorMessage([&] { t.sim.WriteCheckpoint(p); });
+    failAtomicFilesAfterBytes(0);
+    EXPECT_TRUE(has(msg, "WriteCheckpoint") && has(msg, "unchanged")) << msg;
+    EXPECT_TRUE(bytesOf(p) == previous);
+    size_t files = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.path().filename().string()[0] == '.';
+    EXPECT_EQ(files, 0u) << "a temporary file was left behind";
+    t.sim.ReadCheckpoint(p);  // and it still reads
+}
+
+// CPU -> GPU and GPU -> CPU (tests/gpu/run.sh; skipped without a GPU). The GPU sums contact forces
+// in another order, so its trajectories are not the CPU's bit for bit; measured here: how far a GPU
+// run of 2N steps ends from the CPU's (the spread between the backends), and the continued runs
+// must end no farther from the CPU's straight run than twice that (the restarted ones share N
+// steps with one side, so a history lost or a clock not restored would show as a larger jump).
+TEST_F(Checkpoint, CpuCheckpointContinuesOnGpuAndBack) {
+    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    auto run = [&](const std::string& first, const std::string& second, const std::string& out) {
+        CheckpointScene sc;
+        sc.backend = first;
+        const std::string mid = (dir / ("mid_" + first + ".ckpt")).string();
+        {
+            DEMSolver sim;
+            buildCheckpointScene(sim, sc);
+            checkpointScenePhase1(sim, sc, N);
+            sim.WriteCheckpoint(mid);
+        }
+        sc.backend = second;
+        DEMSolver sim;
+        buildCheckpointScene(sim, sc);
+        EXPECT_EQ(sim.GetBackend(), second);
+        sim.ReadCheckpoint(mid);
+        for (size_t k = 0; k < N; k++) sim.DoStepDynamics();
+        sim.WriteCheckpoint(out);
+        return savedState(out, 0, 0);
+    };
+    const Saved cpu = run("cpu", "cpu", (dir / "cc.ckpt").string());
+    const Saved gpu = run("cuda", "cuda", (dir / "gg.ckpt").string());
+    const Saved cpuThenGpu = run("cpu", "cuda", (dir / "cg.ckpt").string());
+    const Saved gpuThenCpu = run("cuda", "cpu", (dir / "gc.ckpt").string());
+    auto maxDistance = [](const Saved& a, const Saved& b) {
+        double d = 0.0;
+        for (size_t o = 0; o < a.state.numClumps; o++)
+            d = std::max(d, length(a.state.cache.ownerPos[o] - b.state.cache.ownerPos[o]));
+        return d;
+    };
+    const double spread = maxDistance(gpu, cpu);
+    std::printf("GPU vs CPU after %zu steps: %.3g m; CPU->GPU restart %.3g m, GPU->CPU restart %.3g m\n", 2 * N,
+                spread, maxDistance(cpuThenGpu, cpu), maxDistance(gpuThenCpu, cpu));
+    EXPECT_EQ(cpuThenGpu.time, cpu.time);
+    EXPECT_EQ(gpuThenCpu.step, cpu.step);
+    EXPECT_LE(maxDistance(cpuThenGpu, cpu), 2.0 * spread + 1e-7);
+    EXPECT_LE(maxDistance(gpuThenCpu, cpu), 2.0 * spread + 1e-7);
+    EXPECT_GT(histories(cpuThenGpu.state).size(), 20u);
 }
