@@ -44,6 +44,11 @@ void writeClock(const Simulation& sim, ByteWriter& out) {
     out.value((uint32_t)r.frequency.costN);
     out.value((uint32_t)r.frequency.latencyN);
     out.value(r.frequency.latency);
+    out.value((uint64_t)r.contactSet.acsStep);
+    out.value(r.contactSet.margin);
+    out.value((uint8_t)r.contactSet.expired);
+    out.value((uint8_t)r.contactSet.needDetection);
+    out.array(r.travelAtSnapshot);
 }
 void readClock(ByteReader& in, Staging& st) {
     Simulation::Resumable& r = st.clock;
@@ -56,6 +61,11 @@ void readClock(ByteReader& in, Staging& st) {
     r.frequency.costN = in.value<uint32_t>("n_max");
     r.frequency.latencyN = in.value<uint32_t>("n_max");
     r.frequency.latency = in.value<double>("the detection latency");
+    r.contactSet.acsStep = in.value<uint64_t>("the contact set's snapshot step");
+    r.contactSet.margin = in.value<double>("the contact set's margin");
+    r.contactSet.expired = in.value<uint8_t>("the contact set's state") != 0;
+    r.contactSet.needDetection = in.value<uint8_t>("the contact set's state") != 0;
+    in.array(r.travelAtSnapshot, "the travel at the contact set's snapshot");
 }
 
 // The settings a script may change between DoDynamics calls and that change the steps. How the run

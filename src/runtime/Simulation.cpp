@@ -84,6 +84,10 @@ void Simulation::uploadIfEdited() {
     m_backends.dynamics->upload(m_state);  // (the GPU's makes dT's GPU current for what follows)
     m_backends.kinematics->setGeometry(m_state, m_grid, families, settings);
     m_contacts.invalidate();
+    // After a restart: go on with the restored set where the backend can (Simulation::restore).
+    if (m_resume && m_backends.dynamics->resumeContactSet(m_state, m_resume->travelAtSnapshot))
+        m_contacts.resume(m_resume->contactSet);
+    m_resume.reset();
     m_backendStale = false;
 }
 
@@ -173,6 +177,7 @@ void Simulation::clearTrackerLoads() {
 }
 
 void Simulation::invalidateContacts() {
+    m_resume.reset();  // an edit after ReadCheckpoint: the restored set may serve no longer
     if (m_initialized) refreshKinematicCache(editState());
     m_contacts.invalidate();
 }
@@ -188,7 +193,13 @@ void Simulation::setOwnerPos(size_t owner, const double3& p, const char* call) {
 }
 
 Simulation::Resumable Simulation::resumable() const {
-    return Resumable{m_time, m_step, m_lastMaxSpeed, m_realContacts, m_realSphereSphere, m_contacts.frequency().learned()};
+    state();  // the backend's contact set is the host's record now
+    Resumable r{m_time, m_step, m_lastMaxSpeed, m_realContacts, m_realSphereSphere, m_contacts.frequency().learned(),
+                m_contacts.progress(), {}};
+    // Before the first step, or right after an edit, there is no set in use to go on with.
+    if (m_backendStale || !m_backends.dynamics->travelAtSnapshot(r.travelAtSnapshot)) r.travelAtSnapshot.clear();
+    if (m_resume) r = *m_resume;  // read and not yet stepped: what was read
+    return r;
 }
 
 void Simulation::restore(SimState&& state, const Resumable& r) {
@@ -198,6 +209,7 @@ void Simulation::restore(SimState&& state, const Resumable& r) {
     m_hostStale = false;
     m_backendStale = true;  // uploaded (and contacts re-detected) before the next step
     m_contacts.invalidate();
+    m_resume = std::make_unique<Resumable>(r);
     m_time = r.time;
     m_step = r.step;
     m_lastMaxSpeed = r.lastMaxSpeed;
