@@ -335,13 +335,15 @@ TEST_F(Checkpoint, FailedWriteKeepsThePreviousCheckpoint) {
     t.sim.ReadCheckpoint(p);  // and it still reads
 }
 
-// CPU -> GPU and GPU -> CPU (tests/gpu/run.sh; skipped without a GPU). The GPU sums contact forces
+// CPU -> GPU and GPU -> CPU (a GpuParity test: tests/gpu/run.sh runs it; skipped without a GPU). The GPU sums contact forces
 // in another order, so its trajectories are not the CPU's bit for bit; measured here: how far a GPU
 // run of 2N steps ends from the CPU's (the spread between the backends), and the continued runs
 // must end no farther from the CPU's straight run than twice that (the restarted ones share N
 // steps with one side, so a history lost or a clock not restored would show as a larger jump).
-TEST_F(Checkpoint, CpuCheckpointContinuesOnGpuAndBack) {
+TEST(GpuParity, CheckpointContinuesOnTheOtherBackend) {
     if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    ScratchDir scratch;
+    const std::filesystem::path& dir = scratch.path();
     auto run = [&](const std::string& first, const std::string& second, const std::string& out) {
         CheckpointScene sc;
         sc.backend = first;

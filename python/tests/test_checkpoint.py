@@ -12,10 +12,12 @@ from conftest import material, quiet_solver
 STEPS = 600
 
 
-def pile(backend="cpu", mu=0.5):
-    """A small pile of spheres dropped into a box, up to Initialize(), and a tracker of it."""
+def pile(backend=None, mu=0.5):
+    """A small pile of spheres dropped into a box, up to Initialize(), and a tracker of it. The
+    backend: as given, or DEME_BACKEND's (tests/gpu/run.sh runs this file with cuda)."""
     sim = quiet_solver()
-    sim.SetBackend(backend)
+    if backend:
+        sim.SetBackend(backend)
     sim.SetProgressReport(False)
     mat = material(sim, E=1e7, CoR=0.4, mu=mu)
     sim.InstructBoxDomainDimension(0.1, 0.1, 0.2)
@@ -41,11 +43,11 @@ def steps(sim, n):
 
 def test_restart_is_bit_for_bit_on_the_cpu(tmp_path):
     path = str(tmp_path / "run.ckpt")
-    straight, tr = pile()
+    straight, tr = pile("cpu")  # the CPU's steps are under test, bit for bit
     steps(straight, STEPS)
     straight.WriteCheckpoint(path)
     steps(straight, STEPS)
-    restarted, tr2 = pile()
+    restarted, tr2 = pile("cpu")
     restarted.ReadCheckpoint(path)
     assert restarted.GetSimTime() == pytest.approx(STEPS * 2e-5, rel=1e-12)
     steps(restarted, STEPS)
