@@ -166,8 +166,9 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
     });
     require(s.numClumps + s.numAnalyticalOwners <= nO, "more clumps and analytical owners than owners");
     require(s.ownerSphereStart.size() == nO + 1 && s.ownerTriStart.size() == nO + 1, "the per-owner geometry ranges");
-    require(s.ownerUserToInternal.size() == nO && s.ownerInternalToUser.size() == nO, "the owner id maps");
-    require(s.sphereUserToInternal.size() == nS && s.sphereInternalToUser.size() == nS, "the sphere id maps");
+    // (User ids are never reused: after removals the user-to-internal maps are the longer ones.)
+    require(s.ownerUserToInternal.size() >= nO && s.ownerInternalToUser.size() == nO, "the owner id maps");
+    require(s.sphereUserToInternal.size() >= nS && s.sphereInternalToUser.size() == nS, "the sphere id maps");
     for (const auto& w : s.wildcards.owner) require(w.size() == nO, "an owner wildcard is not one value per owner");
     for (const auto& w : s.wildcards.geometry)
         require(w.size() == nS + nA + nT, "a geometry wildcard is not one value per geometry");

@@ -205,7 +205,11 @@ Simulation::Resumable Simulation::resumable() const {
 void Simulation::restore(SimState&& state, const Resumable& r) {
     // The kinematics side may be reading the state being replaced: let it finish unseen first.
     m_contacts.dropOrderInFlight();
+    // A checkpoint taken after grains were added holds more of them than the scene Initialize
+    // built: the bin grid is sized for them as an insertion sizes it.
+    const bool resized = state.owners.size() != m_state.owners.size() || state.spheres.size() != m_state.spheres.size();
     m_state = std::move(state);  // in place: the CPU backend steps this very object
+    if (resized) m_grid = makeBinGrid(m_state, settings.binSize);
     m_hostStale = false;
     m_backendStale = true;  // uploaded (and contacts re-detected) before the next step
     m_contacts.invalidate();
