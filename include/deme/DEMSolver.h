@@ -263,6 +263,17 @@ class DEMSolver {
     // What the last DoDynamics / DoStepDynamics call did and cost (the run summary's figures).
     RunSummary GetRunSummary() const;
 
+    // ---- Checkpoint and restart (docs/checkpoint.md) ----
+    // Writes everything the run needs to go on (state, contact set with its history, wildcards,
+    // clock, step size, family rules, the adapted n_max) to one file, by a temporary name and a
+    // rename: a crash while writing leaves the previous file intact. After Initialize.
+    void WriteCheckpoint(const std::string& path) const;
+    // Continues the run a checkpoint was taken of: call it after the script that built the same
+    // scene has called Initialize(). On the CPU, the continued run is bit for bit the uninterrupted
+    // one. A file that is not a checkpoint, truncated, corrupted (checksum), of another format
+    // version or of another scene is a deme::Error saying which; the solver is then left as it was.
+    void ReadCheckpoint(const std::string& path);
+
     // ---- Queries ----
     double GetSimTime() const;
     double GetTimeStep() const;

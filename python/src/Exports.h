@@ -23,5 +23,6 @@ void export_solver_scene(py::class_<PySolver>& cls);
 void export_solver_wildcards(py::class_<PySolver>& cls);
 void export_scene_edits(py::class_<PySolver>& cls);  // clumps added and removed during a run
 void export_output(py::module_& m, py::class_<PySolver>& cls);  // VTU/PVD, snapshots, progress
+void export_checkpoint(py::class_<PySolver>& cls);                // WriteCheckpoint, ReadCheckpoint
 
 }  // namespace deme_py

@@ -115,6 +115,7 @@ void export_solver(py::module_& m) {
     export_solver_wildcards(c);
     export_scene_edits(c);
     export_output(m, c);
+    export_checkpoint(c);
 }
 
 }  // namespace deme_py

@@ -100,6 +100,12 @@ class DynamicsBackend {
     // from the order's snapshot from now on.
     virtual void install(const DetectionReport& report, TimingStats& timing) = 0;
     virtual size_t numContacts() const = 0;
+    // Checkpoint and restart. travelAtSnapshot: every owner's travel at the snapshot of the set in
+    // use. resumeContactSet: after upload(s), the set in use is s.contacts as it is (history and
+    // all, no detection), with `travel` as that snapshot. A backend that cannot answers false, and
+    // the restart detects afresh (the trajectory does not depend on when detection runs).
+    virtual bool travelAtSnapshot(std::vector<double>& /*travel*/) const { return false; }
+    virtual bool resumeContactSet(const SimState& /*s*/, const std::vector<double>& /*travel*/) { return false; }
 
     // The margin-free facts the messages and reports need.
     virtual std::string description() const = 0;  // "CPU, 2 threads", "GPU 0 (NVIDIA H200)"

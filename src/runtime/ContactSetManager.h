@@ -41,6 +41,9 @@ class ContactSetManager {
     CollaborationStats& stats() { return m_stats; }
     const CollaborationStats& stats() const { return m_stats; }
     const UpdateFrequency& frequency() const { return m_schedule.frequency(); }
+    void restoreFrequency(const UpdateFrequency::Learned& l) { m_schedule.restoreFrequency(l); }
+    DetectionSchedule::Progress progress() const { return m_schedule.progress(); }
+    void resume(const DetectionSchedule::Progress& p) { m_schedule.resume(p); }
 
   private:
     DetectionOrder orderFor(const Settings& settings, unsigned long long step, float maxSpeed) const;

@@ -117,6 +117,25 @@ class DetectionSchedule {
     unsigned long long generation() const { return m_generation; }
     unsigned long long acsStep() const { return m_acsStep; }
     const UpdateFrequency& frequency() const { return m_freq; }
+    // A restart (io/Checkpoint): n_max as the checkpointed run had adapted it.
+    void restoreFrequency(const UpdateFrequency::Learned& l) { m_freq.restore(l); }
+    // Where the set in use stands, for a restart that goes on with it (no detection in between), so
+    // that the next detections fall on the steps they would have fallen on.
+    struct Progress {
+        unsigned long long acsStep = 0;
+        double margin = 0.0;
+        bool expired = false, needDetection = true;
+    };
+    Progress progress() const { return Progress{m_acsStep, m_margin, m_expired, m_needDetection}; }
+    // The set in use is the restored one; an order in flight when the checkpoint was written is not.
+    void resume(const Progress& p) {
+        m_acsStep = p.acsStep;
+        m_margin = p.margin;
+        m_expired = p.expired;
+        m_needDetection = p.needDetection;
+        m_orderInFlight = false;
+        m_generation++;
+    }
 
   private:
     // The counters at one detection, which the cost of the steps after it is measured against.

@@ -31,6 +31,7 @@ Simulation::~Simulation() = default;
 void Simulation::start(SimState&& state, const ModelLayout& model) {
     m_state = std::move(state);
     m_model = model;
+    m_initialScene = sceneFingerprint(m_state, m_model);
     refreshKinematicCache(m_state);
     m_grid = makeBinGrid(m_state, settings.binSize);
     applyDetectionMode();
@@ -83,6 +84,10 @@ void Simulation::uploadIfEdited() {
     m_backends.dynamics->upload(m_state);  // (the GPU's makes dT's GPU current for what follows)
     m_backends.kinematics->setGeometry(m_state, m_grid, families, settings);
     m_contacts.invalidate();
+    // After a restart: go on with the restored set where the backend can (Simulation::restore).
+    if (m_resume && m_backends.dynamics->resumeContactSet(m_state, m_resume->travelAtSnapshot))
+        m_contacts.resume(m_resume->contactSet);
+    m_resume.reset();
     m_backendStale = false;
 }
 
@@ -177,6 +182,7 @@ void Simulation::clearTrackerLoads() {
 }
 
 void Simulation::invalidateContacts() {
+    m_resume.reset();  // an edit after ReadCheckpoint: the restored set may serve no longer
     if (m_initialized) refreshKinematicCache(editState());
     m_contacts.invalidate();
 }
@@ -189,6 +195,36 @@ void Simulation::setOwnerPos(size_t owner, const double3& p, const char* call) {
         throwError(call, "position (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
                              ") is outside the simulation domain");
     invalidateContacts();
+}
+
+Simulation::Resumable Simulation::resumable() const {
+    state();  // the backend's contact set is the host's record now
+    Resumable r{m_time, m_step, m_lastMaxSpeed, m_realContacts, m_realSphereSphere, m_contacts.frequency().learned(),
+                m_contacts.progress(), {}};
+    // Before the first step, or right after an edit, there is no set in use to go on with.
+    if (m_backendStale || !m_backends.dynamics->travelAtSnapshot(r.travelAtSnapshot)) r.travelAtSnapshot.clear();
+    if (m_resume) r = *m_resume;  // read and not yet stepped: what was read
+    return r;
+}
+
+void Simulation::restore(SimState&& state, const Resumable& r) {
+    // The kinematics side may be reading the state being replaced: let it finish unseen first.
+    m_contacts.dropOrderInFlight();
+    // A checkpoint taken after grains were added holds more of them than the scene Initialize
+    // built: the bin grid is sized for them as an insertion sizes it.
+    const bool resized = state.owners.size() != m_state.owners.size() || state.spheres.size() != m_state.spheres.size();
+    m_state = std::move(state);  // in place: the CPU backend steps this very object
+    if (resized) m_grid = makeBinGrid(m_state, settings.binSize);
+    m_hostStale = false;
+    m_backendStale = true;  // uploaded (and contacts re-detected) before the next step
+    m_contacts.invalidate();
+    m_resume = std::make_unique<Resumable>(r);
+    m_time = r.time;
+    m_step = r.step;
+    m_lastMaxSpeed = r.lastMaxSpeed;
+    m_realContacts = (size_t)r.realContacts;
+    m_realSphereSphere = (size_t)r.realSphereSphere;
+    m_contacts.restoreFrequency(r.frequency);
 }
 
 }  // namespace deme

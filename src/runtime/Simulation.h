@@ -11,6 +11,7 @@
 #include "runtime/ContactSetManager.h"
 #include "runtime/FamilyRules.h"
 #include "runtime/RunMonitor.h"
+#include "runtime/SceneFingerprint.h"
 #include "runtime/Settings.h"
 #include "runtime/TimingStats.h"
 #include "state/SimState.h"
@@ -86,6 +87,27 @@ class Simulation {
 
     void log(Verbosity level, const std::string& msg) const;
 
+    // Checkpoint and restart (io/Checkpoint.h). What the run carries besides its state: the clock,
+    // the step counter, what sizes the next margin, what n_max has adapted to, and where the contact
+    // set in use stands (its snapshot step, margin, and every owner's travel at that snapshot).
+    struct Resumable {
+        double time = 0.0;
+        unsigned long long step = 0;
+        float lastMaxSpeed = 0.f;
+        uint64_t realContacts = 0, realSphereSphere = 0;
+        UpdateFrequency::Learned frequency;
+        DetectionSchedule::Progress contactSet;
+        std::vector<double> travelAtSnapshot;  // empty where the backend cannot say (the GPU's)
+    };
+    Resumable resumable() const;
+    // The scene as Initialize assembled it (a checkpoint is read only into the same scene).
+    const SceneFingerprint& initialScene() const { return m_initialScene; }
+    // Replaces the whole host state and the counters (ReadCheckpoint). The backend takes the state
+    // before the next step and goes on with the restored contact set and its schedule, so that
+    // detections fall on the steps they would have; a backend that cannot (or a checkpoint from
+    // one that cannot) detects afresh instead, and the new set takes the restored set's history.
+    void restore(SimState&& state, const Resumable& r);
+
   private:
     // Gives the backend the host state if the host edited it since (and re-detects then).
     void uploadIfEdited();
@@ -110,6 +132,9 @@ class Simulation {
     size_t m_realContacts = 0, m_realSphereSphere = 0;
     float m_lastMaxSpeed = 0.f;
     RunMonitor m_monitor;
+    SceneFingerprint m_initialScene;
+    // A restored contact set and schedule for the next upload (restore()); none once taken.
+    std::unique_ptr<Resumable> m_resume;
     ContactSetManager m_contacts;
     Backends m_backends;  // last: the kinematics thread stops before the state goes
 };

@@ -70,6 +70,22 @@ class UpdateFrequency {
     }
     double smoothedLatency() const { return m_latency; }
 
+    // What the controller has learned during a run (not what configure() sets), for a checkpoint:
+    // a restarted run goes on with the n_max it had adapted to instead of starting over.
+    struct Learned {
+        unsigned int n = 0, costN = 0, latencyN = 0;
+        double latency = -1.0;
+    };
+    Learned learned() const { return Learned{m_n, m_costN, m_latencyN, m_latency}; }
+    // Within this run's configuration: never above its cap, and in synchronous/fixed use never
+    // below its floor (a different SetCDMaxUpdateFreq in the restarted script wins).
+    void restore(const Learned& l) {
+        m_latency = l.latency;
+        m_latencyN = std::min(l.latencyN, m_max);
+        m_costN = std::min(std::max(1u, l.costN), m_max);
+        m_n = m_adaptive ? std::min(std::max(1u, l.n), m_max) : m_n;
+    }
+
   private:
     // The n minimising D/n + F/2 phi n / n_now, moved by at most a factor 2 from n_now = m_n.
     unsigned int costBalance(double detectSeconds, double forceSecondsPerStep, double falsePositives) const {

@@ -64,6 +64,22 @@ void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
     m_baseline.swap(m_orderBaseline);
 }
 
+bool CpuDynamics::travelAtSnapshot(std::vector<double>& travel) const {
+    travel = m_baseline;
+    return true;
+}
+
+bool CpuDynamics::resumeContactSet(const SimState& s, const std::vector<double>& travel) {
+    if (travel.size() != s.owners.size()) return false;
+    // The steps run on the host state, whose contact set is the restored one: only the bookkeeping
+    // that an installation builds is missing.
+    indexContactSet(m_s);
+    buildOwnerContactIndex(m_s);
+    m_baseline = travel;
+    m_orderBaseline = travel;
+    return true;
+}
+
 std::string CpuDynamics::description() const { return "CPU, " + std::to_string(cpuThreadCount()) + " threads"; }
 
 }  // namespace deme

@@ -31,6 +31,8 @@ class CpuDynamics : public DynamicsBackend {
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;
     size_t numContacts() const override { return m_s.contacts.size(); }
+    bool travelAtSnapshot(std::vector<double>& travel) const override;
+    bool resumeContactSet(const SimState& s, const std::vector<double>& travel) override;
     std::string description() const override;
     bool onGpu() const override { return false; }
 

@@ -78,6 +78,13 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     c.wildcards.swap(wildcards);
     c.meshState.swap(meshState);
     c.persistent.swap(persistent);
+    c.force.assign(nNew, make_float3(0.f));
+    indexContactSet(s);
+}
+
+void indexContactSet(SimState& s) {
+    ContactArrays& c = s.contacts;
+    const size_t nNew = c.size();
     c.meshContacts.clear();
     c.meshContactGroups.clear();
     for (size_t i = 0; i < nNew; i++) {
@@ -87,7 +94,7 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
         c.meshContacts.push_back((uint32_t)i);
     }
     c.meshContactGroups.push_back((uint32_t)c.meshContacts.size());
-    c.force.assign(nNew, make_float3(0.f));
+    c.force.resize(nNew, make_float3(0.f));
     c.torqueA.assign(nNew, make_float3(0.f));
     c.torqueB.assign(nNew, make_float3(0.f));
 }

@@ -12,4 +12,8 @@ namespace deme {
 // are sorted, so each new pair finds its old self by binary search, and the merge keeps the order.
 void installDetectedContacts(SimState& s, DetectedContacts& fresh);
 
+// The per-set bookkeeping of s.contacts' pairs as they are (the sphere-triangle runs, per-contact
+// force and torque arrays): part of every installation, and of a restart that resumes a set.
+void indexContactSet(SimState& s);
+
 }  // namespace deme

@@ -48,6 +48,9 @@ class CudaDynamics : public DynamicsBackend {
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;
     size_t numContacts() const override { return m_numContacts; }
+    // Checkpoint and restart (CudaCheckpoint.cpp).
+    bool travelAtSnapshot(std::vector<double>& travel) const override;
+    bool resumeContactSet(const SimState& s, const std::vector<double>& travel) override;
     std::string description() const override;
     bool onGpu() const override { return true; }
 

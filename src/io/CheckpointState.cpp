@@ -1,0 +1,185 @@
+#include "io/CheckpointState.h"
+
+#include <map>
+
+#include <deme/Error.h>
+
+namespace deme {
+
+namespace {
+
+// f(name, array, role) for every field of one group, straight from the lists, with the field's
+// name (state/StateFields.h's visitors give no names).
+#define DEME_NAMED_FIELD(name, T, role) f(#name, g.name, FieldRole::role);
+#define DEME_NAMED_VISITOR(Fn, LIST)          \
+    template <class G, class F>               \
+    void Fn(G& g, F&& f) {                    \
+        LIST(DEME_NAMED_FIELD)                \
+    }
+DEME_NAMED_VISITOR(namedOwnerFields, DEME_OWNER_FIELDS)
+DEME_NAMED_VISITOR(namedMassFields, DEME_MASS_FIELDS)
+DEME_NAMED_VISITOR(namedSphereFields, DEME_SPHERE_FIELDS)
+DEME_NAMED_VISITOR(namedAnalyticalFields, DEME_ANALYTICAL_FIELDS)
+DEME_NAMED_VISITOR(namedTriangleFields, DEME_TRIANGLE_FIELDS)
+DEME_NAMED_VISITOR(namedContactFields, DEME_CONTACT_FIELDS)
+DEME_NAMED_VISITOR(namedCacheFields, DEME_CACHE_FIELDS)
+#undef DEME_NAMED_VISITOR
+#undef DEME_NAMED_FIELD
+
+// Every array a checkpoint holds, as f("group.field", vector): the listed groups' EVOLVES and INPUT
+// fields (SCRATCH is a step's own, HOST the CPU's bookkeeping, rebuilt at the next detection), then
+// the host tables. The kinematic cache is derived from the poses, but stored all the same: the
+// integration's vectorised loop and the host's refresh (dynamics/KinematicCache.h) may round the
+// sphere centres differently, and a restart that recomputed them would not be bit for bit.
+template <class S, class F>
+void forEachStoredArray(S& s, F&& f) {
+    auto group = [&](const char* prefix) {
+        return [&f, prefix](const char* name, auto& field, FieldRole role) {
+            if (role == FieldRole::EVOLVES || role == FieldRole::INPUT) f(std::string(prefix) + "." + name, field);
+        };
+    };
+    namedOwnerFields(s.owners, group("owners"));
+    namedMassFields(s.massProps, group("massProps"));
+    namedSphereFields(s.spheres, group("spheres"));
+    namedAnalyticalFields(s.analytical, group("analytical"));
+    namedTriangleFields(s.triangles, group("triangles"));
+    namedContactFields(s.contacts, group("contacts"));
+    namedCacheFields(s.cache, group("cache"));
+    f("ownerSphereStart", s.ownerSphereStart);
+    f("ownerTriStart", s.ownerTriStart);
+    f("ownerUserToInternal", s.ownerUserToInternal);
+    f("ownerInternalToUser", s.ownerInternalToUser);
+    f("sphereInternalToUser", s.sphereInternalToUser);
+    f("sphereUserToInternal", s.sphereUserToInternal);
+}
+
+struct Record {
+    uint32_t elemSize = 0;
+    uint64_t count = 0;
+    const char* bytes = nullptr;
+};
+
+}  // namespace
+
+void writeStateSection(const SimState& s, ByteWriter& out) {
+    out.value((uint64_t)s.numClumps);
+    out.value((uint64_t)s.numAnalyticalOwners);
+    out.value((uint32_t)s.numWildcards);
+    out.value((uint8_t)s.hasTrackerLoads);
+    uint64_t records = 0;
+    forEachStoredArray(s, [&](const std::string&, const auto&) { records++; });
+    records += s.wildcards.owner.size() + s.wildcards.geometry.size();
+    out.value(records);
+    forEachStoredArray(s, [&](const std::string& name, const auto& v) {
+        out.text(name);
+        out.array(v);
+    });
+    for (size_t i = 0; i < s.wildcards.owner.size(); i++) {
+        out.text("wildcards.owner." + std::to_string(i));
+        out.array(s.wildcards.owner[i]);
+    }
+    for (size_t i = 0; i < s.wildcards.geometry.size(); i++) {
+        out.text("wildcards.geometry." + std::to_string(i));
+        out.array(s.wildcards.geometry[i]);
+    }
+    // Rules for contact wildcards of pairs entering the set (field by field: the struct has padding).
+    out.value((uint64_t)s.wildcards.contactInit.size());
+    for (const ContactInitRule& r : s.wildcards.contactInit) {
+        out.value(r.a);
+        out.value(r.b);
+        out.value((uint32_t)r.index);
+        out.value(r.value);
+    }
+}
+
+void readStateSection(ByteReader& in, SimState& s, const std::string& call, const std::string& path) {
+    const std::string file = "\"" + path + "\"";
+    auto layout = [&](const std::string& what) {
+        throwError(call, file + " holds a state of another layout than this build's: " + what +
+                             " (written by another version of the engine?)");
+    };
+    s.numClumps = (size_t)in.value<uint64_t>("the clump count");
+    s.numAnalyticalOwners = (size_t)in.value<uint64_t>("the analytical owner count");
+    s.numWildcards = in.value<uint32_t>("the contact wildcard count");
+    s.hasTrackerLoads = in.value<uint8_t>("the tracker load flag") != 0;
+    const uint64_t n = in.value<uint64_t>("the record count");
+    std::map<std::string, Record> records;
+    for (uint64_t i = 0; i < n; i++) {
+        const std::string name = in.text("a field name");
+        Record r;
+        r.elemSize = in.value<uint32_t>(name.c_str());
+        r.count = in.value<uint64_t>(name.c_str());
+        if (r.elemSize == 0 || r.count > (uint64_t)1 << 40) in.malformed("field " + name + " has an impossible size");
+        r.bytes = in.take((size_t)(r.elemSize * r.count), name.c_str());
+        if (!records.emplace(name, r).second) in.malformed("field " + name + " appears twice");
+    }
+    auto fill = [&](const std::string& name, auto& v) {
+        using T = typename std::decay_t<decltype(v)>::value_type;
+        const auto it = records.find(name);
+        if (it == records.end()) layout("it lacks field " + name);
+        if (it->second.elemSize != sizeof(T))
+            layout("field " + name + " has elements of " + std::to_string(it->second.elemSize) + " bytes, this build's " +
+                   std::to_string(sizeof(T)));
+        v.resize((size_t)it->second.count);
+        if (!v.empty()) std::memcpy(v.data(), it->second.bytes, v.size() * sizeof(T));
+        records.erase(it);
+    };
+    forEachStoredArray(s, fill);
+    // Owner and geometry wildcards: as many as the force model declares (the fingerprint checked it).
+    for (size_t i = 0; i < s.wildcards.owner.size(); i++) fill("wildcards.owner." + std::to_string(i), s.wildcards.owner[i]);
+    for (size_t i = 0; i < s.wildcards.geometry.size(); i++)
+        fill("wildcards.geometry." + std::to_string(i), s.wildcards.geometry[i]);
+    if (!records.empty()) layout("this build does not know its field " + records.begin()->first);
+
+    const uint64_t rules = in.value<uint64_t>("the contact wildcard rule count");
+    s.wildcards.contactInit.clear();
+    for (uint64_t i = 0; i < rules; i++) {
+        ContactInitRule r;
+        r.a = in.value<family_t>("a contact wildcard rule");
+        r.b = in.value<family_t>("a contact wildcard rule");
+        r.index = in.value<uint32_t>("a contact wildcard rule");
+        r.value = in.value<float>("a contact wildcard rule");
+        if (r.index >= s.numWildcards) in.malformed("a contact wildcard rule names wildcard " + std::to_string(r.index));
+        s.wildcards.contactInit.push_back(r);
+    }
+    if (!in.atEnd()) in.malformed("the state section has bytes after its end");
+
+    // Lengths that must agree (a checksum cannot catch a writer's mistake).
+    const size_t nO = s.owners.size(), nS = s.spheres.size(), nA = s.analytical.size(), nT = s.triangles.size();
+    auto require = [&](bool ok, const std::string& what) {
+        if (!ok) in.malformed(what);
+    };
+    namedOwnerFields(s.owners, [&](const char* name, const auto& v, FieldRole) {
+        require(v.size() == nO, std::string("owners.") + name + " is not one value per owner");
+    });
+    namedSphereFields(s.spheres, [&](const char* name, const auto& v, FieldRole) {
+        require(v.size() == nS, std::string("spheres.") + name + " is not one value per sphere");
+    });
+    namedAnalyticalFields(s.analytical, [&](const char* name, const auto& v, FieldRole) {
+        require(v.size() == nA, std::string("analytical.") + name + " is not one value per component");
+    });
+    const size_t nC = s.contacts.size();
+    namedContactFields(s.contacts, [&](const char* name, const auto& v, FieldRole role) {
+        if (role == FieldRole::HOST) return;
+        const size_t want = std::string(name) == "wildcards" ? nC * s.numWildcards : nC;
+        require(v.size() == want, std::string("contacts.") + name + " does not fit the contact count");
+    });
+    require(s.numClumps + s.numAnalyticalOwners <= nO, "more clumps and analytical owners than owners");
+    require(s.ownerSphereStart.size() == nO + 1 && s.ownerTriStart.size() == nO + 1, "the per-owner geometry ranges");
+    // (User ids are never reused: after removals the user-to-internal maps are the longer ones.)
+    require(s.ownerUserToInternal.size() >= nO && s.ownerInternalToUser.size() == nO, "the owner id maps");
+    require(s.sphereUserToInternal.size() >= nS && s.sphereInternalToUser.size() == nS, "the sphere id maps");
+    for (const auto& w : s.wildcards.owner) require(w.size() == nO, "an owner wildcard is not one value per owner");
+    for (const auto& w : s.wildcards.geometry)
+        require(w.size() == nS + nA + nT, "a geometry wildcard is not one value per geometry");
+    const uint64_t nGeom = nS + nA + nT;
+    for (size_t c = 0; c < nC; c++)
+        require(s.contacts.geomA[c] < nGeom && s.contacts.geomB[c] < nGeom, "a contact names a geometry that is not there");
+    // The CPU's contact bookkeeping belongs to the set it was built for: rebuilt at the next
+    // detection, which a restored state always gets first.
+    namedContactFields(s.contacts, [&](const char*, auto& v, FieldRole role) {
+        if (role == FieldRole::HOST) v.clear();
+    });
+}
+
+}  // namespace deme

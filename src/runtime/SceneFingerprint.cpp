@@ -1,0 +1,128 @@
+#include "runtime/SceneFingerprint.h"
+
+#include <set>
+#include <type_traits>
+
+namespace deme {
+
+namespace {
+
+// 64-bit FNV-1a (offset basis and prime from the FNV reference); each part's length goes in before
+// its bytes, so that ("ab", "c") and ("a", "bc") differ.
+class Hash {
+  public:
+    void bytes(const void* p, size_t n) {
+        const unsigned char* b = static_cast<const unsigned char*>(p);
+        for (size_t i = 0; i < n; i++) {
+            m_h ^= b[i];
+            m_h *= 1099511628211ull;
+        }
+    }
+    template <class T>
+    void value(const T& v) {
+        static_assert(std::is_trivially_copyable<T>::value, "plain values only");
+        bytes(&v, sizeof(T));
+    }
+    template <class T>
+    void array(const std::vector<T>& v) {
+        value((uint64_t)v.size());
+        if (!v.empty()) bytes(v.data(), v.size() * sizeof(T));
+    }
+    void text(const std::string& s) {
+        value((uint64_t)s.size());
+        bytes(s.data(), s.size());
+    }
+    uint64_t result() const { return m_h; }
+
+  private:
+    uint64_t m_h = 14695981039346656037ull;
+};
+
+// Every INPUT field of a group, in list order.
+template <class Visit, class G>
+uint64_t hashInputs(Visit&& visit, const G& group, Hash h = Hash()) {
+    visit(group, group, [&](const auto& field, const auto&, FieldRole role) {
+        if (role == FieldRole::INPUT) h.array(field);
+    });
+    return h.result();
+}
+
+}  // namespace
+
+SceneFingerprint sceneFingerprint(const SimState& s, const ModelLayout& model) {
+    SceneFingerprint fp;
+    fp.owners = s.owners.size();
+    fp.clumps = s.numClumps;
+    fp.analyticalOwners = s.numAnalyticalOwners;
+    fp.spheres = s.spheres.size();
+    fp.analytical = s.analytical.size();
+    fp.triangles = s.triangles.size();
+    fp.templates = s.massProps.mass.size();
+    fp.materials = s.materials.count;
+    fp.families = std::set<family_t>(s.owners.family.begin(), s.owners.family.end()).size();
+    fp.contactWildcards = s.numWildcards;
+    fp.ownerWildcards = s.wildcards.owner.size();
+    fp.geometryWildcards = s.wildcards.geometry.size();
+
+    // The generic lambdas below take the group's two storages (the same one twice here).
+    auto owners = [](const auto& a, const auto& b, auto&& f) { forEachOwnerField(a, b, f); };
+    auto mass = [](const auto& a, const auto& b, auto&& f) { forEachMassField(a, b, f); };
+    auto spheres = [](const auto& a, const auto& b, auto&& f) { forEachSphereField(a, b, f); };
+    auto anal = [](const auto& a, const auto& b, auto&& f) { forEachAnalyticalField(a, b, f); };
+    auto tris = [](const auto& a, const auto& b, auto&& f) { forEachTriangleField(a, b, f); };
+    fp.ownerInputs = hashInputs(owners, s.owners);
+    fp.templateInputs = hashInputs(mass, s.massProps);
+    Hash g;
+    g.value(hashInputs(spheres, s.spheres));
+    g.value(hashInputs(anal, s.analytical));
+    g.value(hashInputs(tris, s.triangles));
+    g.array(s.ownerSphereStart);
+    g.array(s.ownerTriStart);
+    fp.geometryInputs = g.result();
+
+    Hash m;
+    const MaterialTables& mt = s.materials;
+    m.value(mt.count);
+    for (const auto* v : {&mt.E, &mt.nu, &mt.CoR, &mt.mu, &mt.Crr}) m.array(*v);
+    for (const auto& v : mt.props) m.array(v);
+    for (const auto& v : mt.pairProps) m.array(v);
+    fp.materialInputs = m.result();
+
+    Hash d;
+    d.value(s.frame.origin);
+    d.value(s.frame.voxelSize);
+    d.value(s.domainSize);
+    fp.domain = d.result();
+
+    Hash f;
+    f.value((int)model.kind);
+    f.text(model.source);
+    for (const auto* list : {&model.materialProps, &model.pairProps, &model.contactWildcards, &model.ownerWildcards,
+                             &model.geometryWildcards}) {
+        f.value((uint64_t)list->size());
+        for (const auto& name : *list) f.text(name);
+    }
+    fp.model = f.result();
+    return fp;
+}
+
+std::string fingerprintMismatch(const SceneFingerprint& checkpoint, const SceneFingerprint& mine) {
+    SceneFingerprint a = checkpoint, b = mine;
+    std::string out;
+    // Walks both in step: the same fields in the same order.
+    std::vector<std::pair<const char*, uint64_t>> theirs;
+    forEachFingerprintField(a, [&](const char* name, uint64_t& v, bool) { theirs.emplace_back(name, v); });
+    size_t i = 0;
+    forEachFingerprintField(b, [&](const char* name, uint64_t& v, bool isCount) {
+        const uint64_t t = theirs[i++].second;
+        if (!out.empty() || t == v) return;
+        // A hash only says that the two differ.
+        if (isCount)
+            out = std::to_string(t) + " " + name + " in the checkpoint's scene, " + std::to_string(v) + " in this one";
+        else
+            out = "the " + std::string(name) + " differ";
+    });
+    return out;
+}
+
+}  // namespace deme

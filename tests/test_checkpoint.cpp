@@ -1,0 +1,384 @@
+// Checkpoint and restart (docs/checkpoint.md). A run of N steps, a checkpoint, a new solver built by
+// the same script up to Initialize() that reads it, and N more steps must equal 2N straight steps
+// bit for bit on the CPU (its trajectories do not depend on when contacts are detected, see
+// Determinism.*, nor on the detection mode, see Async.*), in synchronous and asynchronous mode, in
+// this process and in a new one. Tolerance: none. Bad files are errors that say what is wrong and
+// leave the solver as it was.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+
+#include "CheckpointScenes.h"
+#include "ForceModelTestUtil.h"
+#include "ScratchDirTest.h"
+#include "TestHelpers.h"
+#include "io/AtomicFile.h"
+#include "io/CheckpointFile.h"
+#include "io/CheckpointState.h"
+
+#include <zlib.h>
+
+using namespace deme;
+using namespace deme_test;
+
+namespace {
+
+const size_t N = 2000;  // steps before and after the checkpoint
+
+std::string bytesOf(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+void writeBytes(const std::string& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// The state a checkpoint holds, read with the engine's own section reader.
+struct Saved {
+    SimState state;
+    double time = 0.0;
+    uint64_t step = 0;
+};
+Saved savedState(const std::string& path, size_t ownerWildcards, size_t geometryWildcards) {
+    const CheckpointSections secs = readCheckpointFile(path, "test");
+    Saved out;
+    out.state.wildcards.owner.resize(ownerWildcards);
+    out.state.wildcards.geometry.resize(geometryWildcards);
+    for (const auto& [name, bytes] : secs.list) {
+        ByteReader in(bytes.data(), bytes.size(), "test", path);
+        if (name == "state") readStateSection(in, out.state, "test", path);
+        if (name == "clock") {
+            out.time = in.value<double>("time");
+            out.step = in.value<uint64_t>("step");
+        }
+    }
+    return out;
+}
+
+template <class T>
+bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// Contacts with a history or a persistence mark, by key: what the contact set hands on. (Pairs in
+// the set without either are apart; which of them are in the set depends on when detection ran.)
+std::map<uint64_t, std::vector<float>> histories(const SimState& s) {
+    std::map<uint64_t, std::vector<float>> out;
+    const size_t W = s.numWildcards;
+    for (size_t c = 0; c < s.contacts.size(); c++) {
+        std::vector<float> w(s.contacts.wildcards.begin() + (ptrdiff_t)(c * W),
+                             s.contacts.wildcards.begin() + (ptrdiff_t)((c + 1) * W));
+        bool any = s.contacts.persistent[c] != 0;
+        for (float v : w) any = any || v != 0.f;
+        w.push_back((float)s.contacts.persistent[c]);
+        if (any) out[contactKey(s.contacts.geomA[c], s.contacts.geomB[c])] = w;
+    }
+    return out;
+}
+
+// Bit for bit: every owner field (poses, velocities, travel, last contact forces, families), the
+// owner and geometry wildcards, the contact histories, the clock.
+void expectSameRun(const Saved& a, const Saved& b, bool sameContactSet = false) {
+    EXPECT_EQ(a.time, b.time);
+    EXPECT_EQ(a.step, b.step);
+    forEachOwnerField(a.state.owners, b.state.owners, [](const auto& x, const auto& y, FieldRole) {
+        EXPECT_TRUE(sameBits(x, y));
+    });
+    ASSERT_EQ(a.state.wildcards.owner.size(), b.state.wildcards.owner.size());
+    for (size_t i = 0; i < a.state.wildcards.owner.size(); i++)
+        EXPECT_TRUE(sameBits(a.state.wildcards.owner[i], b.state.wildcards.owner[i]));
+    for (size_t i = 0; i < a.state.wildcards.geometry.size(); i++)
+        EXPECT_TRUE(sameBits(a.state.wildcards.geometry[i], b.state.wildcards.geometry[i]));
+    const auto ha = histories(a.state), hb = histories(b.state);
+    EXPECT_GT(ha.size(), 20u);  // grains are in contact: histories are there to be carried
+    EXPECT_TRUE(ha == hb) << ha.size() << " vs " << hb.size() << " contacts with history";
+    // With a fixed n_max in synchronous mode, detections fall on the same steps in every run: a
+    // restart that goes on with the restored set and schedule ends with the very same set.
+    if (sameContactSet) {
+        EXPECT_TRUE(sameBits(a.state.contacts.geomA, b.state.contacts.geomA));
+        EXPECT_TRUE(sameBits(a.state.contacts.geomB, b.state.contacts.geomB));
+    }
+}
+
+size_t ownerWildcardsOf(const CheckpointScene& sc) { return sc.customModel ? 1 : 0; }
+
+std::string modelBody(const CheckpointScene& sc) { return sc.customModel ? hertzMindlinSnippet() : ""; }
+
+// The straight run and the restarted one, both ending in a checkpoint that is compared.
+void expectRestartIsExact(const CheckpointScene& sc, const std::filesystem::path& dir) {
+    const std::string ref = (dir / "straight.ckpt").string(), mid = (dir / "mid.ckpt").string(),
+                      end = (dir / "restarted.ckpt").string(), writerEnd = (dir / "writer.ckpt").string();
+    {
+        DEMSolver sim;
+        buildCheckpointScene(sim, sc, modelBody(sc));
+        checkpointScenePhase1(sim, sc, N);
+        for (size_t k = 0; k < N; k++) sim.DoStepDynamics();
+        sim.WriteCheckpoint(ref);
+    }
+    {
+        DEMSolver sim;
+        buildCheckpointScene(sim, sc, modelBody(sc));
+        checkpointScenePhase1(sim, sc, N);
+        sim.WriteCheckpoint(mid);
+        // Writing a checkpoint does not change the run that wrote it.
+        for (size_t k = 0; k < N; k++) sim.DoStepDynamics();
+        sim.WriteCheckpoint(writerEnd);
+    }
+    {
+        DEMSolver sim;  // the new process's solver
+        buildCheckpointScene(sim, sc, modelBody(sc));
+        sim.ReadCheckpoint(mid);
+        EXPECT_EQ(sim.GetTimeStep(), 1.5e-5);  // as UpdateStepSize left it
+        EXPECT_EQ(sim.GetGravitationalAcceleration().x, 0.5f);
+        if (sc.customModel) {
+            EXPECT_EQ(sim.GetOwnerWildcardValue("Q", 3), 0.53f);
+            EXPECT_EQ(sim.GetSphereWildcardValue("g", 5), 0.3f);
+            EXPECT_GT(sim.GetNumPersistentContacts(), 0u);
+        }
+        for (size_t k = 0; k < N; k++) sim.DoStepDynamics();
+        sim.WriteCheckpoint(end);
+    }
+    const size_t W = ownerWildcardsOf(sc), G = sc.customModel ? 1 : 0;
+    const Saved straight = savedState(ref, W, G);
+    SCOPED_TRACE("restarted run");
+    const bool fixedSchedule = !sc.async;  // (see CheckpointScenes.h)
+    expectSameRun(straight, savedState(end, W, G), fixedSchedule);
+    SCOPED_TRACE("the run that wrote the checkpoint");
+    expectSameRun(straight, savedState(writerEnd, W, G), fixedSchedule);
+}
+
+class Checkpoint : public ScratchDirTest {};
+
+}  // namespace
+
+TEST_F(Checkpoint, RestartIsBitForBitSynchronous) {
+    CheckpointScene sc;
+    sc.async = false;
+    expectRestartIsExact(sc, dir);
+}
+
+// Asynchronous detection, a container with a prescribed motion of t (the clock must be restored).
+TEST_F(Checkpoint, RestartIsBitForBitAsynchronous) {
+    CheckpointScene sc;
+    sc.async = true;
+    sc.shaken = true;
+    expectRestartIsExact(sc, dir);
+}
+
+// Contact, owner and geometry wildcards of a custom model, and persistent contacts.
+TEST_F(Checkpoint, RestartCarriesAllWildcardsAndPersistentContacts) {
+    CheckpointScene sc;
+    sc.customModel = true;
+    expectRestartIsExact(sc, dir);
+}
+
+// A real restart: the first half in one process, the second in another (tools/checkpoint_run.cpp),
+// against the straight run in this one.
+TEST_F(Checkpoint, RestartInANewProcessIsBitForBit) {
+    for (bool async : {false, true}) {
+        SCOPED_TRACE(async ? "asynchronous" : "synchronous");
+        CheckpointScene sc;
+        sc.async = async;
+        const std::string mid = (dir / "mid.ckpt").string(), end = (dir / "end.ckpt").string(),
+                          ref = (dir / "ref.ckpt").string(), mode = async ? "async" : "sync";
+        const std::string tool = std::string("\"") + DEME_CHECKPOINT_RUN + "\" ";
+        ASSERT_EQ(std::system((tool + "first \"" + mid + "\" " + std::to_string(N) + " " + mode).c_str()), 0);
+        ASSERT_EQ(std::system((tool + "resume \"" + mid + "\" " + std::to_string(N) + " " + mode + " \"" + end + "\"").c_str()), 0);
+        DEMSolver sim;
+        buildCheckpointScene(sim, sc);
+        checkpointScenePhase1(sim, sc, N);
+        for (size_t k = 0; k < N; k++) sim.DoStepDynamics();
+        sim.WriteCheckpoint(ref);
+        expectSameRun(savedState(ref, 0, 0), savedState(end, 0, 0), !async);
+    }
+}
+
+namespace {
+
+// A solver of the standard scene and a good checkpoint of it, for the tests of bad files.
+struct BadFileSetup {
+    CheckpointScene sc;
+    std::string good, before, after;
+    DEMSolver sim;
+    explicit BadFileSetup(const std::filesystem::path& dir)
+        : good((dir / "good.ckpt").string()), before((dir / "before.ckpt").string()), after((dir / "after.ckpt").string()) {
+        {
+            DEMSolver writer;
+            buildCheckpointScene(writer, sc);
+            checkpointScenePhase1(writer, sc, 200);
+            writer.WriteCheckpoint(good);
+        }
+        buildCheckpointScene(sim, sc);
+        for (int k = 0; k < 50; k++) sim.DoStepDynamics();
+        sim.WriteCheckpoint(before);
+    }
+    // The error that reading `path` gives; the solver must be as it was (the same checkpoint bytes).
+    std::string errorReading(const std::string& path) {
+        const std::string msg = demeErrorMessage([&] { sim.ReadCheckpoint(path); });
+        sim.WriteCheckpoint(after);
+        EXPECT_TRUE(bytesOf(after) == bytesOf(before)) << "the solver changed";
+        EXPECT_NE(msg.find("ReadCheckpoint"), std::string::npos) << msg;
+        EXPECT_NE(msg.find(path), std::string::npos) << msg;
+        return msg;
+    }
+};
+
+bool has(const std::string& msg, const std::string& what) { return msg.find(what) != std::string::npos; }
+
+// The header's version field (bytes 8..11) set to `version`, with the header checksum made right
+// again, so that only the version is wrong.
+std::string withVersion(std::string bytes, uint32_t version) {
+    std::memcpy(&bytes[8], &version, 4);
+    const uint32_t crc = (uint32_t)crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), 28);
+    std::memcpy(&bytes[28], &crc, 4);
+    return bytes;
+}
+
+}  // namespace
+
+TEST_F(Checkpoint, TruncatedFileIsAnErrorAndChangesNothing) {
+    BadFileSetup t(dir);
+    const std::string bytes = bytesOf(t.good), p = (dir / "bad.ckpt").string();
+    writeBytes(p, bytes.substr(0, bytes.size() - 1000));
+    const std::string msg = t.errorReading(p);
+    EXPECT_TRUE(has(msg, "truncated")) << msg;
+    writeBytes(p, bytes.substr(0, 20));
+    EXPECT_TRUE(has(t.errorReading(p), "truncated"));
+    writeBytes(p, "");
+    EXPECT_TRUE(has(t.errorReading(p), "truncated"));
+}
+
+TEST_F(Checkpoint, CorruptedFileIsAChecksumErrorAndChangesNothing) {
+    BadFileSetup t(dir);
+    std::string bytes = bytesOf(t.good);
+    const std::string p = (dir / "bad.ckpt").string();
+    bytes[bytes.size() / 2] ^= 0x10;  // one bit, in the middle of the state
+    writeBytes(p, bytes);
+    const std::string msg = t.errorReading(p);
+    EXPECT_TRUE(has(msg, "corrupted") && has(msg, "checksum")) << msg;
+    std::string header = bytesOf(t.good);
+    header[20] ^= 0x01;  // the payload length
+    writeBytes(p, header);
+    EXPECT_TRUE(has(t.errorReading(p), "checksum"));
+}
+
+TEST_F(Checkpoint, WrongVersionIsAnErrorAndChangesNothing) {
+    BadFileSetup t(dir);
+    const std::string p = (dir / "bad.ckpt").string();
+    writeBytes(p, withVersion(bytesOf(t.good), 99));
+    const std::string msg = t.errorReading(p);
+    EXPECT_TRUE(has(msg, "version 99") && has(msg, "reads version " + std::to_string(CHECKPOINT_FORMAT_VERSION))) << msg;
+}
+
+TEST_F(Checkpoint, OtherSceneIsAnErrorAndChangesNothing) {
+    BadFileSetup t(dir);
+    const std::string p = (dir / "other.ckpt").string();
+    auto writeOther = [&](const CheckpointScene& sc) {
+        DEMSolver other;
+        buildCheckpointScene(other, sc, modelBody(sc));
+        other.DoStepDynamics();
+        other.WriteCheckpoint(p);
+    };
+    CheckpointScene model = t.sc;
+    model.customModel = true;  // five contact wildcards instead of four
+    writeOther(model);
+    std::string msg = t.errorReading(p);
+    EXPECT_TRUE(has(msg, "another scene") && has(msg, "5 contact wildcards in the checkpoint's scene, 4 in this one"))
+        << msg;
+    CheckpointScene friction = t.sc;
+    friction.mu = 0.6;  // the same counts, other material properties
+    writeOther(friction);
+    msg = t.errorReading(p);
+    EXPECT_TRUE(has(msg, "another scene") && has(msg, "material properties differ")) << msg;
+}
+
+TEST_F(Checkpoint, OtherFilesAreErrors) {
+    BadFileSetup t(dir);
+    EXPECT_TRUE(has(t.errorReading(write("notes.txt", "not a checkpoint at all")), "not a checkpoint"));
+    EXPECT_TRUE(has(t.errorReading((dir / "missing.ckpt").string()), "cannot open"));
+    DEMSolver fresh;
+    EXPECT_TRUE(has(demeErrorMessage([&] { fresh.ReadCheckpoint(t.good); }), "after Initialize"));
+    EXPECT_TRUE(has(demeErrorMessage([&] { fresh.WriteCheckpoint(t.good); }), "after Initialize"));
+    // After all that, the good file still continues the run.
+    t.sim.ReadCheckpoint(t.good);
+    t.sim.DoStepDynamics();
+}
+
+// What was read is what is written back, byte for byte, before any step (the restored contact
+// set, schedule and travel included).
+TEST_F(Checkpoint, ReadThenWriteGivesTheSameFile) {
+    BadFileSetup t(dir);
+    t.sim.ReadCheckpoint(t.good);
+    const std::string again = (dir / "again.ckpt").string();
+    t.sim.WriteCheckpoint(again);
+    EXPECT_TRUE(bytesOf(again) == bytesOf(t.good));
+}
+
+// A write that fails midway (a full disk, a crash) leaves the previous checkpoint as it was.
+TEST_F(Checkpoint, FailedWriteKeepsThePreviousCheckpoint) {
+    BadFileSetup t(dir);
+    const std::string p = (dir / "run.ckpt").string();
+    t.sim.WriteCheckpoint(p);
+    const std::string previous = bytesOf(p);
+    for (int k = 0; k < 20; k++) t.sim.DoStepDynamics();
+    failAtomicFilesAfterBytes(4096);
+    const std::string msg = demeErrorMessage([&] { t.sim.WriteCheckpoint(p); });
+    failAtomicFilesAfterBytes(0);
+    EXPECT_TRUE(has(msg, "WriteCheckpoint") && has(msg, "unchanged")) << msg;
+    EXPECT_TRUE(bytesOf(p) == previous);
+    size_t files = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.path().filename().string()[0] == '.';
+    EXPECT_EQ(files, 0u) << "a temporary file was left behind";
+    t.sim.ReadCheckpoint(p);  // and it still reads
+}
+
+// CPU -> GPU and GPU -> CPU (a GpuParity test: tests/gpu/run.sh runs it; skipped without a GPU). The GPU sums contact forces
+// in another order, so its trajectories are not the CPU's bit for bit; measured here: how far a GPU
+// run of 2N steps ends from the CPU's (the spread between the backends), and the continued runs
+// must end no farther from the CPU's straight run than twice that (the restarted ones share N
+// steps with one side, so a history lost or a clock not restored would show as a larger jump).
+TEST(GpuParity, CheckpointContinuesOnTheOtherBackend) {
+    if (!gpuPresent()) GTEST_SKIP() << "no usable GPU";
+    ScratchDir scratch;
+    const std::filesystem::path& dir = scratch.path();
+    auto run = [&](const std::string& first, const std::string& second, const std::string& out) {
+        CheckpointScene sc;
+        sc.backend = first;
+        const std::string mid = (dir / ("mid_" + first + ".ckpt")).string();
+        {
+            DEMSolver sim;
+            buildCheckpointScene(sim, sc);
+            checkpointScenePhase1(sim, sc, N);
+            sim.WriteCheckpoint(mid);
+        }
+        sc.backend = second;
+        DEMSolver sim;
+        buildCheckpointScene(sim, sc);
+        EXPECT_EQ(sim.GetBackend(), second);
+        sim.ReadCheckpoint(mid);
+        for (size_t k = 0; k < N; k++) sim.DoStepDynamics();
+        sim.WriteCheckpoint(out);
+        return savedState(out, 0, 0);
+    };
+    const Saved cpu = run("cpu", "cpu", (dir / "cc.ckpt").string());
+    const Saved gpu = run("cuda", "cuda", (dir / "gg.ckpt").string());
+    const Saved cpuThenGpu = run("cpu", "cuda", (dir / "cg.ckpt").string());
+    const Saved gpuThenCpu = run("cuda", "cpu", (dir / "gc.ckpt").string());
+    auto maxDistance = [](const Saved& a, const Saved& b) {
+        double d = 0.0;
+        for (size_t o = 0; o < a.state.numClumps; o++)
+            d = std::max(d, length(a.state.cache.ownerPos[o] - b.state.cache.ownerPos[o]));
+        return d;
+    };
+    const double spread = maxDistance(gpu, cpu);
+    std::printf("GPU vs CPU after %zu steps: %.3g m; CPU->GPU restart %.3g m, GPU->CPU restart %.3g m\n", 2 * N,
+                spread, maxDistance(cpuThenGpu, cpu), maxDistance(gpuThenCpu, cpu));
+    EXPECT_EQ(cpuThenGpu.time, cpu.time);
+    EXPECT_EQ(gpuThenCpu.step, cpu.step);
+    EXPECT_LE(maxDistance(cpuThenGpu, cpu), 2.0 * spread + 1e-7);
+    EXPECT_LE(maxDistance(gpuThenCpu, cpu), 2.0 * spread + 1e-7);
+    EXPECT_GT(histories(cpuThenGpu.state).size(), 20u);
+}
