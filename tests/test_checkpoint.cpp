@@ -175,6 +175,58 @@ TEST_F(Checkpoint, RestartCarriesAllWildcardsAndPersistentContacts) {
     expectRestartIsExact(sc, dir);
 }
 
+// Grains added (two batches through UpdateClumps) and removed (RemoveClumpsInFamily, with the
+// "remove" exit policy on) before the checkpoint: the restarted run holds the same owners, ids and
+// removed totals, and goes on bit for bit.
+TEST_F(Checkpoint, RestartAfterInsertionsAndRemovalsIsBitForBit) {
+    const CheckpointScene sc;  // synchronous, fixed n_max
+    const std::string ref = (dir / "straight.ckpt").string(), mid = (dir / "mid.ckpt").string(),
+                      end = (dir / "restarted.ckpt").string();
+    auto firstHalf = [&](DEMSolver& sim) {
+        auto pile = buildCheckpointScene(sim, sc);
+        sim.SetDomainExitPolicy("remove");
+        for (size_t k = 0; k < N / 2; k++) sim.DoStepDynamics();
+        const auto tmpl = pile->GetTypes()[0];
+        auto stays = sim.AddClumps(tmpl, HCPSampler(0.0082f).SampleBox(make_float3(0, 0, -0.012f),
+                                                                         make_float3(0.02f, 0.02f, 0.003f)));
+        auto goes = sim.AddClumps(tmpl, HCPSampler(0.0082f).SampleBox(make_float3(0, 0, 0.01f),
+                                                                        make_float3(0.02f, 0.02f, 0.003f)));
+        goes->SetFamily(7);
+        sim.UpdateClumps();
+        for (size_t k = 0; k < N / 4; k++) sim.DoStepDynamics();
+        EXPECT_GT(sim.RemoveClumpsInFamily(7), 10u);
+        checkpointScenePhase1(sim, sc, N / 4);
+        return stays->GetNumClumps();
+    };
+    size_t clumps = 0, removed = 0;
+    double removedMass = 0.0;
+    {
+        DEMSolver sim;
+        firstHalf(sim);
+        for (size_t k = 0; k < N; k++) sim.DoStepDynamics();
+        sim.WriteCheckpoint(ref);
+        clumps = sim.GetNumClumps();
+        removed = sim.GetNumRemovedClumps();
+        removedMass = sim.GetRemovedMass();
+    }
+    {
+        DEMSolver sim;
+        const size_t added = firstHalf(sim);
+        EXPECT_GT(added, 10u);
+        sim.WriteCheckpoint(mid);
+    }
+    DEMSolver sim;  // the new process's solver: the scene up to Initialize(), then the checkpoint
+    buildCheckpointScene(sim, sc);
+    sim.ReadCheckpoint(mid);
+    for (size_t k = 0; k < N; k++) sim.DoStepDynamics();
+    sim.WriteCheckpoint(end);
+    EXPECT_EQ(sim.GetNumClumps(), clumps);
+    EXPECT_EQ(sim.GetNumRemovedClumps(), removed);
+    EXPECT_GT(removed, 10u);
+    EXPECT_EQ(sim.GetRemovedMass(), removedMass);
+    expectSameRun(savedState(ref, 0, 0), savedState(end, 0, 0), true);
+}
+
 // A real restart: the first half in one process, the second in another (tools/checkpoint_run.cpp),
 // against the straight run in this one.
 TEST_F(Checkpoint, RestartInANewProcessIsBitForBit) {
@@ -211,10 +263,11 @@ struct BadFileSetup {
             checkpointScenePhase1(writer, sc, 200);
             writer.WriteCheckpoint(good);
         }
-        buildCheckpointScene(sim, sc);
+        pile = buildCheckpointScene(sim, sc);
         for (int k = 0; k < 50; k++) sim.DoStepDynamics();
         sim.WriteCheckpoint(before);
     }
+    std::shared_ptr<DEMClumpBatch> pile;
     // The error that reading `path` gives; the solver must be as it was (the same checkpoint bytes).
     std::string errorReading(const std::string& path) {
         const std::string msg = demeErrorMessage([&] { sim.ReadCheckpoint(path); });
@@ -305,6 +358,21 @@ TEST_F(Checkpoint, OtherFilesAreErrors) {
     // After all that, the good file still continues the run.
     t.sim.ReadCheckpoint(t.good);
     t.sim.DoStepDynamics();
+}
+
+// Clumps that AddClumps added and that wait for UpdateClumps are not in the state: writing would
+// lose them and reading would replace the state their ids follow. Both are errors until then.
+TEST_F(Checkpoint, ClumpsWaitingForUpdateClumpsAreAnError) {
+    BadFileSetup t(dir);
+    t.sim.AddClumps(t.pile->GetTypes()[0], {make_float3(0, 0, 0.02f)});
+    const std::string onWrite = demeErrorMessage([&] { t.sim.WriteCheckpoint((dir / "w.ckpt").string()); });
+    EXPECT_TRUE(has(onWrite, "WriteCheckpoint") && has(onWrite, "UpdateClumps")) << onWrite;
+    EXPECT_FALSE(std::filesystem::exists(dir / "w.ckpt"));
+    const std::string onRead = demeErrorMessage([&] { t.sim.ReadCheckpoint(t.good); });
+    EXPECT_TRUE(has(onRead, "ReadCheckpoint") && has(onRead, "UpdateClumps")) << onRead;
+    t.sim.UpdateClumps();
+    t.sim.WriteCheckpoint((dir / "w.ckpt").string());
+    EXPECT_TRUE(std::filesystem::exists(dir / "w.ckpt"));
 }
 
 // What was read is what is written back, byte for byte, before any step (the restored contact

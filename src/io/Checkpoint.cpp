@@ -79,6 +79,7 @@ void writeSettings(const Simulation& sim, ByteWriter& out) {
     out.value(s.safetyMultiplier);
     out.value(s.safetyAdder);
     out.bytes(s.familyExtraMargin, sizeof(s.familyExtraMargin));
+    out.value((uint8_t)s.removeLeavingClumps);  // SetDomainExitPolicy
 }
 void readSettings(ByteReader& in, Staging& st) {
     Settings& s = st.settings;
@@ -90,6 +91,7 @@ void readSettings(ByteReader& in, Staging& st) {
     s.safetyAdder = in.value<float>("the margin's safety adder");
     std::memcpy(s.familyExtraMargin, in.take(sizeof(s.familyExtraMargin), "the family margins"),
                 sizeof(s.familyExtraMargin));
+    s.removeLeavingClumps = in.value<uint8_t>("the domain exit policy") != 0;
 }
 
 // Fixed families, prescribed motions (as the expressions' text) and the contact mask: all may

@@ -66,6 +66,8 @@ void writeStateSection(const SimState& s, ByteWriter& out) {
     out.value((uint64_t)s.numAnalyticalOwners);
     out.value((uint32_t)s.numWildcards);
     out.value((uint8_t)s.hasTrackerLoads);
+    out.value((uint64_t)s.numRemovedClumps);  // RemoveClumpsInFamily and the "remove" exit policy
+    out.value(s.removedMass);
     uint64_t records = 0;
     forEachStoredArray(s, [&](const std::string&, const auto&) { records++; });
     records += s.wildcards.owner.size() + s.wildcards.geometry.size();
@@ -102,6 +104,8 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
     s.numAnalyticalOwners = (size_t)in.value<uint64_t>("the analytical owner count");
     s.numWildcards = in.value<uint32_t>("the contact wildcard count");
     s.hasTrackerLoads = in.value<uint8_t>("the tracker load flag") != 0;
+    s.numRemovedClumps = (size_t)in.value<uint64_t>("the removed clump count");
+    s.removedMass = in.value<double>("the removed mass");
     const uint64_t n = in.value<uint64_t>("the record count");
     std::map<std::string, Record> records;
     for (uint64_t i = 0; i < n; i++) {
