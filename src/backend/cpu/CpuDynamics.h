@@ -26,6 +26,7 @@ class CpuDynamics : public DynamicsBackend {
     void beginRun(const Settings&, const FamilyRules&) override {}
     StepOutcome step(double time, const Settings& settings, const FamilyRules& families, bool storeContactForces,
                      TimingStats& timing) override;
+    size_t applyFamilyConditions(double time, const FamilyRules& families) override;
     void markOrderBaseline() override;
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;

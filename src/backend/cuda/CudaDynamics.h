@@ -43,6 +43,7 @@ class CudaDynamics : public DynamicsBackend {
     void beginRun(const Settings& settings, const FamilyRules& families) override;
     StepOutcome step(double time, const Settings& settings, const FamilyRules& families, bool storeContactForces,
                      TimingStats& timing) override;
+    size_t applyFamilyConditions(double time, const FamilyRules& families) override;
     void markOrderBaseline() override;
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;
@@ -78,6 +79,11 @@ class CudaDynamics : public DynamicsBackend {
     CudaModule m_familyModule;
     CudaKernel kFamilyMotion;
     std::string m_familySource;
+    // The family conditions (ChangeFamilyWhen), compiled when they change (CudaFamilyChanges.cpp).
+    CudaModule m_conditionModule;
+    CudaKernel kFamilyConditions;
+    std::string m_conditionSource;
+    DeviceBuffer<unsigned int> m_changedCount;
     double m_compileSeconds = 0.0;
     bool m_fromCache = true;
     // DEME_CUDA_PROFILE_FROM_STEP: the step at which a profiler's capture starts (docs/gpu-tests.md).
