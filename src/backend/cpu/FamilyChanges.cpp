@@ -25,6 +25,7 @@ size_t CpuDynamics::applyFamilyConditions(double time, const FamilyRules& famili
             }
         }
     }
+    if (changed) m_subsetStale = true;
     return changed;
 }
 
