@@ -90,8 +90,8 @@ int main(int argc, char** argv) {
     const std::string backend = argc > 1 ? argv[1] : "cpu";
     const size_t grains = argc > 2 ? (size_t)std::strtoull(argv[2], nullptr, 10) : 1000000;
     const double fraction = argc > 3 ? std::atof(argv[3]) : 0.05;
-    const unsigned long wholeSteps = argc > 4 ? std::strtoul(argv[4], nullptr, 10) : 20;
-    const unsigned long boxSteps = argc > 5 ? std::strtoul(argv[5], nullptr, 10) : 200;
+    const unsigned long wholeSteps = argc > 4 ? std::strtoul(argv[4], nullptr, 10) : 80;
+    const unsigned long boxSteps = argc > 5 ? std::strtoul(argv[5], nullptr, 10) : 400;
     if (backend != "cpu" && backend != "cuda" && backend != "auto") {
         std::fprintf(stderr, "usage: %s [cpu|cuda|auto] [grains] [active fraction] [steps] [box steps]\n", argv[0]);
         return 2;

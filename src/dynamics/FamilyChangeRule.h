@@ -28,10 +28,12 @@ DEME_HD_INLINE void familyConditionInputs(const S& s, size_t o, double t, double
 
 // Whether rule (from -> to) with condition value `holds` (non-zero: true) moves owner o; if so its
 // family becomes `to`. Rules are tried in the order they were given and the first match wins, so an
-// owner changes family at most once per check (a chain a -> b -> c takes two checks).
+// owner changes family at most once per check (a chain a -> b -> c takes two checks). Only clumps
+// change: walls and meshes keep the family they were given (a box condition such as "X > 1" would
+// otherwise catch the floor, whose centre is a point of the plane).
 template <class S>
 DEME_HD_INLINE bool applyFamilyRule(S& s, size_t o, family_t from, family_t to, double holds) {
-    if (s.owners.family[o] != from || holds == 0.0) return false;
+    if (s.owners.type[o] != OWNER_CLUMP || s.owners.family[o] != from || holds == 0.0) return false;
     s.owners.family[o] = to;
     return true;
 }
