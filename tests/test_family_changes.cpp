@@ -8,8 +8,13 @@
 #include "BackendFixture.h"
 #include "BadInputChecks.h"
 #include "TestHelpers.h"
+#include "ScratchDirTest.h"
+#include "backend/cuda/Device.h"
+#include "backend/cuda/NvrtcCompiler.h"
 #include "codegen/Expression.h"
 #include "codegen/FamilyCondition.h"
+#include "codegen/FamilyConditionSource.h"
+#include "jit/KernelCache.h"
 
 using namespace deme;
 using namespace deme_test;
@@ -168,4 +173,37 @@ TEST(ExpressionCondition, ComparisonsAndLogicEvaluateToOneOrZero) {
         {"x", "y", "z", "vx", "vy", "vz", "t"});
     EXPECT_NE(src.find("((x) < (0x1p+0))"), std::string::npos) << src;
     EXPECT_NE(src.find("&&"), std::string::npos) << src;
+}
+
+// The GPU's condition kernel as generated source: comparisons, logic and functions of all seven
+// variables compile for sm_90 to PTX (no GPU needed; skipped in a library built without CUDA).
+class FamilyConditionNvrtc : public deme_test::ScratchDirTest {
+  protected:
+    void SetUp() override {
+        if (!cuda::cudaBackendBuilt()) GTEST_SKIP() << "the library was built without the CUDA backend";
+        ScratchDirTest::SetUp();
+    }
+};
+
+TEST_F(FamilyConditionNvrtc, ConditionKernelCompilesToPtx) {
+    std::vector<FamilyCondition> rules(3);
+    const char* const texts[] = {"X > 0 && !(Y <= 1) || Z == 2", "abs(X - (0.06 + 0.2 * t)) < 0.06 && Vz < 0",
+                                 "sqrt(Vx*Vx + Vy*Vy) >= max(0.1, t) || min(X, Y) != 0"};
+    for (int i = 0; i < 3; i++) {
+        rules[i].from = (family_t)i;
+        rules[i].to = (family_t)(i + 1);
+        rules[i].when = Expression::parseCondition(texts[i], familyConditionVariables(), "test");
+    }
+    const std::string source = familyConditionKernelSource(rules);
+    EXPECT_NE(source.find(kFamilyConditionKernel), std::string::npos);
+    jit::KernelCache cache(dir.string());
+    cuda::CudaCompileOptions options;
+    options.architecture = "compute_90";
+    try {
+        const cuda::CudaCompileResult r =
+            cuda::compileCudaSource("test", "deme_family_conditions.cu", source, options, cache);
+        EXPECT_NE(r.image.find(kFamilyConditionKernel), std::string::npos);
+    } catch (const deme::Error& e) {
+        ADD_FAILURE() << e.what() << "\n" << source;
+    }
 }

@@ -10,25 +10,23 @@ std::string familyConditionKernelSource(const std::vector<FamilyCondition>& cond
          "#include \"dynamics/FamilyChangeRule.h\"\n"
          "#include \"state/StateView.h\"\n"
          "\n"
-         "namespace deme {\n"
-         "// std::min / std::max semantics, as the CPU's evaluator has them.\n"
+         "// std::min / std::max semantics, as the CPU's evaluator has them (outside namespace deme: the\n"
+         "// kernel below is, so that atomicAdd's overloads do not meet deme's vector types).\n"
          "__device__ inline double deme_min(double a, double b) { return b < a ? b : a; }\n"
          "__device__ inline double deme_max(double a, double b) { return a < b ? b : a; }\n"
-         "}  // namespace deme\n"
          "\n"
          "extern \"C\" __global__ void "
       << kFamilyConditionKernel
       << "(deme::StateView s, unsigned int numOwners, double t, unsigned int* changed) {\n"
-         "    using namespace deme;\n"
          "    const unsigned int o = blockIdx.x * blockDim.x + threadIdx.x;\n"
          "    if (o >= numOwners) return;\n"
-         "    double v[FAMILY_CONDITION_VARS];\n"
-         "    familyConditionInputs(s, o, t, v);\n"
+         "    double v[deme::FAMILY_CONDITION_VARS];\n"
+         "    deme::familyConditionInputs(s, o, t, v);\n"
          "    (void)v;\n";
     const std::vector<std::string> vars{"v[0]", "v[1]", "v[2]", "v[3]", "v[4]", "v[5]", "v[6]"};
     for (const FamilyCondition& c : conditions)
-        o << "    if (s.owners.family[o] == " << (unsigned)c.from << "u && applyFamilyRule(s, o, (family_t)"
-          << (unsigned)c.from << ", (family_t)" << (unsigned)c.to << ", " << c.when.toCppSource(vars)
+        o << "    if (s.owners.family[o] == " << (unsigned)c.from << "u && deme::applyFamilyRule(s, o, (deme::family_t)"
+          << (unsigned)c.from << ", (deme::family_t)" << (unsigned)c.to << ", " << c.when.toCppSource(vars)
           << ")) {\n"
              "        atomicAdd(changed, 1u);\n"
              "        return;\n"
