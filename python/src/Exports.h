@@ -22,5 +22,6 @@ void export_solver(py::module_& m);  // DEMSolver: settings, scene, running, out
 void export_solver_scene(py::class_<PySolver>& cls);
 void export_solver_wildcards(py::class_<PySolver>& cls);
 void export_output(py::module_& m, py::class_<PySolver>& cls);  // VTU/PVD, snapshots, progress
+void export_family_changes(py::module_& m, py::class_<PySolver>& cls);  // ChangeFamilyWhen, tracker families
 
 }  // namespace deme_py

@@ -112,6 +112,7 @@ void export_solver(py::module_& m) {
     export_solver_scene(c);
     export_solver_wildcards(c);
     export_output(m, c);
+    export_family_changes(m, c);
 }
 
 }  // namespace deme_py
