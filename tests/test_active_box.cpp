@@ -107,7 +107,7 @@ constexpr double R = 0.01, RHO = 2500, E = 1e8, NU = 0.3, G = 9.81;
 // among itself (the cache serves); otherwise family 1 is fixed with its contacts on (full search).
 struct Stack {
     DEMSolver sim;
-    std::shared_ptr<DEMClumpBatch> top;
+    std::shared_ptr<DEMClumpBatch> top, bed;
     double restZ = 0.0;
     Stack(bool dormant, const std::string& backend = "") {
         sim.SetVerbosity("QUIET");
@@ -118,8 +118,8 @@ struct Stack {
         std::vector<float3> bed;
         for (int i = -2; i <= 2; i++)
             for (int j = -2; j <= 2; j++) bed.push_back(make_float3((float)(2 * R * i), (float)(2 * R * j), 0.f));
-        auto b = sim.AddClumps(tmpl, bed);
-        b->SetFamily(1);
+        this->bed = sim.AddClumps(tmpl, bed);
+        this->bed->SetFamily(1);
         // Static overlap of two equal spheres (Hertz): m g = 4/3 E* sqrt(R/2) d^1.5, E* = E / (2 (1 - nu^2)).
         const double m = sphereMass(R, RHO);
         const double d = std::pow(m * G / (4.0 / 3.0 * effectiveModulus(E, NU) * std::sqrt(R / 2)), 2.0 / 3.0);
@@ -141,12 +141,21 @@ DEME_BACKEND_TEST(ActiveBox, DormantGrainsHoldUpAnActiveGrainAtTheHertzOverlap) 
     Stack st(true);
     st.sim.Initialize();
     auto tr = st.sim.Track(st.top);
+    auto bedTr = st.sim.Track(st.bed);
+    const float3 under = bedTr->Pos(12);  // the middle one, (0, 0)
     st.sim.DoDynamics(0.1);
     const double overlap = 2 * R - st.restZ;
     EXPECT_NEAR(tr->Pos().z, st.restZ, 0.01 * overlap);
     EXPECT_NEAR(tr->Pos().x, 0.0, 1e-9);
     EXPECT_LT(std::fabs(tr->Vel().z), 1e-3);
     EXPECT_EQ(st.sim.GetNumContacts(), 1u);  // the one active-dormant pair; dormant pairs are not resolved
+    // The dormant grain under it carries its weight (a dormant grain's contact forces are still
+    // summed, though it is not integrated); one without contacts carries nothing.
+    const double weight = sphereMass(R, RHO) * G;
+    EXPECT_NEAR(bedTr->ContactForce(12).z, -weight, 0.01 * weight);
+    EXPECT_EQ(bedTr->ContactForce(0).z, 0.f);  // a corner
+    EXPECT_EQ(bedTr->Pos(12).z, under.z);      // not moved by it
+    EXPECT_EQ(bedTr->Vel(12).z, 0.f);
 }
 
 // The active grains' motion is the same bit for bit whether the dormant grains are cached (their

@@ -63,6 +63,10 @@ class CudaDynamics : public DynamicsBackend {
     void select() const;
     void compileKernels(const ModelLayout& layout);
     void prepareFamilyMotion(const FamilyRules& families);
+    // Compiles generated source (a family kernel) for this GPU, found in the kernel cache after the
+    // first time; the module keeps the kernel alive.
+    void compileGenerated(const char* program, const std::string& source, const char* kernelName, CudaModule& module,
+                          CudaKernel& kernel);
     void refreshView();
 
     int m_device = 0;

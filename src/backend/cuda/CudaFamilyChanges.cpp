@@ -6,8 +6,6 @@
 
 #include "backend/cuda/CudaCheck.h"
 #include "backend/cuda/CudaDynamics.h"
-#include "backend/cuda/Device.h"
-#include "backend/cuda/NvrtcCompiler.h"
 #include "codegen/FamilyConditionSource.h"
 
 namespace deme::cuda {
@@ -16,13 +14,8 @@ size_t CudaDynamics::applyFamilyConditions(double time, const FamilyRules& famil
     select();
     std::string source = familyConditionKernelSource(families.conditions());
     if (source != m_conditionSource) {
-        CudaCompileOptions opt;
-        opt.architecture = useDevice("DoDynamics", m_device).architecture();
-        const CudaCompileResult r = compileCudaSource("DoDynamics", "deme_family_conditions.cu", source, opt);
-        m_compileSeconds += r.compileSeconds;
-        m_fromCache = m_fromCache && r.cacheHit;
-        m_conditionModule = CudaModule("DoDynamics", r.image);
-        kFamilyConditions = m_conditionModule.kernel(kFamilyConditionKernel);
+        compileGenerated("deme_family_conditions.cu", source, kFamilyConditionKernel, m_conditionModule,
+                         kFamilyConditions);
         m_conditionSource = std::move(source);
     }
     if (m_changedCount.size() != 1) m_changedCount.resizeDiscarding(1);
