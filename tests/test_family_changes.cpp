@@ -35,7 +35,7 @@ struct Row {
     DEMSolver sim;
     std::shared_ptr<DEMClumpBatch> batch;
     std::shared_ptr<DEMTracker> tr;
-    Row() {
+    explicit Row(bool sync = true) {
         sim.SetVerbosity("QUIET");
         auto mat = sim.LoadMaterial(material(1e8, 0.3, 0.5, 0.5));
         sim.InstructBoxDomainDimension(4, 4, 4);
@@ -51,7 +51,7 @@ struct Row {
         sim.SetFamilyFixed(1);
         sim.SetInitTimeStep(DT);
         sim.SetGravitationalAcceleration(make_float3(0, 0, 0));
-        sim.SetSynchronousContactDetection(true);
+        sim.SetSynchronousContactDetection(sync);
         sim.DisableAdaptiveUpdateFreq();
         sim.SetCDUpdateFreq(CD_FREQ);
     }
@@ -62,8 +62,9 @@ struct Row {
 // The test: every grain that crosses the plane x = 0 is frozen (family 1 is fixed) just past
 // it, and no other grain is touched. A grain is checked at each detection, so it is frozen at most
 // one detection interval (CD_FREQ steps) after it crossed: 0 < x <= v * CD_FREQ * dt.
-DEME_BACKEND_TEST(FamilyChanges, ChangeFamilyWhenFreezesEveryGrainThatCrossesAPlane) {
-    Row row;
+// With asynchronous detection the check runs when an order is sent, at most CD_FREQ steps apart too.
+static void freezeAtPlane(bool sync) {
+    Row row(sync);
     row.sim.ChangeFamilyWhen(0, 1, "X > 0");
     row.sim.Initialize();
     row.tr = row.sim.Track(row.batch);
@@ -91,6 +92,9 @@ DEME_BACKEND_TEST(FamilyChanges, ChangeFamilyWhenFreezesEveryGrainThatCrossesAPl
     }
     EXPECT_EQ(frozen, N / 2);
 }
+
+DEME_BACKEND_TEST(FamilyChanges, ChangeFamilyWhenFreezesEveryGrainThatCrossesAPlane) { freezeAtPlane(true); }
+DEME_BACKEND_TEST(FamilyChanges, ChangeFamilyWhenFreezesAtPlaneWithAsynchronousDetection) { freezeAtPlane(false); }
 
 // A condition of time and velocity, with || and !: all grains faster than 1 m/s change family once
 // t > 0.1 s; the others keep theirs; a second call goes on checking.
