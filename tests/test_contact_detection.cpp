@@ -19,46 +19,6 @@
 using namespace deme;
 using namespace deme_test;
 
-namespace {
-
-std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, double margin, const uint8_t* mask,
-                                                   const float* extra) {
-    std::set<std::pair<bodyID_t, bodyID_t>> pairs;
-    const size_t nS = s.spheres.size();
-    std::vector<double3> p(nS);
-    for (size_t i = 0; i < nS; i++) {
-        const bodyID_t o = s.spheres.owner[i];
-        const double3 op =
-            decodePosition(s.owners.voxel[o], s.owners.subX[o], s.owners.subY[o], s.owners.subZ[o], s.frame);
-        p[i] = localPointToGlobal(op, s.owners.oriQ[o], s.spheres.relPos[i]);
-    }
-    auto famOf = [&](bodyID_t o) { return (size_t)s.owners.family[o]; };
-    auto m = [&](bodyID_t o) { return margin + (double)extra[famOf(o)]; };
-    for (size_t a = 0; a < nS; a++) {
-        for (size_t b = a + 1; b < nS; b++) {
-            const bodyID_t oa = s.spheres.owner[a], ob = s.spheres.owner[b];
-            if (oa == ob || !mask[famOf(oa) * NUM_FAMILIES + famOf(ob)]) continue;
-            const double reach = ((double)s.spheres.radius[a] + m(oa)) + ((double)s.spheres.radius[b] + m(ob));
-            const double3 d = p[a] - p[b];
-            if (dot(d, d) < reach * reach) pairs.insert({(bodyID_t)a, (bodyID_t)b});
-        }
-        for (size_t k = 0; k < s.analytical.size(); k++) {
-            const bodyID_t ob = s.analytical.owner[k];
-            if (!mask[famOf(s.spheres.owner[a]) * NUM_FAMILIES + famOf(ob)]) continue;
-            const double3 wp = to_double3(s.analytical.relPos[k]);
-            const double3 wd = to_double3(s.analytical.relDir[k]);
-            const double dist =
-                s.analytical.type[k] == ANAL_PLANE
-                    ? planeSignedDistance(p[a], wp, wd)
-                    : cylinderSignedDistance(p[a], wp, wd, s.analytical.radius[k], s.analytical.inside[k] != 0);
-            if (dist < ((double)s.spheres.radius[a] + m(s.spheres.owner[a])) + m(ob))
-                pairs.insert({(bodyID_t)a, (bodyID_t)(nS + k)});
-        }
-    }
-    return pairs;
-}
-
-}  // namespace
 
 TEST(ContactDetection, MatchesBruteForceExactly) {
     const DetectionRules dr;

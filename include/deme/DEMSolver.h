@@ -195,6 +195,14 @@ class DEMSolver {
     void EnableContactBetweenFamilies(unsigned int a, unsigned int b);
     // Moves every owner of family `from` to family `to` (before or between DoDynamics calls).
     void ChangeFamily(unsigned int from, unsigned int to);
+    // Moves each owner of family `from` whose state satisfies `condition` to family `to`, checked at
+    // every contact detection for the rest of the run (docs/active-box.md). The condition is an
+    // expression of the owner's centre X, Y, Z and velocity Vx, Vy, Vz (global frame) and the time
+    // t, with comparisons and && || !, e.g. "Z < 0.1 && abs(X - 0.5*t) < 0.2". Conditions are tried
+    // in the order given; an owner changes family at most once per check.
+    void ChangeFamilyWhen(unsigned int from, unsigned int to, const std::string& condition);
+    // Removes every condition given by ChangeFamilyWhen.
+    void ClearFamilyChangeConditions();
 
     // ---- Trackers and inspectors ----
     std::shared_ptr<DEMTracker> Track(const std::shared_ptr<DEMClumpBatch>& batch);

@@ -70,6 +70,13 @@ class DEMTracker {
     void SetPositions(const std::vector<float3>& pos);
     void SetVelocities(const std::vector<float3>& vel);
 
+    // The family of one owner, or of every owner (GetNumOwners() values, all checked before any is
+    // applied), between DoDynamics calls; the next step re-detects contacts (docs/active-box.md).
+    void SetFamily(unsigned int family, size_t offset = 0);
+    void SetFamilies(const unsigned int* families);
+    void SetFamilies(const std::vector<unsigned int>& families);
+    std::vector<unsigned int> GetFamilies() const;
+
     size_t GetNumOwners() const { return m_count; }
     // The owner's id in user order: clumps in the order they were added, then external objects.
     size_t GetOwnerID(size_t offset = 0) const;

@@ -24,5 +24,6 @@ void export_solver_wildcards(py::class_<PySolver>& cls);
 void export_scene_edits(py::class_<PySolver>& cls);  // clumps added and removed during a run
 void export_output(py::module_& m, py::class_<PySolver>& cls);  // VTU/PVD, snapshots, progress
 void export_checkpoint(py::class_<PySolver>& cls);                // WriteCheckpoint, ReadCheckpoint
+void export_family_changes(py::module_& m, py::class_<PySolver>& cls);  // ChangeFamilyWhen, tracker families
 
 }  // namespace deme_py

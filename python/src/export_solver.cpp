@@ -116,6 +116,7 @@ void export_solver(py::module_& m) {
     export_scene_edits(c);
     export_output(m, c);
     export_checkpoint(c);
+    export_family_changes(m, c);
 }
 
 }  // namespace deme_py

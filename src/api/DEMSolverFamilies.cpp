@@ -22,6 +22,8 @@ namespace deme {
 // ---------------------------------------------------------------- families
 void DEMSolver::SetFamilyFixed(unsigned int family) {
     m_sim->families.motion(requireFamily("SetFamilyFixed", family)).fixed = true;
+    // After Initialize: detection learns which families are dormant or move (docs/active-box.md).
+    if (m_sim->initialized()) m_sim->invalidateContacts();
 }
 
 namespace {
@@ -44,6 +46,7 @@ void DEMSolver::SetFamilyPrescribedLinVel(unsigned int family, const std::string
     const std::string e[3] = {vx, vy, vz};
     setPrescription(m_sim->families.motion(requireFamily("SetFamilyPrescribedLinVel", family)), false, e,
                     "SetFamilyPrescribedLinVel");
+    if (m_sim->initialized()) m_sim->invalidateContacts();
 }
 
 void DEMSolver::SetFamilyPrescribedAngVel(unsigned int family, const std::string& wx, const std::string& wy,
@@ -51,6 +54,7 @@ void DEMSolver::SetFamilyPrescribedAngVel(unsigned int family, const std::string
     const std::string e[3] = {wx, wy, wz};
     setPrescription(m_sim->families.motion(requireFamily("SetFamilyPrescribedAngVel", family)), true, e,
                     "SetFamilyPrescribedAngVel");
+    if (m_sim->initialized()) m_sim->invalidateContacts();
 }
 
 void DEMSolver::DisableContactBetweenFamilies(unsigned int a, unsigned int b) {

@@ -76,6 +76,24 @@ inline double apply(const Op& op, double a, double b) {
             return op.fn1(a);
         case Op::Fn2:
             return op.fn2(a, b);
+        case Op::Not:
+            return a == 0.0 ? 1.0 : 0.0;
+        case Op::Lt:
+            return a < b ? 1.0 : 0.0;
+        case Op::Le:
+            return a <= b ? 1.0 : 0.0;
+        case Op::Gt:
+            return a > b ? 1.0 : 0.0;
+        case Op::Ge:
+            return a >= b ? 1.0 : 0.0;
+        case Op::Eq:
+            return a == b ? 1.0 : 0.0;
+        case Op::Ne:
+            return a != b ? 1.0 : 0.0;
+        case Op::And:
+            return (a != 0.0 && b != 0.0) ? 1.0 : 0.0;
+        case Op::Or:
+            return (a != 0.0 || b != 0.0) ? 1.0 : 0.0;
         default:
             return 0.0;  // leaves are handled by the callers
     }
@@ -83,14 +101,19 @@ inline double apply(const Op& op, double a, double b) {
 
 class Parser {
   public:
-    Parser(const std::string& text, const std::vector<std::string>& vars, const std::string& call)
-        : s_(text), vars_(vars), call_(call) {}
+    Parser(const std::string& text, const std::vector<std::string>& vars, const std::string& call, bool condition)
+        : s_(text), vars_(vars), call_(call), condition_(condition) {}
 
     std::vector<Op> run() {
         skipWs();
         if (pos_ == s_.size()) fail(0, "the expression is empty");
-        expr();
-        if (pos_ != s_.size()) fail(pos_, "expected an operator (+ - * /) or the end, found " + found());
+        if (condition_)
+            disjunction();
+        else
+            expr();
+        if (pos_ != s_.size())
+            fail(pos_, std::string("expected an operator (+ - * /") + (condition_ ? " < <= > >= == != && ||" : "") +
+                           ") or the end, found " + found());
         return std::move(code_);
     }
 
@@ -98,6 +121,7 @@ class Parser {
     const std::string& s_;
     const std::vector<std::string>& vars_;
     const std::string& call_;
+    const bool condition_;  // comparisons and logic allowed (parseCondition)
     size_t pos_ = 0;
     int depth_ = 0;    // values the code emitted so far leaves on the evaluation stack
     int nesting_ = 0;  // recursion guard, so "((((...1" cannot overflow the C++ stack
@@ -125,9 +149,9 @@ class Parser {
     // Emits one instruction, folding it into a Const when all its operands are constants. In postfix
     // code a Const is a whole subexpression, so trailing Consts are exactly this op's operands.
     void emit(Op op) {
-        const int nIn = (op.code == Op::Const || op.code == Op::Var) ? 0
-                        : (op.code == Op::Neg || op.code == Op::Fn1) ? 1
-                                                                     : 2;
+        const int nIn = (op.code == Op::Const || op.code == Op::Var)                     ? 0
+                        : (op.code == Op::Neg || op.code == Op::Fn1 || op.code == Op::Not) ? 1
+                                                                                           : 2;
         depth_ += 1 - nIn;  // pops nIn values, pushes one (folded or not)
         if (depth_ > Expression::kMaxStack) fail(pos_, "the expression is too complex to evaluate");
         const size_t n = code_.size();
@@ -139,6 +163,52 @@ class Parser {
             op.value = v;
         }
         code_.push_back(op);
+    }
+
+    // Conditions only: || below &&, below !, below one comparison of two values.
+    bool at(const char* tok) const { return s_.compare(pos_, std::char_traits<char>::length(tok), tok) == 0; }
+    void disjunction() {
+        conjunction();
+        for (skipWs(); at("||"); skipWs()) {
+            pos_ += 2;
+            conjunction();
+            emit(Op{Op::Or});
+        }
+    }
+    void conjunction() {
+        negation();
+        for (skipWs(); at("&&"); skipWs()) {
+            pos_ += 2;
+            negation();
+            emit(Op{Op::And});
+        }
+    }
+    void negation() {
+        skipWs();
+        if (++nesting_ > 200) fail(pos_, "the expression is nested too deeply");
+        if (peek() == '!' && !at("!=")) {
+            ++pos_;
+            negation();
+            emit(Op{Op::Not});
+        } else {
+            comparison();
+        }
+        --nesting_;
+    }
+    void comparison() {
+        expr();
+        skipWs();
+        static const struct {
+            const char* tok;
+            Op::Code code;
+        } kCmp[] = {{"<=", Op::Le}, {">=", Op::Ge}, {"==", Op::Eq}, {"!=", Op::Ne}, {"<", Op::Lt}, {">", Op::Gt}};
+        for (const auto& c : kCmp)
+            if (at(c.tok)) {
+                pos_ += std::char_traits<char>::length(c.tok);
+                expr();
+                emit(Op{c.code});
+                return;
+            }
     }
 
     void expr() {
@@ -176,7 +246,10 @@ class Parser {
         if (isIdentStart(c)) return identifier();
         if (c == '(') {
             ++pos_;
-            expr();
+            if (condition_)
+                disjunction();
+            else
+                expr();
             expect(')', "')'");
             return;
         }
@@ -266,7 +339,15 @@ class Parser {
 Expression Expression::parse(const std::string& text, const std::vector<std::string>& variables,
                              const std::string& call) {
     Expression e;
-    e.code_ = Parser(text, variables, call).run();
+    e.code_ = Parser(text, variables, call, false).run();
+    e.text_ = text;
+    return e;
+}
+
+Expression Expression::parseCondition(const std::string& text, const std::vector<std::string>& variables,
+                                      const std::string& call) {
+    Expression e;
+    e.code_ = Parser(text, variables, call, true).run();
     e.text_ = text;
     return e;
 }
@@ -291,6 +372,7 @@ double Expression::evaluate(const double* values) const {
                 break;
             case Op::Neg:
             case Op::Fn1:
+            case Op::Not:
                 stack[sp - 1] = apply(op, stack[sp - 1], 0.0);
                 break;
             default:
@@ -328,12 +410,23 @@ std::string Expression::toCppSource(const std::vector<std::string>& variables) c
             case Op::Fn1:
                 stack.back() = std::string("(") + op.name + stack.back() + ")";
                 break;
+            case Op::Not:
+                stack.back() = "((" + stack.back() + ") == 0.0 ? 1.0 : 0.0)";
+                break;
             default: {
                 const std::string b = stack.back();
                 stack.pop_back();
                 std::string& a = stack.back();
                 if (op.code == Op::Fn2) {
                     a = std::string("(") + op.name + "(" + a + ", " + b + "))";
+                } else if (op.code >= Op::Lt) {  // comparisons and logic: 1.0 or 0.0, as evaluate()
+                    const Op::Code k = op.code;
+                    const char* sym = k == Op::Lt ? " < " : k == Op::Le ? " <= " : k == Op::Gt ? " > " : k == Op::Ge ? " >= "
+                                    : k == Op::Eq ? " == " : " != ";
+                    if (k == Op::And || k == Op::Or)
+                        a = "(((" + a + " != 0.0)" + (k == Op::And ? " && " : " || ") + "(" + b + " != 0.0)) ? 1.0 : 0.0)";
+                    else
+                        a = "((" + a + sym + b + ") ? 1.0 : 0.0)";
                 } else {
                     const char* sym = op.code == Op::Add ? " + " : op.code == Op::Sub ? " - " : op.code == Op::Mul ? " * " : " / ";
                     a = "(" + a + sym + b + ")";

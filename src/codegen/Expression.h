@@ -15,7 +15,12 @@
 // Differences from C++ worth knowing:
 //   - All arithmetic is done in double, so integer division does not truncate: 1/2 is 0.5 here.
 //   - '^' is rejected with a hint to use pow(a, b) (in C++ it is bitwise XOR, never a power).
-//   - No comparison, ternary, '%' or other operators.
+//   - No comparison, ternary, '%' or other operators in a value; a condition (parseCondition) adds
+//     comparisons and logic below all of the above:
+//       cond := conj ('||' conj)* ; conj := neg ('&&' neg)* ; neg := '!' neg | cmp
+//       cmp  := expr (('<' | '<=' | '>' | '>=' | '==' | '!=') expr)?   -- true is 1, false 0
+//     Both sides of && and || are evaluated (they have no side effects); a condition holds where
+//     its value is not 0.
 #pragma once
 
 #include <cstdint>
@@ -35,6 +40,10 @@ class Expression {
     static Expression parse(const std::string& text, const std::vector<std::string>& variables,
                             const std::string& call);
 
+    // A condition (see above), e.g. "Z < 0.1 && Vz < 0": its value is 1 where it holds, 0 where not.
+    static Expression parseCondition(const std::string& text, const std::vector<std::string>& variables,
+                                     const std::string& call);
+
     // values[i] is the value of variables[i]; may be null if isConstant().
     double evaluate(const double* values) const;
     bool isConstant() const;  // true if no variable is referenced
@@ -52,7 +61,7 @@ class Expression {
 
     // One postfix instruction. Public only so the .cpp's helpers can build it; not an API.
     struct Op {
-        enum Code : uint8_t { Const, Var, Neg, Add, Sub, Mul, Div, Fn1, Fn2 } code;
+        enum Code : uint8_t { Const, Var, Neg, Add, Sub, Mul, Div, Fn1, Fn2, Not, Lt, Le, Gt, Ge, Eq, Ne, And, Or } code;
         uint32_t var = 0;                         // Var: index into values
         double value = 0.0;                       // Const
         double (*fn1)(double) = nullptr;          // Fn1

@@ -91,6 +91,12 @@ class DynamicsBackend {
     // that reported a fault: which owners left the domain.
     virtual void downloadStepFlags(std::vector<uint8_t>& flags) = 0;
 
+    // Family changes on conditions (families.conditions(), ChangeFamilyWhen) checked for every owner
+    // against the state now, at time `time`; returns how many owners changed family. Run just before
+    // each detection's snapshot (runtime/ContactSetManager), so the new set is built for the new
+    // families.
+    virtual size_t applyFamilyConditions(double time, const FamilyRules& families) = 0;
+
     // Contact sets. markOrderBaseline(): the owners' travel now is the snapshot of an order sent now.
     virtual void markOrderBaseline() = 0;
     // The largest travel of any owner since the last markOrderBaseline().

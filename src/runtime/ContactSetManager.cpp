@@ -41,6 +41,7 @@ void ContactSetManager::detectNow(const Settings& settings, unsigned long long s
     sync(step, timing);  // the kinematics side takes one order at a time
     const double t0 = now();
     m_schedule.beforeSyncDetection(settings.asyncDetection, step, m_stats, timing.seconds[(int)Phase::FORCE]);
+    if (beforeDetection) beforeDetection();
     m_dynamics->markOrderBaseline();
     DetectionReport r;
     m_kinematics->detectNow(orderFor(settings, step, maxSpeed), r);
@@ -83,6 +84,7 @@ void ContactSetManager::prepareStep(const Settings& settings, unsigned long long
     if (m_schedule.shouldOrder(step)) {
         // The kinematics side is idle and the set in use is due for a successor: send the state now.
         PhaseTimer t(timing, Phase::EXCHANGE);
+        if (beforeDetection) beforeDetection();
         m_dynamics->markOrderBaseline();
         m_kinematics->submit(orderFor(settings, step, maxSpeed));
         m_schedule.ordered(m_stats);

@@ -9,6 +9,8 @@
 // it waits for the set in flight or detects on the spot.
 #pragma once
 
+#include <functional>
+
 #include "runtime/Backends.h"
 #include "runtime/CollaborationStats.h"
 #include "runtime/DetectionSchedule.h"
@@ -35,6 +37,10 @@ class ContactSetManager {
     void dropOrderInFlight();
     // A host-side edit of the state: detect afresh before the next step; results in flight are stale.
     void invalidate() { m_schedule.invalidate(); }
+
+    // Called just before each detection takes its snapshot of the state (synchronous or ordered):
+    // the simulation checks the family conditions there (ChangeFamilyWhen). Empty: nothing.
+    std::function<void()> beforeDetection;
 
     unsigned int nMax() const { return m_schedule.nMax(); }
     double margin() const { return m_schedule.margin(); }

@@ -6,6 +6,7 @@
 
 #include <deme/VariableTypes.h>
 
+#include "codegen/FamilyCondition.h"
 #include "codegen/FamilyMotion.h"
 #include "state/FamilyStepMotion.h"
 
@@ -24,6 +25,26 @@ class FamilyRules {
     }
     // 256 x 256 table: 1 where contacts between the two families are resolved.
     const uint8_t* contactMask() const { return m_contactEnabled.data(); }
+    // Family changes on conditions (ChangeFamilyWhen), checked in this order at each detection.
+    std::vector<FamilyCondition>& conditions() { return m_conditions; }
+    const std::vector<FamilyCondition>& conditions() const { return m_conditions; }
+    // Families whose owners are dormant: fixed, and with contacts disabled with every fixed family
+    // (itself included), so that their pairs among each other never need detecting. 1 per family.
+    // And 1 per family with a prescribed velocity component: its owners move.
+    void prescribedFamilies(uint8_t* out) const {
+        for (unsigned int f = 0; f < NUM_FAMILIES; f++) {
+            const FamilyMotion& m = m_motion[f];
+            out[f] = !m.fixed && (m.linPrescribed[0] || m.linPrescribed[1] || m.linPrescribed[2] ||
+                                  m.angPrescribed[0] || m.angPrescribed[1] || m.angPrescribed[2]);
+        }
+    }
+    void dormantFamilies(uint8_t* out) const {
+        for (unsigned int f = 0; f < NUM_FAMILIES; f++) {
+            out[f] = m_motion[f].fixed ? 1 : 0;
+            for (unsigned int g = 0; g < NUM_FAMILIES && out[f]; g++)
+                if (m_motion[g].fixed && m_contactEnabled[f * NUM_FAMILIES + g]) out[f] = 0;
+        }
+    }
 
     // Evaluates every family's prescription at time t.
     void evaluate(double t, std::array<FamilyStepMotion, NUM_FAMILIES>& out) const {
@@ -52,6 +73,7 @@ class FamilyRules {
   private:
     std::array<FamilyMotion, NUM_FAMILIES> m_motion;
     std::vector<uint8_t> m_contactEnabled;
+    std::vector<FamilyCondition> m_conditions;
 };
 
 }  // namespace deme

@@ -37,6 +37,10 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     applyDetectionMode();
     m_backends = makeBackends(m_state, m_model, settings, [this](Verbosity v, const std::string& msg) { log(v, msg); });
     m_contacts.start(settings, *m_backends.dynamics, *m_backends.kinematics);
+    // ChangeFamilyWhen is checked at each detection (docs/active-box.md says why).
+    m_contacts.beforeDetection = [this] {
+        if (!families.conditions().empty()) m_backends.dynamics->applyFamilyConditions(m_time, families);
+    };
     m_backendStale = true;
     m_hostStale = false;
     m_initialized = true;

@@ -22,7 +22,7 @@
     X(oriQ, oriQ_t, EVOLVES)                                                                               \
     X(vel, float3, EVOLVES)    /* global frame */                                                          \
     X(angVel, float3, EVOLVES) /* local (body) frame */                                                    \
-    X(family, family_t, INPUT)                                                                             \
+    X(family, family_t, EVOLVES) /* ChangeFamilyWhen changes it on the device */                         \
     X(type, uint8_t, INPUT)           /* OwnerType */                                                      \
     X(dynamic, uint8_t, INPUT)        /* 1: moved by forces (clumps, free meshes); 0: kinematic */         \
     X(inertia, inertiaID_t, INPUT)    /* index into the mass properties */                                 \

@@ -7,19 +7,33 @@
 
 namespace deme {
 
-void BinRegistry::build(const BinGrid& grid, size_t n) {
+namespace {
+
+// Counting sort of items id(0) .. id(n - 1) into the bins their boxes touch.
+template <class Id>
+void buildBins(BinRegistry& r, const BinGrid& grid, size_t n, Id id) {
     const size_t nBins = (size_t)grid.numBins();
-    start.assign(nBins + 1, 0);
+    r.start.assign(nBins + 1, 0);
     auto forEachBin = [&](size_t i, auto&& fn) {
-        for (int32_t z = lo[3 * i + 2]; z <= hi[3 * i + 2]; z++)
-            for (int32_t y = lo[3 * i + 1]; y <= hi[3 * i + 1]; y++)
-                for (int32_t x = lo[3 * i + 0]; x <= hi[3 * i + 0]; x++) fn((size_t)binIndex(grid, x, y, z));
+        for (int32_t z = r.lo[3 * i + 2]; z <= r.hi[3 * i + 2]; z++)
+            for (int32_t y = r.lo[3 * i + 1]; y <= r.hi[3 * i + 1]; y++)
+                for (int32_t x = r.lo[3 * i + 0]; x <= r.hi[3 * i + 0]; x++) fn((size_t)binIndex(grid, x, y, z));
     };
-    for (size_t i = 0; i < n; i++) forEachBin(i, [&](size_t b) { start[b + 1]++; });
-    for (size_t b = 0; b < nBins; b++) start[b + 1] += start[b];
-    entries.resize(start[nBins]);
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (size_t i = 0; i < n; i++) forEachBin(i, [&](size_t b) { entries[fill[b]++] = (uint32_t)i; });
+    for (size_t k = 0; k < n; k++) forEachBin(id(k), [&](size_t b) { r.start[b + 1]++; });
+    for (size_t b = 0; b < nBins; b++) r.start[b + 1] += r.start[b];
+    r.entries.resize(r.start[nBins]);
+    std::vector<uint32_t> fill(r.start.begin(), r.start.end() - 1);
+    for (size_t k = 0; k < n; k++) forEachBin(id(k), [&](size_t b) { r.entries[fill[b]++] = (uint32_t)id(k); });
+}
+
+}  // namespace
+
+void BinRegistry::build(const BinGrid& grid, size_t n) {
+    buildBins(*this, grid, n, [](size_t k) { return k; });
+}
+
+void BinRegistry::build(const BinGrid& grid, const bodyID_t* ids, size_t n) {
+    buildBins(*this, grid, n, [ids](size_t k) { return (size_t)ids[k]; });
 }
 
 void ContactDetector::detect(const SimState& s, const BinGrid& grid, double margin, const uint8_t* familyMask,
@@ -29,16 +43,25 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
     const size_t nS = s.spheres.size();
     const size_t nT = s.triangles.size();
     DetectionArgs args{grid, margin, familyExtraMargin, familyMask, {}, {}, nullptr, nullptr};
+    // The active box: with dormant spheres cached, only the moving ones are binned and searched.
+    const bool dormant = m_dormant.prepare(s, grid, familyMask, familyExtraMargin);
+    const bodyID_t* searched = dormant ? m_dormant.moving().data() : nullptr;  // null: every sphere
+    const size_t nSearched = dormant ? m_dormant.moving().size() : nS;
+    auto sphereAt = [searched](size_t k) { return searched ? (size_t)searched[k] : k; };
 
     // 1. Every geometry, enlarged by its margin, is registered in each bin its box touches.
     m_spheres.resize(nS);
-#pragma omp parallel for schedule(static) if (nS > PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < nS; i++) {
+#pragma omp parallel for schedule(static) if (nSearched > PARALLEL_MIN_ITEMS)
+    for (size_t k = 0; k < nSearched; k++) {
+        const size_t i = sphereAt(k);
         double3 lo, hi;
         sphereBox(s, args, i, lo, hi);
         storeBinBox(binBox(grid, lo, hi), i, m_spheres.lo.data(), m_spheres.hi.data());
     }
-    m_spheres.build(grid, nS);
+    if (dormant)
+        m_spheres.build(grid, searched, nSearched);
+    else
+        m_spheres.build(grid, nS);
     m_triLo.resize(nT);
     m_triHi.resize(nT);
     m_triangles.resize(nT);
@@ -51,11 +74,13 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
     if (nT) args.triangleBins = m_triangles.view();
     args.triLo = m_triLo.data();
     args.triHi = m_triHi.data();
+    const DormantBinsView dormantBins = m_dormant.view();
     const auto t1 = std::chrono::steady_clock::now();
     binningSeconds += std::chrono::duration<double>(t1 - t0).count();
 
-    // 2. Pair search, per sphere, each thread over a contiguous range of spheres.
-    const int T = nS > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
+    // 2. Pair search, per sphere, each thread over a contiguous range of spheres; a moving sphere's
+    // dormant partners after its own (such pairs are keyed by the lower id, sorted below).
+    const int T = nSearched > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
     m_threadOut.resize(T);
 #pragma omp parallel num_threads(T) if (T > 1)
     {
@@ -66,22 +91,34 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
         mine.type.clear();
         std::vector<bodyID_t> partners(64);
         size_t begin, end;
-        threadRange(nS, t, T, begin, end);
-        for (size_t a = begin; a < end; a++) {
-            unsigned int n = spherePartners(s, args, (bodyID_t)a, partners.data(), (unsigned int)partners.size());
+        threadRange(nSearched, t, T, begin, end);
+        for (size_t k = begin; k < end; k++) {
+            const bodyID_t a = (bodyID_t)sphereAt(k);
+            unsigned int n = spherePartners(s, args, a, partners.data(), (unsigned int)partners.size());
             if (n > partners.size()) {
                 partners.resize(2 * (size_t)n);
-                n = spherePartners(s, args, (bodyID_t)a, partners.data(), (unsigned int)partners.size());
+                n = spherePartners(s, args, a, partners.data(), (unsigned int)partners.size());
             }
-            for (unsigned int k = 0; k < n; k++) {
-                mine.geomA.push_back((bodyID_t)a);
-                mine.geomB.push_back(partners[k]);
-                mine.type.push_back(contactTypeOf(s, partners[k]));
+            for (unsigned int j = 0; j < n; j++) {
+                mine.geomA.push_back(a);
+                mine.geomB.push_back(partners[j]);
+                mine.type.push_back(contactTypeOf(s, partners[j]));
+            }
+            if (!dormant) continue;
+            n = dormantPartners(s, args, dormantBins, a, partners.data(), (unsigned int)partners.size());
+            if (n > partners.size()) {
+                partners.resize(2 * (size_t)n);
+                n = dormantPartners(s, args, dormantBins, a, partners.data(), (unsigned int)partners.size());
+            }
+            for (unsigned int j = 0; j < n; j++) {
+                mine.geomA.push_back(std::min(a, partners[j]));
+                mine.geomB.push_back(std::max(a, partners[j]));
+                mine.type.push_back((uint8_t)SPHERE_SPHERE);
             }
         }
     }
 
-    // 3. Concatenate in thread order: the result is sorted by (A, B).
+    // 3. Concatenate in thread order: the result is sorted by (A, B), or is sorted so below.
     size_t total = 0;
     for (const auto& t : m_threadOut) total += t.size();
     out.geomA.resize(total);
@@ -94,7 +131,21 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
         std::copy(t.type.begin(), t.type.end(), out.type.begin() + at);
         at += t.size();
     }
+    if (dormant) sortPairs(s, out);
     searchSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+}
+
+// Pairs into (A, B) order; the type follows from B (contactTypeOf), so it need not travel along.
+void ContactDetector::sortPairs(const SimState& s, DetectedContacts& out) {
+    const size_t n = out.size();
+    m_keys.resize(n);
+    for (size_t i = 0; i < n; i++) m_keys[i] = ((uint64_t)out.geomA[i] << 32) | (uint64_t)out.geomB[i];
+    std::sort(m_keys.begin(), m_keys.end());
+    for (size_t i = 0; i < n; i++) {
+        out.geomA[i] = (bodyID_t)(m_keys[i] >> 32);
+        out.geomB[i] = (bodyID_t)(m_keys[i] & 0xFFFFFFFFu);
+        out.type[i] = contactTypeOf(s, out.geomB[i]);
+    }
 }
 
 }  // namespace deme

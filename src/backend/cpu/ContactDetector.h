@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "backend/cpu/DormantCache.h"
 #include "kinematics/DetectionRules.h"
 #include "state/SimState.h"
 
@@ -27,6 +28,8 @@ struct BinRegistry {
     }
     // Stable in item order, so each bin lists its items in increasing id.
     void build(const BinGrid& grid, size_t n);
+    // The same for the items ids[0, n) only (their lo/hi at their own ids).
+    void build(const BinGrid& grid, const bodyID_t* ids, size_t n);
     BinsView view() const { return BinsView{lo.data(), hi.data(), start.data(), entries.data()}; }
 };
 
@@ -38,7 +41,18 @@ class ContactDetector {
     void detect(const SimState& s, const BinGrid& grid, double margin, const uint8_t* familyMask,
                 const float* familyExtraMargin, DetectedContacts& out, double& binningSeconds, double& searchSeconds);
 
+    // The active box (docs/active-box.md): the dormant families, 1 per family, and those with a
+    // prescribed velocity; after setGeometry, with the families in force (drops the cached registry).
+    void setFamilies(const uint8_t* dormant, const uint8_t* prescribed, const SimState& live) {
+        m_dormant.setFamilies(dormant, prescribed, live);
+    }
+    const DormantCache& dormantCache() const { return m_dormant; }
+
   private:
+    // Sorts the pairs by (A, B) (with dormant partners, found from the moving side).
+    void sortPairs(const SimState& s, DetectedContacts& out);
+    DormantCache m_dormant;
+    std::vector<uint64_t> m_keys;
     // Scratch buffers reused between detections.
     BinRegistry m_spheres, m_triangles;
     std::vector<double3> m_triLo, m_triHi;

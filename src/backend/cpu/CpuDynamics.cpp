@@ -18,11 +18,18 @@ void CpuDynamics::upload(const SimState& s) {
     // The steps run on the host state itself; travel is measured from now until the next set.
     m_baseline = s.owners.travel;
     m_orderBaseline = s.owners.travel;
+    m_subsetStale = true;
 }
 
 StepOutcome CpuDynamics::step(double time, const Settings& settings, const FamilyRules& families,
                               bool /*storeContactForces: the CPU stores them in every step*/, TimingStats& timing) {
     StepOutcome out;
+    {
+        PhaseTimer t(timing, Phase::INTEGRATION);
+        families.evaluate(time + settings.dt, m_stepMotion);
+        if (m_subsetStale) m_subset.update(m_s, m_stepMotion);  // after a detection: O(owners)
+        m_subsetStale = false;
+    }
     {
         PhaseTimer t(timing, Phase::FORCE);
         resolveMeshContacts(m_s);
@@ -32,12 +39,11 @@ StepOutcome CpuDynamics::step(double time, const Settings& settings, const Famil
     }
     {
         PhaseTimer t(timing, Phase::REDUCTION);
-        reduceContactForces(m_s);
+        reduceContactForces(m_s, m_subset);
     }
     PhaseTimer t(timing, Phase::INTEGRATION);
-    families.evaluate(time + settings.dt, m_stepMotion);
-    const IntegrationResult ir =
-        integrateOwners(m_s, m_stepMotion, settings.gravity, settings.dt, settings.errorOutVelocity, m_baseline);
+    const IntegrationResult ir = integrateOwners(m_s, m_stepMotion, settings.gravity, settings.dt,
+                                                 settings.errorOutVelocity, m_baseline, m_subset);
     out.maxSpeed = ir.maxSurfaceSpeed;
     out.maxTravel = ir.maxTravel;
     if (ir.fault != OwnerFault::NONE) {
@@ -62,6 +68,7 @@ void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
     installDetectedContacts(m_s, m_kinematics.takenPairs());
     buildOwnerContactIndex(m_s);
     m_baseline.swap(m_orderBaseline);
+    m_subsetStale = true;  // families change only at detections (ChangeFamilyWhen) and uploads
 }
 
 bool CpuDynamics::travelAtSnapshot(std::vector<double>& travel) const {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "backend/cpu/CpuForceModel.h"
+#include "backend/cpu/Integration.h"
 #include "runtime/Backends.h"
 #include "state/FamilyStepMotion.h"
 
@@ -23,10 +24,11 @@ class CpuDynamics : public DynamicsBackend {
     void upload(const SimState& s) override;
     void download(SimState&) override {}
     void uploadTrackerLoads(const SimState&) override {}
-    void beginRun(const Settings&, const FamilyRules&) override {}
+    void beginRun(const Settings&, const FamilyRules&) override { m_subsetStale = true; }
     StepOutcome step(double time, const Settings& settings, const FamilyRules& families, bool storeContactForces,
                      TimingStats& timing) override;
     void downloadStepFlags(std::vector<uint8_t>& flags) override { flags = m_s.integrationScratch.flags; }
+    size_t applyFamilyConditions(double time, const FamilyRules& families) override;
     void markOrderBaseline() override;
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;
@@ -43,6 +45,10 @@ class CpuDynamics : public DynamicsBackend {
     CpuForceModel m_model;
     CpuKinematics& m_kinematics;
     std::array<FamilyStepMotion, NUM_FAMILIES> m_stepMotion;
+    // The owners a step integrates (all but the dormant ones at rest), and whether families or
+    // their rules may have changed since it was made.
+    IntegrationSubset m_subset;
+    bool m_subsetStale = true;
     // Owners' travel at the snapshot of the set in use (baseline) and of the last order.
     std::vector<double> m_baseline, m_orderBaseline;
 };

@@ -13,7 +13,7 @@ CpuKinematics::~CpuKinematics() {
     if (m_thread.joinable()) m_thread.join();
 }
 
-void CpuKinematics::setGeometry(const SimState& /*the live state*/, const BinGrid& grid, const FamilyRules& families,
+void CpuKinematics::setGeometry(const SimState& live, const BinGrid& grid, const FamilyRules& families,
                                 const Settings& settings) {
     if (!m_mailbox.idle())
         throwError("DoDynamics", "internal: the kinematics geometry changed while an order was in flight");
@@ -21,6 +21,12 @@ void CpuKinematics::setGeometry(const SimState& /*the live state*/, const BinGri
     m_familyMask.assign(families.contactMask(), families.contactMask() + NUM_FAMILIES * NUM_FAMILIES);
     m_familyExtraMargin.assign(settings.familyExtraMargin, settings.familyExtraMargin + NUM_FAMILIES);
     m_workGeometryStale = true;  // the worker's copy is made with its next order
+    // The active box: which families are dormant; the cached dormant registries start afresh.
+    uint8_t dormant[NUM_FAMILIES], prescribed[NUM_FAMILIES];
+    families.dormantFamilies(dormant);
+    families.prescribedFamilies(prescribed);
+    m_detector.setFamilies(dormant, prescribed, live);
+    m_workDetector.setFamilies(dormant, prescribed, live);
 }
 
 void CpuKinematics::detectNow(const DetectionOrder& order, DetectionReport& report) {

@@ -10,12 +10,14 @@
 
 namespace deme {
 
-void reduceContactForces(SimState& s) {
+void reduceContactForces(SimState& s, const IntegrationSubset& subset) {
     OwnerArrays& ow = s.owners;
     const ContactArrays& c = s.contacts;
-    const size_t n = ow.size();
+    const bodyID_t* ids = subset.all ? nullptr : subset.reduced.data();
+    const size_t n = subset.all ? ow.size() : subset.reduced.size();
 #pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
-    for (size_t o = 0; o < n; o++) {
+    for (size_t k = 0; k < n; k++) {
+        const size_t o = ids ? (size_t)ids[k] : k;
         float3 F = make_float3(0.f), tau = make_float3(0.f);
         for (uint32_t e = c.ownerStart[o]; e < c.ownerStart[o + 1]; e++) {
             const uint32_t entry = c.ownerEntries[e];
@@ -38,10 +40,13 @@ void reduceContactForces(SimState& s) {
 // afterwards.
 IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,
                                   const float3& gravity, double dt, float errorOutVelocity,
-                                  const std::vector<double>& travelBaseline) {
+                                  const std::vector<double>& travelBaseline, const IntegrationSubset& subset) {
     OwnerArrays& ow = s.owners;
     const size_t n = ow.size();
-    const size_t nSpheres = s.spheres.size();
+    const bodyID_t* ownerIds = subset.all ? nullptr : subset.owners.data();
+    const bodyID_t* sphereIds = subset.all ? nullptr : subset.spheres.data();
+    const size_t nStepped = subset.all ? n : subset.owners.size();
+    const size_t nSpheres = subset.all ? s.spheres.size() : subset.spheres.size();
     const size_t nTris = s.triangles.size();
     const float h = (float)dt;
     const StepConstants consts{gravity, (float)dt, dt, errorOutVelocity * errorOutVelocity, s.frame, s.domainSize};
@@ -59,7 +64,8 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
 #pragma omp parallel if (n > PARALLEL_MIN_ITEMS)
     {
 #pragma omp for simd schedule(static) reduction(max : maxTravel, maxSpeed, anyLarge) reduction(min : firstFault)
-        for (size_t o = 0; o < n; o++) {
+        for (size_t k = 0; k < nStepped; k++) {
+            const size_t o = ownerIds ? (size_t)ownerIds[k] : k;
             const OwnerStepResult r = stepOwner(s, o, familyMotion[ow.family[o]], consts, baseline[o]);
             flags[o] = r.flags;
             maxTravel = r.travelSinceDetection > maxTravel ? r.travelSinceDetection : maxTravel;
@@ -71,15 +77,17 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
         // Rotations too large for the series (over 0.2 rad in one step): rare, done exactly.
         if (anyLarge) {
 #pragma omp for schedule(static)
-            for (size_t o = 0; o < n; o++)
+            for (size_t k = 0; k < nStepped; k++) {
+                const size_t o = ownerIds ? (size_t)ownerIds[k] : k;
                 if (flags[o] & STEP_LARGE_ROTATION) {
                     ow.oriQ[o] = integrateOrientation(ow.oriQ[o], scratch.midAngVel[o], h);
                     s.cache.ownerAngVelGlobal[o] = rotateToGlobal(ow.oriQ[o], ow.angVel[o]);
                 }
+            }
         }
 
 #pragma omp for simd schedule(static)
-        for (size_t i = 0; i < nSpheres; i++) placeSphere(s, i);
+        for (size_t k = 0; k < nSpheres; k++) placeSphere(s, sphereIds ? (size_t)sphereIds[k] : k);
 
             // Triangle vertices of meshes that moved.
 #pragma omp for schedule(static)
@@ -110,6 +118,37 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
     res.fault = fault;
     res.faultOwner = faultOwner;
     return res;
+}
+
+void IntegrationSubset::update(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion) {
+    OwnerArrays& ow = s.owners;
+    const size_t n = ow.size();
+    owners.clear();
+    spheres.clear();
+    reduced.clear();
+    std::vector<uint8_t> stepped(n);
+    for (size_t o = 0; o < n; o++) {
+        const bool atRest = motion[ow.family[o]].fixed && dot(ow.vel[o], ow.vel[o]) == 0.f &&
+                            dot(ow.angVel[o], ow.angVel[o]) == 0.f;
+        stepped[o] = !atRest;
+        if (stepped[o]) owners.push_back((bodyID_t)o);
+    }
+    all = owners.size() == n;
+    if (all) {
+        owners.clear();
+        return;
+    }
+    const std::vector<uint32_t>& start = s.contacts.ownerStart;
+    for (size_t o = 0; o < n; o++) {
+        if (stepped[o] || (start.size() > o + 1 && start[o + 1] > start[o])) {
+            reduced.push_back((bodyID_t)o);
+        } else {
+            ow.contactForce[o] = make_float3(0.f);
+            ow.contactTorque[o] = make_float3(0.f);
+        }
+    }
+    for (size_t i = 0; i < s.spheres.size(); i++)
+        if (stepped[s.spheres.owner[i]]) spheres.push_back((bodyID_t)i);
 }
 
 }  // namespace deme

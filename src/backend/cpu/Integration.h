@@ -17,13 +17,29 @@ struct IntegrationResult {
     size_t faultOwner = 0;  // lowest owner id with a fault
 };
 
-// Sums each owner's contact forces and torques (in a fixed order) into contactForce/contactTorque.
-void reduceContactForces(SimState& s);
+struct IntegrationSubset;
 
-// Advances every owner by dt. `travelBaseline` holds each owner's travel when the contact set in
-// use was detected; the result reports the largest travel since then.
+// Sums each owner's contact forces and torques (in a fixed order) into contactForce/contactTorque:
+// every owner, or those of subset.reduced (the others have no contacts and hold zeros).
+void reduceContactForces(SimState& s, const IntegrationSubset& subset);
+
+// Which owners and spheres a step must integrate and place: all of them, or (with dormant owners,
+// the active box) those of families that are not fixed and the fixed ones not yet at rest. A fixed
+// owner at rest is its own step's result (velocity 0, same pose, no travel), so it is left out.
+struct IntegrationSubset {
+    bool all = true;
+    std::vector<bodyID_t> owners, spheres;  // ascending; used where !all
+    std::vector<bodyID_t> reduced;          // owners stepped or with contacts in the set in use
+    // Recomputed from the families now and their motion rules and the contact set in use (after
+    // uploads, detections and the start of each call: the only times families and the set change).
+    // Zeroes the contact force and torque of the owners left out of `reduced`.
+    void update(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion);
+};
+
+// Advances every owner of `subset` by dt. `travelBaseline` holds each owner's travel when the contact
+// set in use was detected; the result reports the largest travel since then.
 IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,
                                   const float3& gravity, double dt, float errorOutVelocity,
-                                  const std::vector<double>& travelBaseline);
+                                  const std::vector<double>& travelBaseline, const IntegrationSubset& subset);
 
 }  // namespace deme

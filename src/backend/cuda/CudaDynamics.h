@@ -44,6 +44,7 @@ class CudaDynamics : public DynamicsBackend {
     StepOutcome step(double time, const Settings& settings, const FamilyRules& families, bool storeContactForces,
                      TimingStats& timing) override;
     void downloadStepFlags(std::vector<uint8_t>& flags) override;
+    size_t applyFamilyConditions(double time, const FamilyRules& families) override;
     void markOrderBaseline() override;
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;
@@ -66,6 +67,10 @@ class CudaDynamics : public DynamicsBackend {
     void select() const;
     void compileKernels(const ModelLayout& layout);
     void prepareFamilyMotion(const FamilyRules& families);
+    // Compiles generated source (a family kernel) for this GPU, found in the kernel cache after the
+    // first time; the module keeps the kernel alive.
+    void compileGenerated(const char* program, const std::string& source, const char* kernelName, CudaModule& module,
+                          CudaKernel& kernel);
     void refreshView();
 
     int m_device = 0;
@@ -82,6 +87,11 @@ class CudaDynamics : public DynamicsBackend {
     CudaModule m_familyModule;
     CudaKernel kFamilyMotion;
     std::string m_familySource;
+    // The family conditions (ChangeFamilyWhen), compiled when they change (CudaFamilyChanges.cpp).
+    CudaModule m_conditionModule;
+    CudaKernel kFamilyConditions;
+    std::string m_conditionSource;
+    DeviceBuffer<unsigned int> m_changedCount;
     double m_compileSeconds = 0.0;
     bool m_fromCache = true;
     // DEME_CUDA_PROFILE_FROM_STEP: the step at which a profiler's capture starts (docs/gpu-tests.md).

@@ -63,16 +63,21 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     m_forceEnd = end;
 }
 
+void CudaDynamics::compileGenerated(const char* program, const std::string& source, const char* kernelName,
+                                    CudaModule& module, CudaKernel& kernel) {
+    CudaCompileOptions opt;
+    opt.architecture = useDevice("DoDynamics", m_device).architecture();
+    const CudaCompileResult r = compileCudaSource("DoDynamics", program, source, opt);
+    m_compileSeconds += r.compileSeconds;
+    m_fromCache = m_fromCache && r.cacheHit;
+    module = CudaModule("DoDynamics", r.image);
+    kernel = module.kernel(kernelName);
+}
+
 void CudaDynamics::prepareFamilyMotion(const FamilyRules& families) {
     std::string source = familyMotionKernelSource(families.motions());
     if (source == m_familySource) return;
-    CudaCompileOptions opt;
-    opt.architecture = useDevice("DoDynamics", m_device).architecture();
-    const CudaCompileResult r = compileCudaSource("DoDynamics", "deme_family_motion.cu", source, opt);
-    m_compileSeconds += r.compileSeconds;
-    m_fromCache = m_fromCache && r.cacheHit;
-    m_familyModule = CudaModule("DoDynamics", r.image);
-    kFamilyMotion = m_familyModule.kernel(kFamilyMotionKernel);
+    compileGenerated("deme_family_motion.cu", source, kFamilyMotionKernel, m_familyModule, kFamilyMotion);
     m_familySource = std::move(source);
 }
 

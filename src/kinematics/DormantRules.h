@@ -1,0 +1,57 @@
+// Contact detection with dormant spheres (the active box, docs/active-box.md), written once for the
+// CPU's loops (backend/cpu/DormantCache.cpp) and any GPU kernel over the same registry.
+//
+// A dormant sphere belongs to a dormant family (runtime/FamilyRules::dormantFamilies: fixed, no
+// contacts with any fixed family): it never moves and never pairs with another dormant sphere, so
+// its pairs are all with moving geometry and are found from the moving side. Dormant spheres are
+// registered once, each in the one bin that holds its centre, and that registry serves every
+// detection until the set of dormant spheres changes; a margin of any size needs no re-binning,
+// because the moving sphere's search box grows by the largest dormant reach instead.
+//
+// No-miss: a dormant sphere b touches moving sphere a within the margins when |pA - pB| < eA + eB.
+// Since eB <= maxDormantReach + margin, pB lies in the box pA +- (eA + maxDormantReach + margin),
+// whose bins are searched; each dormant sphere is in exactly one bin, so each pair is found once.
+#pragma once
+
+#include "kinematics/DetectionRules.h"
+
+namespace deme {
+
+// Dormant spheres by centre bin: bin b's are items[start[b] .. start[b + 1]), ascending.
+struct DormantBinsView {
+    const uint32_t *start, *items;
+    double maxReach;  // largest radius + family extra margin of a dormant sphere (margin excluded)
+};
+
+// Dormant partners of moving sphere sa (sphere ids, any order) into out[0, capacity); returns how
+// many there are (if more than capacity, call again with room for all).
+template <class S>
+DEME_HD_INLINE unsigned int dormantPartners(const S& s, const DetectionArgs& a, const DormantBinsView& d, bodyID_t sa,
+                                            bodyID_t* out, unsigned int capacity) {
+    const BinGrid& g = a.grid;
+    const double3 pA = s.cache.spherePos[sa];
+    const bodyID_t oA = s.spheres.owner[sa];
+    const double eA = (double)s.spheres.radius[sa] + marginOf(s, a, oA);
+    const double R = eA + d.maxReach + a.margin;
+    const BinBox box = binBox(g, make_double3(pA.x - R, pA.y - R, pA.z - R), make_double3(pA.x + R, pA.y + R, pA.z + R));
+    const uint8_t* maskRow = a.familyMask + (size_t)s.owners.family[oA] * NUM_FAMILIES;
+    unsigned int n = 0;
+    for (int z = box.lo[2]; z <= box.hi[2]; z++)
+        for (int y = box.lo[1]; y <= box.hi[1]; y++)
+            for (int x = box.lo[0]; x <= box.hi[0]; x++) {
+                const uint64_t bin = binIndex(g, x, y, z);
+                for (uint32_t e = d.start[bin]; e < d.start[bin + 1]; e++) {
+                    const bodyID_t b = d.items[e];
+                    const bodyID_t oB = s.spheres.owner[b];
+                    if (!maskRow[s.owners.family[oB]]) continue;
+                    const double reach = eA + (double)s.spheres.radius[b] + marginOf(s, a, oB);
+                    const double3 dd = pA - s.cache.spherePos[b];
+                    if (dot(dd, dd) >= reach * reach) continue;
+                    if (n < capacity) out[n] = b;
+                    n++;
+                }
+            }
+    return n;
+}
+
+}  // namespace deme
