@@ -17,6 +17,7 @@
 #include "kinematics/BinGridSizing.h"
 #include "dynamics/KinematicCache.h"
 #include "backend/cpu/ContactDetector.h"
+#include "kinematics/DormantRules.h"
 #include "runtime/FamilyRules.h"
 
 #include "HostKernelEmulation.h"
@@ -37,47 +38,96 @@ void exclusiveSum(std::vector<unsigned int>& v) {
     }
 }
 
+// A stable sort of (key, item) pairs by key, as CUB's radix sort.
+template <class Key>
+void stableSortPairs(const std::vector<Key>& keys, const std::vector<unsigned int>& items, std::vector<Key>& sortedKeys,
+                     std::vector<unsigned int>& sortedItems) {
+    std::vector<unsigned int> order(keys.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](unsigned int x, unsigned int y) { return keys[x] < keys[y]; });
+    sortedKeys.resize(keys.size());
+    sortedItems.resize(keys.size());
+    for (size_t k = 0; k < keys.size(); k++) {
+        sortedKeys[k] = keys[order[k]];
+        sortedItems[k] = items[order[k]];
+    }
+}
+
 // What the kernels leave for one kind of item (spheres or triangles).
 struct EmulatedBins {
     std::vector<int> lo, hi;
     std::vector<unsigned int> count, keys, items, sortedKeys, sortedItems, start;
 };
 
-// The binning of CudaKinematics::detect, for n items whose boxes `boxes(lo, hi, count)` sets.
+// The binning of CudaKinematics::detect, for items ids[0, n) (all `items` if null) whose boxes
+// `boxes(lo, hi, count)` sets.
 template <class Boxes>
-void emulateBinning(EmulatedBins& b, unsigned int n, const BinGrid& g, size_t numBins, Boxes&& boxes) {
-    b.lo.assign(3 * (size_t)n, 0);
-    b.hi.assign(3 * (size_t)n, 0);
+void emulateBinning(EmulatedBins& b, unsigned int items, const bodyID_t* ids, unsigned int n, const BinGrid& g,
+                    size_t numBins, Boxes&& boxes) {
+    b.lo.assign(3 * (size_t)items, 0);
+    b.hi.assign(3 * (size_t)items, 0);
     b.count.assign(n + 1, 0);
     boxes();
     exclusiveSum(b.count);  // now the offsets
     const unsigned int entries = b.count[n];
     b.keys.assign(entries, 0);
     b.items.assign(entries, 0);
-    runThreads(
-        n, [&] { deme_bin_entries(g, n, b.lo.data(), b.hi.data(), b.count.data(), b.keys.data(), b.items.data()); });
-    // The radix sort by bin is stable.
-    std::vector<unsigned int> order(entries);
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](unsigned int x, unsigned int y) { return b.keys[x] < b.keys[y]; });
-    b.sortedKeys.resize(entries);
-    b.sortedItems.resize(entries);
-    for (unsigned int k = 0; k < entries; k++) {
-        b.sortedKeys[k] = b.keys[order[k]];
-        b.sortedItems[k] = b.items[order[k]];
-    }
+    runThreads(n, [&] {
+        deme_bin_entries(g, ids, n, b.lo.data(), b.hi.data(), b.count.data(), b.keys.data(), b.items.data());
+    });
+    stableSortPairs(b.keys, b.items, b.sortedKeys, b.sortedItems);  // CUB's radix sort by bin
     b.start.assign(numBins + 1, 0);
     runThreads(entries, [&] { deme_bin_counts(b.keys.data(), entries, b.start.data()); });
     exclusiveSum(b.start);
 }
 
+// The dormant registry as DeviceDormantRegistry::rebuild builds it.
+struct EmulatedRegistry {
+    std::vector<bodyID_t> moving;
+    std::vector<unsigned int> start, sortedItems;
+    double maxReach = 0.0;
+    bool blocked = false;  // a movable wall or mesh reaches a dormant family: full search
+};
+
+EmulatedRegistry emulateRegistry(const StateView& v, const BinGrid& grid, const uint8_t* dormant,
+                                 const uint8_t* movable, const uint8_t* mask, const float* extra) {
+    EmulatedRegistry r;
+    const unsigned int nS = v.numSpheres;
+    unsigned int flags[2] = {0u, 0u};
+    runThreads(v.numOwners, [&] { deme_dormant_check(v, v.owners.family, movable, dormant, mask, flags); });
+    EXPECT_EQ(flags[0], 0u);  // checked against the families themselves
+    r.blocked = flags[1] != 0;
+    std::vector<unsigned int> isMoving(nS + 1, 0), isDormant(nS + 1, 0);
+    std::vector<double> reach(nS, 0.0);
+    runThreads(nS, [&] { deme_dormant_flags(v, dormant, extra, isMoving.data(), isDormant.data(), reach.data()); });
+    for (double x : reach) r.maxReach = std::max(r.maxReach, x);
+    exclusiveSum(isMoving);  // now the offsets
+    exclusiveSum(isDormant);
+    r.moving.assign(isMoving[nS], 0);
+    std::vector<unsigned int> keys(isDormant[nS]), items(isDormant[nS]), sortedKeys;
+    runThreads(nS, [&] {
+        deme_dormant_scatter(v, grid, dormant, isMoving.data(), isDormant.data(), r.moving.data(), keys.data(),
+                             items.data());
+    });
+    stableSortPairs(keys, items, sortedKeys, r.sortedItems);
+    r.start.assign(grid.numBins() + 1, 0);
+    runThreads(keys.size(), [&] { deme_bin_counts(keys.data(), (unsigned int)keys.size(), r.start.data()); });
+    exclusiveSum(r.start);
+    return r;
+}
+
 struct EmulatedDetection {
     EmulatedBins spheres, triangles;
+    EmulatedRegistry registry;
+    bool usedRegistry = false;
     DetectedContacts contacts;
 };
 
+// CudaKinematics::detect; with `dormant` (1 per dormant family) and `movable` (1 per owner that
+// can move) as DeviceDormantRegistry::prepare, without them a full search.
 EmulatedDetection emulateDetect(SimState& s, const BinGrid& grid, double margin, const uint8_t* mask,
-                                const float* extra) {
+                                const float* extra, const uint8_t* dormant = nullptr,
+                                const uint8_t* movable = nullptr) {
     StateView v{};
     v.owners.family = s.owners.family.data();
     v.spheres.owner = s.spheres.owner.data();
@@ -99,13 +149,23 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& grid, double margin,
     DetectionArgs args{grid, margin, extra, mask, {}, {}, nullptr, nullptr};
 
     EmulatedDetection r;
-    emulateBinning(r.spheres, nS, grid, grid.numBins(), [&] {
-        runThreads(nS, [&] {
-            deme_sphere_bin_boxes(v, args, r.spheres.lo.data(), r.spheres.hi.data(), r.spheres.count.data());
+    DormantBinsView dormantBins{nullptr, nullptr, 0.0};
+    if (dormant) {
+        r.registry = emulateRegistry(v, grid, dormant, movable, mask, extra);
+        r.usedRegistry = !r.registry.blocked && !r.registry.sortedItems.empty();
+        if (r.usedRegistry)
+            dormantBins = DormantBinsView{r.registry.start.data(), r.registry.sortedItems.data(), r.registry.maxReach};
+    }
+    const bodyID_t* ids = r.usedRegistry ? r.registry.moving.data() : nullptr;
+    const unsigned int nSearched = r.usedRegistry ? (unsigned int)r.registry.moving.size() : nS;
+    emulateBinning(r.spheres, nS, ids, nSearched, grid, grid.numBins(), [&] {
+        runThreads(nSearched, [&] {
+            deme_sphere_bin_boxes(v, args, ids, nSearched, r.spheres.lo.data(), r.spheres.hi.data(),
+                                  r.spheres.count.data());
         });
     });
     std::vector<double3> triLo(nT), triHi(nT);
-    emulateBinning(r.triangles, nT, grid, grid.numBins(), [&] {
+    emulateBinning(r.triangles, nT, nullptr, nT, grid, grid.numBins(), [&] {
         runThreads(nT, [&] {
             deme_triangle_bin_boxes(v, args, triLo.data(), triHi.data(), r.triangles.lo.data(), r.triangles.hi.data(),
                                     r.triangles.count.data());
@@ -118,21 +178,30 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& grid, double margin,
                                      r.triangles.sortedItems.data()};
     args.triLo = triLo.data();
     args.triHi = triHi.data();
-    std::vector<unsigned int> count(nS + 1, 0);
-    runThreads(nS, [&] {
-        deme_pair_search(v, args, count.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr,
-                         (uint8_t*)nullptr);
+    std::vector<unsigned int> count(nSearched + 1, 0);
+    runThreads(nSearched, [&] {
+        deme_pair_search(v, args, dormantBins, ids, nSearched, count.data(), (const unsigned int*)nullptr,
+                         (bodyID_t*)nullptr, (bodyID_t*)nullptr, (uint8_t*)nullptr);
     });
     std::vector<unsigned int> offset = count;
     exclusiveSum(offset);
-    const unsigned int total = offset[nS];
+    const unsigned int total = offset[nSearched];
     DetectedContacts& c = r.contacts;
     c.geomA.assign(total, 0);
     c.geomB.assign(total, 0);
     c.type.assign(total, 0);
-    runThreads(nS, [&] {
-        deme_pair_search(v, args, count.data(), offset.data(), c.geomA.data(), c.geomB.data(), c.type.data());
+    runThreads(nSearched, [&] {
+        deme_pair_search(v, args, dormantBins, ids, nSearched, count.data(), offset.data(), c.geomA.data(),
+                         c.geomB.data(), c.type.data());
     });
+    if (r.usedRegistry) {  // DeviceDormantRegistry::sortPairs
+        std::vector<unsigned long long> keys(total), sortedKeys;
+        std::vector<unsigned int> idx(total), sortedIdx;
+        runThreads(total, [&] { deme_pair_keys(c.geomA.data(), c.geomB.data(), total, keys.data(), idx.data()); });
+        stableSortPairs(keys, idx, sortedKeys, sortedIdx);
+        runThreads(total,
+                   [&] { deme_pairs_from_keys(v, sortedKeys.data(), total, c.geomA.data(), c.geomB.data(), c.type.data()); });
+    }
     return r;
 }
 
@@ -204,6 +273,86 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorExactly) {
     EXPECT_EQ(cases, 12);
 }
 
+// The active box: with a dormant family (fixed, no contacts among fixed families) the kernels build
+// the dormant registry (moving spheres listed, dormant ones by centre bin) and search the moving
+// spheres only, as DeviceDormantRegistry and CudaKinematics::detect run them. The registry and the
+// contact list must be the CPU's cached detector's (backend/cpu/DormantCache.h, itself checked
+// against brute force by ActiveBoxDetection.DormantCacheFindsExactlyTheFullSearchsPairs), pair for
+// pair and in order, for three margins, after a family change, with a still mesh floor, and with a
+// wall that moves (both fall back to the full search).
+TEST(CudaDetectionKernels, DormantRegistryMatchesTheCpuCachedDetectorExactly) {
+    FamilyRules rules;
+    rules.motion(2).fixed = true;   // family 2 is dormant: fixed, ...
+    rules.setContact(2, 2, false);  // ... no contacts among its grains
+    float extra[NUM_FAMILIES] = {};
+    extra[1] = 2e-4f;
+    extra[2] = 1e-4f;  // dormant grains reach further: the search box grows by it
+    uint8_t dormant[NUM_FAMILIES], prescribed[NUM_FAMILIES];
+    rules.dormantFamilies(dormant);
+    rules.prescribedFamilies(prescribed);
+    ASSERT_EQ(dormant[2], 1);
+    int cases = 0;
+    for (unsigned seed : {1u, 2u}) {
+        Scene scene = randomScene(seed, 1200);
+        auto floor = std::make_shared<DEMMeshConnected>(
+            gridFloor(-0.02f, -0.02f, -0.015f, 16, 0.0025f, scene.materials.front()));
+        floor->SetFamily(1);
+        scene.meshes.push_back(floor);
+        SimState s = detectionState(scene, "CudaDetectionKernels");
+        ASSERT_GT(s.triangles.size(), 200u);
+        const BinGrid grid = makeBinGrid(s, 0.0015);
+        ContactDetector det;
+        det.setFamilies(dormant, prescribed, s);
+        auto compare = [&](double margin, bool expectRegistry) {
+            SCOPED_TRACE(testing::Message() << "seed " << seed << ", margin " << margin);
+            std::vector<uint8_t> movable(s.owners.size(), 0);
+            for (size_t k = 0; k < s.analytical.size(); k++)
+                movable[s.analytical.owner[k]] = ownerCanMove(s, prescribed, s.analytical.owner[k]);
+            for (size_t k = 0; k < s.triangles.size(); k++)
+                movable[s.triangles.owner[k]] = ownerCanMove(s, prescribed, s.triangles.owner[k]);
+            const EmulatedDetection gpu =
+                emulateDetect(s, grid, margin, rules.contactMask(), extra, dormant, movable.data());
+            DetectedContacts cpu;
+            double binning = 0.0, search = 0.0;
+            det.detect(s, grid, margin, rules.contactMask(), extra, cpu, binning, search);
+            EXPECT_EQ(gpu.usedRegistry, expectRegistry);
+            if (expectRegistry) {
+                const DormantCache& c = det.dormantCache();
+                EXPECT_EQ(gpu.registry.moving, c.moving());
+                const DormantBinsView cv = c.view();
+                const size_t numBins = grid.numBins();
+                EXPECT_EQ(gpu.registry.start, std::vector<unsigned int>(cv.start, cv.start + numBins + 1));
+                EXPECT_EQ(gpu.registry.sortedItems, std::vector<unsigned int>(cv.items, cv.items + cv.start[numBins]));
+                EXPECT_EQ(gpu.registry.maxReach, cv.maxReach);
+                EXPECT_LT(c.moving().size(), s.spheres.size());
+                EXPECT_GT(c.moving().size(), 0u);
+            }
+            size_t sphereTriangle = 0;
+            for (uint8_t ty : cpu.type) sphereTriangle += ty == SPHERE_TRIANGLE;
+            EXPECT_GT(cpu.size(), 500u);
+            EXPECT_GT(sphereTriangle, 5u);
+            EXPECT_EQ(gpu.contacts.geomA, cpu.geomA);
+            EXPECT_EQ(gpu.contacts.geomB, cpu.geomB);
+            EXPECT_EQ(gpu.contacts.type, cpu.type);
+            cases++;
+        };
+        for (double margin : {0.0, 1e-4, 3e-4}) compare(margin, true);
+        // A grain wakes up, another falls dormant.
+        size_t woke = 0, slept = 0;
+        for (size_t o = 0; o < s.numClumps && (woke == 0 || slept == 0); o++) {
+            if (s.owners.family[o] == 2 && woke == 0) s.owners.family[o] = 0, woke = o + 1;
+            else if (s.owners.family[o] == 0 && slept == 0) s.owners.family[o] = 2, slept = o + 1;
+        }
+        ASSERT_TRUE(woke && slept);
+        compare(2e-4, true);
+        // A wall that moves and reaches dormant grains: the full search.
+        s.owners.vel[s.analytical.owner[0]] = make_float3(0, 0, 0.1f);
+        det.setFamilies(dormant, prescribed, s);
+        compare(1e-4, false);
+    }
+    EXPECT_EQ(cases, 10);
+}
+
 // The case the bin-count kernel exists for: items in a thin slab of a tall grid, so that long runs
 // of bins below and above hold nothing. Every bin's start must still be the first entry at or after
 // it, and the last one the number of entries.
@@ -216,7 +365,7 @@ TEST(CudaDetectionKernels, BinStartsOfAMostlyEmptyGrid) {
     exclusiveSum(count);
     const unsigned int entries = count[3];
     std::vector<unsigned int> keys(entries), items(entries);
-    runThreads(3, [&] { deme_bin_entries(g, 3, lo.data(), hi.data(), count.data(), keys.data(), items.data()); });
+    runThreads(3, [&] { deme_bin_entries(g, nullptr, 3, lo.data(), hi.data(), count.data(), keys.data(), items.data()); });
     std::vector<unsigned int> start(numBins + 1, 0);
     runThreads(entries, [&] { deme_bin_counts(keys.data(), entries, start.data()); });
     exclusiveSum(start);

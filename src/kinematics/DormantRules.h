@@ -23,6 +23,44 @@ struct DormantBinsView {
     double maxReach;  // largest radius + family extra margin of a dormant sphere (margin excluded)
 };
 
+// Whether sphere i is dormant (its owner's family is, `dormant`: 1 per family).
+template <class S>
+DEME_HD_INLINE bool sphereIsDormant(const S& s, const uint8_t* dormant, size_t i) {
+    return dormant[s.owners.family[s.spheres.owner[i]]] != 0;
+}
+
+// The registry's key of dormant sphere i: the bin that holds its centre.
+template <class S>
+DEME_HD_INLINE uint32_t dormantBinOf(const S& s, const BinGrid& g, size_t i) {
+    const double3 p = s.cache.spherePos[i];
+    return (uint32_t)binIndex(g, binCoord(p.x, g.origin.x, g.size, g.nx), binCoord(p.y, g.origin.y, g.size, g.ny),
+                              binCoord(p.z, g.origin.z, g.size, g.nz));
+}
+
+// How far dormant sphere i reaches beyond its centre, the detection margin excluded.
+template <class S>
+DEME_HD_INLINE double dormantReachOf(const S& s, const float* familyExtraMargin, size_t i) {
+    return (double)s.spheres.radius[i] + (double)familyExtraMargin[s.owners.family[s.spheres.owner[i]]];
+}
+
+// Whether owner o can move (of a wall or mesh: whether it could reach a dormant grain): forces move
+// it, its family prescribes a velocity (`prescribed`: 1 per family), or it has a velocity (a
+// kinematic owner keeps its own).
+template <class S>
+DEME_HD_INLINE bool ownerCanMove(const S& s, const uint8_t* prescribed, size_t o) {
+    return s.owners.dynamic[o] != 0 || prescribed[s.owners.family[o]] || dot(s.owners.vel[o], s.owners.vel[o]) > 0.f ||
+           dot(s.owners.angVel[o], s.owners.angVel[o]) > 0.f;
+}
+
+// Whether a wall or mesh owner that can move, now of family f, forbids the registry: it has contacts
+// enabled with a dormant family, so those pairs would have to be searched from the dormant side.
+DEME_HD_INLINE bool movingFamilyReachesDormant(const uint8_t* dormant, const uint8_t* familyMask, unsigned int f) {
+    if (dormant[f]) return false;
+    for (unsigned int g = 0; g < NUM_FAMILIES; g++)
+        if (dormant[g] && familyMask[(size_t)f * NUM_FAMILIES + g]) return true;
+    return false;
+}
+
 // Dormant partners of moving sphere sa (sphere ids, any order) into out[0, capacity); returns how
 // many there are (if more than capacity, call again with room for all).
 template <class S>

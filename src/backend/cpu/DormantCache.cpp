@@ -10,11 +10,8 @@ void DormantCache::setFamilies(const uint8_t* dormant, const uint8_t* prescribed
     m_anyDormantFamily = std::any_of(m_dormant, m_dormant + NUM_FAMILIES, [](uint8_t d) { return d != 0; });
     m_valid = false;
     m_movingWalls.clear();
-    const OwnerArrays& ow = live.owners;
     auto note = [&](bodyID_t o) {
-        const bool moves = ow.dynamic[o] != 0 || prescribed[ow.family[o]] || dot(ow.vel[o], ow.vel[o]) > 0.f ||
-                           dot(ow.angVel[o], ow.angVel[o]) > 0.f;
-        if (moves && (m_movingWalls.empty() || m_movingWalls.back() != o)) m_movingWalls.push_back(o);
+        if (ownerCanMove(live, prescribed, o) && (m_movingWalls.empty() || m_movingWalls.back() != o)) m_movingWalls.push_back(o);
     };
     for (size_t k = 0; k < live.analytical.size(); k++) note(live.analytical.owner[k]);
     for (size_t t = 0; t < live.triangles.size(); t++) note(live.triangles.owner[t]);
@@ -25,12 +22,8 @@ bool DormantCache::prepare(const SimState& s, const BinGrid& grid, const uint8_t
     if (!m_anyDormantFamily) return false;
     const OwnerArrays& ow = s.owners;
     // A wall or mesh that can move must not reach a dormant family (with its family now).
-    for (const bodyID_t o : m_movingWalls) {
-        const family_t f = ow.family[o];
-        if (m_dormant[f]) continue;
-        for (unsigned int g = 0; g < NUM_FAMILIES; g++)
-            if (m_dormant[g] && familyMask[(size_t)f * NUM_FAMILIES + g]) return false;
-    }
+    for (const bodyID_t o : m_movingWalls)
+        if (movingFamilyReachesDormant(m_dormant, familyMask, ow.family[o])) return false;
     if (!m_valid || m_builtFor.size() != ow.family.size() ||
         std::memcmp(m_builtFor.data(), ow.family.data(), ow.family.size() * sizeof(family_t)) != 0)
         rebuild(s, grid, familyExtraMargin);
@@ -47,24 +40,20 @@ void DormantCache::rebuild(const SimState& s, const BinGrid& grid, const float* 
     m_maxReach = 0.0;
     std::vector<uint32_t> binOf(nS);
     for (size_t i = 0; i < nS; i++) {
-        const family_t f = s.owners.family[s.spheres.owner[i]];
-        if (!m_dormant[f]) {
+        if (!sphereIsDormant(s, m_dormant, i)) {
             m_moving.push_back((bodyID_t)i);
             continue;
         }
-        const double3 p = s.cache.spherePos[i];
-        const uint64_t b = binIndex(grid, binCoord(p.x, grid.origin.x, grid.size, grid.nx),
-                                    binCoord(p.y, grid.origin.y, grid.size, grid.ny),
-                                    binCoord(p.z, grid.origin.z, grid.size, grid.nz));
-        binOf[i] = (uint32_t)b;
-        m_start[b + 1]++;
-        m_maxReach = std::max(m_maxReach, (double)s.spheres.radius[i] + (double)familyExtraMargin[f]);
+        const uint32_t b = dormantBinOf(s, grid, i);
+        binOf[i] = b;
+        m_start[(size_t)b + 1]++;
+        m_maxReach = std::max(m_maxReach, dormantReachOf(s, familyExtraMargin, i));
     }
     for (size_t b = 0; b < nBins; b++) m_start[b + 1] += m_start[b];
     m_items.resize(m_start[nBins]);
     std::vector<uint32_t> fill(m_start.begin(), m_start.end() - 1);
     for (size_t i = 0; i < nS; i++)
-        if (m_dormant[s.owners.family[s.spheres.owner[i]]]) m_items[fill[binOf[i]]++] = (uint32_t)i;
+        if (sphereIsDormant(s, m_dormant, i)) m_items[fill[binOf[i]]++] = (uint32_t)i;
     m_valid = true;
 }
 

@@ -66,6 +66,7 @@ struct CudaKinematics::Work {
     CudaModule module;
     CudaKernel kSphereBoxes, kTriBoxes, kBinEntries, kBinCounts, kPairSearch;
     DevicePrimitives prim;
+    DeviceDormantRegistry dormant;  // the active box: dormant spheres registered once
     // Static geometry (a copy of Geometry).
     DeviceBuffer<bodyID_t> sphereOwner, anaOwner, triOwner;
     DeviceBuffer<float> radius, anaRadius, familyExtraMargin;
@@ -99,6 +100,7 @@ void CudaKinematics::Work::upload(const Geometry& g) {
     uploadResized(triOwner, g.triOwner, stream);
     uploadResized(familyMask, g.familyMask, stream);
     uploadResized(familyExtraMargin, g.familyExtraMargin, stream);
+    dormant.upload(g.dormant, stream);  // built afresh at the next detection
     grid = g.grid;
     numOwners = g.numOwners;
     numSpheres = g.numSpheres;
@@ -158,11 +160,18 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     const unsigned int nS = numSpheres, nT = numTriangles;
     const uint64_t numBins = grid.numBins();
     DetectionArgs args{grid, o.margin, familyExtraMargin.data(), familyMask.data(), {}, {}, nullptr, nullptr};
+    // The active box: with dormant spheres registered, only the moving ones (`ids`) are binned and
+    // searched, and find their dormant partners in the registry.
+    const bool useDormant = dormant.prepare(v, grid, src.ownerFamily, numOwners, familyMask.data(),
+                                            familyExtraMargin.data(), prim, stream);
+    const bodyID_t* ids = useDormant ? dormant.moving() : nullptr;  // null: every sphere
+    const unsigned int nSearched = useDormant ? dormant.numMoving() : nS;
+    const DormantBinsView dormantBins = useDormant ? dormant.view() : DormantBinsView{nullptr, nullptr, 0.0};
 
-    // 1. Bins of every geometry enlarged by its margin.
-    auto binItems = [&](DeviceBins& b, unsigned int n, auto&& boxes) {
-        b.lo.resizeDiscarding(3 * (size_t)n);
-        b.hi.resizeDiscarding(3 * (size_t)n);
+    // 1. Bins of every geometry enlarged by its margin: of items ids[0, n) (all `items` if null).
+    auto binItems = [&](DeviceBins& b, unsigned int items, const bodyID_t* ids, unsigned int n, auto&& boxes) {
+        b.lo.resizeDiscarding(3 * (size_t)items);
+        b.hi.resizeDiscarding(3 * (size_t)items);
         b.count.resizeDiscarding(n + 1);
         b.offset.resizeDiscarding(n + 1);
         b.count.zeroAsync(stream);
@@ -174,7 +183,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
         b.sortedKeys.resizeDiscarding(entries);
         b.sortedItems.resizeDiscarding(entries);
         if (entries) {
-            launch(kBinEntries, blocksFor(n, THREADS), THREADS, 0, stream, grid, n, (const int*)b.lo.data(),
+            launch(kBinEntries, blocksFor(n, THREADS), THREADS, 0, stream, grid, ids, n, (const int*)b.lo.data(),
                    (const int*)b.hi.data(), (const unsigned int*)b.offset.data(), b.keys.data(), b.items.data());
             prim.sortPairs(b.keys.data(), b.sortedKeys.data(), b.items.data(), b.sortedItems.data(), entries, stream, 0,
                            bitsFor(numBins));
@@ -187,13 +196,13 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
                    entries, b.start.data());
         prim.exclusiveSum(b.start.data(), b.start.data(), numBins + 1, stream);
     };
-    binItems(sphereBins, nS, [&] {
-        launch(kSphereBoxes, blocksFor(nS, THREADS), THREADS, 0, stream, v, args, sphereBins.lo.data(),
-               sphereBins.hi.data(), sphereBins.count.data());
+    binItems(sphereBins, nS, ids, nSearched, [&] {
+        launch(kSphereBoxes, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, ids, nSearched,
+               sphereBins.lo.data(), sphereBins.hi.data(), sphereBins.count.data());
     });
     triLo.resizeDiscarding(nT);
     triHi.resizeDiscarding(nT);
-    binItems(triBins, nT, [&] {
+    binItems(triBins, nT, (const bodyID_t*)nullptr, nT, [&] {
         launch(kTriBoxes, blocksFor(nT, THREADS), THREADS, 0, stream, v, args, triLo.data(), triHi.data(),
                triBins.lo.data(), triBins.hi.data(), triBins.count.data());
     });
@@ -209,13 +218,15 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
             BinsView{triBins.lo.data(), triBins.hi.data(), triBins.start.data(), triBins.sortedItems.data()};
     args.triLo = triLo.data();
     args.triHi = triHi.data();
-    pairCount.resizeDiscarding(nS + 1);
-    pairOffset.resizeDiscarding(nS + 1);
+    pairCount.resizeDiscarding(nSearched + 1);
+    pairOffset.resizeDiscarding(nSearched + 1);
     pairCount.zeroAsync(stream);
-    launch(kPairSearch, blocksFor(nS, THREADS), THREADS, 0, stream, v, args, pairCount.data(),
-           (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr, (uint8_t*)nullptr);
-    prim.exclusiveSum(pairCount.data(), pairOffset.data(), nS + 1, stream);
-    const unsigned int total = readCount(pairOffset, nS);
+    if (nSearched)
+        launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
+               pairCount.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr,
+               (uint8_t*)nullptr);
+    prim.exclusiveSum(pairCount.data(), pairOffset.data(), nSearched + 1, stream);
+    const unsigned int total = readCount(pairOffset, nSearched);
     // The outbox is on dT's GPU: size it there.
     onDevice(dTDevice, device, [&] {
         out.geomA.resizeDiscarding(total);
@@ -229,8 +240,11 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
         localOut.type.resizeDiscarding(total);
     }
     if (total)
-        launch(kPairSearch, blocksFor(nS, THREADS), THREADS, 0, stream, v, args, pairCount.data(),
-               (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data(), dst.type.data());
+        launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
+               pairCount.data(), (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data(),
+               dst.type.data());
+    // Pairs found from the moving side with a dormant sphere of lower id: into (A, B) order.
+    if (useDormant) dormant.sortPairs(v, dst.geomA.data(), dst.geomB.data(), dst.type.data(), total, bitsFor(nS), prim, stream);
     if (staged) {
         out.geomA.copyFromAsync(localOut.geomA, total, stream);
         out.geomB.copyFromAsync(localOut.geomB, total, stream);
@@ -289,6 +303,7 @@ void CudaKinematics::setGeometry(const SimState& s, const BinGrid& g, const Fami
                                      " bins, more than the GPU's 32-bit bin keys hold: choose larger bins "
                                      "(SetInitBinSize) or a smaller domain");
     k.grid = g;
+    k.dormant = DormantFamilies::of(s, families);
     k.numOwners = (uint32_t)s.owners.size();
     k.numSpheres = (uint32_t)s.spheres.size();
     k.numAnalytical = (uint32_t)s.analytical.size();
@@ -373,6 +388,7 @@ void CudaKinematics::run() {
         w->kBinEntries = w->module.kernel("deme_bin_entries");
         w->kBinCounts = w->module.kernel("deme_bin_counts");
         w->kPairSearch = w->module.kernel("deme_pair_search");
+        w->dormant.loadKernels(w->module);
         m_deviceName = info.name;
         m_compileSeconds = c.compileSeconds;
         m_fromCache = c.cacheHit;

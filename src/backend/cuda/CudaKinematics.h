@@ -30,6 +30,7 @@
 
 #include "backend/cuda/CudaTypes.h"
 #include "backend/cuda/DeviceBuffer.h"
+#include "backend/cuda/DeviceDormantRegistry.h"
 #include "backend/cuda/DeviceState.h"
 #include "runtime/Backends.h"
 #include "runtime/WorkerMailbox.h"
@@ -86,6 +87,7 @@ class CudaKinematics : public KinematicsBackend {
         std::vector<uint8_t> anaType, anaInside, familyMask;
         BinGrid grid{};
         uint32_t numOwners = 0, numSpheres = 0, numAnalytical = 0, numTriangles = 0;
+        DormantFamilies dormant;  // the active box's families (DeviceDormantRegistry)
     };
     struct Order {
         DetectionOrder order;

@@ -1,7 +1,10 @@
 // Contact detection on the GPU (the kinematics side): the per-item rules of
 // kinematics/DetectionRules.h, one thread per item; items are sorted into bins with CUB
-// (DeviceKinematics). Compiled at run time by NVRTC.
+// (DeviceKinematics). Compiled at run time by NVRTC. With dormant spheres (the active box,
+// kinematics/DormantRules.h) the moving spheres are listed once (`ids`, ascending) and only they are
+// binned and searched; a null `ids` means every sphere.
 #include "kinematics/DetectionRules.h"
+#include "kinematics/DormantRules.h"
 #include "state/StateView.h"
 
 namespace deme {
@@ -12,15 +15,17 @@ __device__ inline size_t globalIndex() { return (size_t)blockIdx.x * blockDim.x 
 
 }  // namespace
 
-extern "C" __global__ void deme_sphere_bin_boxes(StateView s, DetectionArgs a, int* binLo, int* binHi,
-                                                 unsigned int* count) {
-    const size_t i = globalIndex();
-    if (i >= s.numSpheres) return;
+// Sphere ids[k]'s box (at its sphere id) and its number of bins (at k).
+extern "C" __global__ void deme_sphere_bin_boxes(StateView s, DetectionArgs a, const bodyID_t* ids, unsigned int n,
+                                                 int* binLo, int* binHi, unsigned int* count) {
+    const size_t k = globalIndex();
+    if (k >= n) return;
+    const size_t i = ids ? (size_t)ids[k] : k;
     double3 lo, hi;
     sphereBox(s, a, i, lo, hi);
     const BinBox b = binBox(a.grid, lo, hi);
     storeBinBox(b, i, binLo, binHi);
-    count[i] = b.count();
+    count[k] = b.count();
 }
 
 extern "C" __global__ void deme_triangle_bin_boxes(StateView s, DetectionArgs a, double3* triLo, double3* triHi,
@@ -33,13 +38,15 @@ extern "C" __global__ void deme_triangle_bin_boxes(StateView s, DetectionArgs a,
     count[t] = b.count();
 }
 
-// (bin, item) entries of every item in every bin of its box, at the item's offset (in item order,
-// so a stable sort by bin keeps each bin's items ascending).
-extern "C" __global__ void deme_bin_entries(BinGrid g, unsigned int n, const int* binLo, const int* binHi,
-                                            const unsigned int* offset, unsigned int* keys, unsigned int* items) {
-    const size_t i = globalIndex();
-    if (i >= n) return;
-    unsigned int at = offset[i];
+// (bin, item) entries of every item ids[k] in every bin of its box, at offset[k] (in item order, so a
+// stable sort by bin keeps each bin's items ascending).
+extern "C" __global__ void deme_bin_entries(BinGrid g, const bodyID_t* ids, unsigned int n, const int* binLo,
+                                            const int* binHi, const unsigned int* offset, unsigned int* keys,
+                                            unsigned int* items) {
+    const size_t k = globalIndex();
+    if (k >= n) return;
+    const size_t i = ids ? (size_t)ids[k] : k;
+    unsigned int at = offset[k];
     for (int z = binLo[3 * i + 2]; z <= binHi[3 * i + 2]; z++)
         for (int y = binLo[3 * i + 1]; y <= binHi[3 * i + 1]; y++)
             for (int x = binLo[3 * i]; x <= binHi[3 * i]; x++) {
@@ -60,24 +67,96 @@ extern "C" __global__ void deme_bin_counts(const unsigned int* keys, unsigned in
     atomicAdd(&count[keys[i]], 1u);
 }
 
-// Per sphere A: its partners. With `outB` null, counts them into count[A]; otherwise writes the
-// count[A] of them from offset[A] on.
-extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, unsigned int* count,
-                                            const unsigned int* offset, bodyID_t* outA, bodyID_t* outB,
-                                            uint8_t* outType) {
-    const size_t ia = globalIndex();
-    if (ia >= s.numSpheres) return;
-    const bodyID_t sa = (bodyID_t)ia;
+// Per searched sphere A = ids[k]: its partners, then (with a dormant registry, d.start not null)
+// its dormant partners as (lower, higher) pairs, which deme_pairs_from_keys puts in order after a
+// sort. With `outB` null, counts them into count[k]; otherwise writes the count[k] of them from
+// offset[k] on.
+extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, DormantBinsView d, const bodyID_t* ids,
+                                            unsigned int n, unsigned int* count, const unsigned int* offset,
+                                            bodyID_t* outA, bodyID_t* outB, uint8_t* outType) {
+    const size_t k = globalIndex();
+    if (k >= n) return;
+    const bodyID_t sa = ids ? ids[k] : (bodyID_t)k;
     if (outB == nullptr) {
-        count[sa] = spherePartners(s, a, sa, nullptr, 0u);
+        count[k] = spherePartners(s, a, sa, nullptr, 0u) + (d.start ? dormantPartners(s, a, d, sa, nullptr, 0u) : 0u);
         return;
     }
-    const unsigned int base = offset[sa];
-    const unsigned int n = spherePartners(s, a, sa, outB + base, count[sa]);
-    for (unsigned int k = 0; k < n; k++) {
-        outA[base + k] = sa;
-        outType[base + k] = contactTypeOf(s, outB[base + k]);
+    const unsigned int base = offset[k];
+    const unsigned int own = spherePartners(s, a, sa, outB + base, count[k]);
+    for (unsigned int j = 0; j < own; j++) {
+        outA[base + j] = sa;
+        outType[base + j] = contactTypeOf(s, outB[base + j]);
     }
+    if (!d.start) return;
+    bodyID_t* more = outB + base + own;
+    const unsigned int nd = dormantPartners(s, a, d, sa, more, count[k] - own);
+    for (unsigned int j = 0; j < nd; j++) {
+        const bodyID_t b = more[j];
+        outA[base + own + j] = sa < b ? sa : b;
+        outB[base + own + j] = sa < b ? b : sa;
+        outType[base + own + j] = (uint8_t)SPHERE_SPHERE;
+    }
+}
+
+// --- The dormant registry, rebuilt only when the owners' families differ from those it was built for.
+
+// flags[0] = 1 if an owner's family is not the one the registry was built for; flags[1] = 1 if an
+// owner that can move (movable[o], walls and meshes) reaches a dormant family (no registry then).
+extern "C" __global__ void deme_dormant_check(StateView s, const family_t* builtFor, const uint8_t* movable,
+                                              const uint8_t* dormant, const uint8_t* familyMask, unsigned int* flags) {
+    const size_t o = globalIndex();
+    if (o >= s.numOwners) return;
+    const family_t f = s.owners.family[o];
+    if (f != builtFor[o]) flags[0] = 1u;  // every writer writes 1
+    if (movable[o] && movingFamilyReachesDormant(dormant, familyMask, f)) flags[1] = 1u;
+}
+
+// Per sphere: 1 in isMoving or isDormant, and a dormant sphere's reach (0 for a moving one), whose
+// largest value widens every search.
+extern "C" __global__ void deme_dormant_flags(StateView s, const uint8_t* dormant, const float* familyExtraMargin,
+                                              unsigned int* isMoving, unsigned int* isDormant, double* reach) {
+    const size_t i = globalIndex();
+    if (i >= s.numSpheres) return;
+    const bool d = sphereIsDormant(s, dormant, i);
+    isMoving[i] = d ? 0u : 1u;
+    isDormant[i] = d ? 1u : 0u;
+    reach[i] = d ? dormantReachOf(s, familyExtraMargin, i) : 0.0;
+}
+
+// The moving spheres at their offsets (ascending), the dormant ones as (centre bin, sphere) entries at
+// theirs (in sphere order: a stable sort by bin keeps each bin's spheres ascending).
+extern "C" __global__ void deme_dormant_scatter(StateView s, BinGrid g, const uint8_t* dormant,
+                                                const unsigned int* movingOffset, const unsigned int* dormantOffset,
+                                                bodyID_t* moving, unsigned int* keys, unsigned int* items) {
+    const size_t i = globalIndex();
+    if (i >= s.numSpheres) return;
+    if (!sphereIsDormant(s, dormant, i)) {
+        moving[movingOffset[i]] = (bodyID_t)i;
+        return;
+    }
+    keys[dormantOffset[i]] = dormantBinOf(s, g, i);
+    items[dormantOffset[i]] = (unsigned int)i;
+}
+
+// --- Pairs found from both sides (moving and dormant partners) into (A, B) order.
+
+// keys[i] = (A << 32) | B, idx[i] = i (the sort's values).
+extern "C" __global__ void deme_pair_keys(const bodyID_t* geomA, const bodyID_t* geomB, unsigned int n,
+                                          unsigned long long* keys, unsigned int* idx) {
+    const size_t i = globalIndex();
+    if (i >= n) return;
+    keys[i] = ((unsigned long long)geomA[i] << 32) | (unsigned long long)geomB[i];
+    idx[i] = (unsigned int)i;
+}
+
+// The sorted keys back into pairs; the type follows from B.
+extern "C" __global__ void deme_pairs_from_keys(StateView s, const unsigned long long* keys, unsigned int n,
+                                                bodyID_t* geomA, bodyID_t* geomB, uint8_t* type) {
+    const size_t i = globalIndex();
+    if (i >= n) return;
+    geomA[i] = (bodyID_t)(keys[i] >> 32);
+    geomB[i] = (bodyID_t)(keys[i] & 0xFFFFFFFFull);
+    type[i] = contactTypeOf(s, geomB[i]);
 }
 
 }  // namespace deme
