@@ -199,8 +199,9 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& grid, double margin,
         std::vector<unsigned int> idx(total), sortedIdx;
         runThreads(total, [&] { deme_pair_keys(c.geomA.data(), c.geomB.data(), total, keys.data(), idx.data()); });
         stableSortPairs(keys, idx, sortedKeys, sortedIdx);
-        runThreads(total,
-                   [&] { deme_pairs_from_keys(v, sortedKeys.data(), total, c.geomA.data(), c.geomB.data(), c.type.data()); });
+        runThreads(total, [&] {
+            deme_pairs_from_keys(v, sortedKeys.data(), total, c.geomA.data(), c.geomB.data(), c.type.data());
+        });
     }
     return r;
 }
@@ -340,8 +341,10 @@ TEST(CudaDetectionKernels, DormantRegistryMatchesTheCpuCachedDetectorExactly) {
         // A grain wakes up, another falls dormant.
         size_t woke = 0, slept = 0;
         for (size_t o = 0; o < s.numClumps && (woke == 0 || slept == 0); o++) {
-            if (s.owners.family[o] == 2 && woke == 0) s.owners.family[o] = 0, woke = o + 1;
-            else if (s.owners.family[o] == 0 && slept == 0) s.owners.family[o] = 2, slept = o + 1;
+            if (s.owners.family[o] == 2 && woke == 0)
+                s.owners.family[o] = 0, woke = o + 1;
+            else if (s.owners.family[o] == 0 && slept == 0)
+                s.owners.family[o] = 2, slept = o + 1;
         }
         ASSERT_TRUE(woke && slept);
         compare(2e-4, true);
@@ -365,7 +368,8 @@ TEST(CudaDetectionKernels, BinStartsOfAMostlyEmptyGrid) {
     exclusiveSum(count);
     const unsigned int entries = count[3];
     std::vector<unsigned int> keys(entries), items(entries);
-    runThreads(3, [&] { deme_bin_entries(g, nullptr, 3, lo.data(), hi.data(), count.data(), keys.data(), items.data()); });
+    runThreads(3,
+               [&] { deme_bin_entries(g, nullptr, 3, lo.data(), hi.data(), count.data(), keys.data(), items.data()); });
     std::vector<unsigned int> start(numBins + 1, 0);
     runThreads(entries, [&] { deme_bin_counts(keys.data(), entries, start.data()); });
     exclusiveSum(start);

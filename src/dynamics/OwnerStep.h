@@ -59,6 +59,14 @@ struct OwnerStepResult {
     uint8_t flags;
 };
 
+// Whether owner o is at rest in a fixed family: then its step is itself (velocity 0, the same pose,
+// no travel), and a step leaves it out (the active box's dormant grains, docs/active-box.md).
+template <class S>
+DEME_HD_INLINE bool ownerAtRest(const S& s, const FamilyStepMotion* motion, size_t o) {
+    return motion[s.owners.family[o]].fixed && dot(s.owners.vel[o], s.owners.vel[o]) == 0.f &&
+           dot(s.owners.angVel[o], s.owners.angVel[o]) == 0.f;
+}
+
 // Advances owner o by one step and refreshes its cached pose. Written without branches (every
 // path is computed, then selected) and as a function of its own, so that the owner sweep
 // vectorises: the vectoriser sees this function's locals only after inlining, whereas locals of an

@@ -71,7 +71,8 @@ DEME_HD_INLINE unsigned int dormantPartners(const S& s, const DetectionArgs& a, 
     const bodyID_t oA = s.spheres.owner[sa];
     const double eA = (double)s.spheres.radius[sa] + marginOf(s, a, oA);
     const double R = eA + d.maxReach + a.margin;
-    const BinBox box = binBox(g, make_double3(pA.x - R, pA.y - R, pA.z - R), make_double3(pA.x + R, pA.y + R, pA.z + R));
+    const BinBox box =
+        binBox(g, make_double3(pA.x - R, pA.y - R, pA.z - R), make_double3(pA.x + R, pA.y + R, pA.z + R));
     const uint8_t* maskRow = a.familyMask + (size_t)s.owners.family[oA] * NUM_FAMILIES;
     unsigned int n = 0;
     for (int z = box.lo[2]; z <= box.hi[2]; z++)

@@ -11,7 +11,8 @@ void DormantCache::setFamilies(const uint8_t* dormant, const uint8_t* prescribed
     m_valid = false;
     m_movingWalls.clear();
     auto note = [&](bodyID_t o) {
-        if (ownerCanMove(live, prescribed, o) && (m_movingWalls.empty() || m_movingWalls.back() != o)) m_movingWalls.push_back(o);
+        if (ownerCanMove(live, prescribed, o) && (m_movingWalls.empty() || m_movingWalls.back() != o))
+            m_movingWalls.push_back(o);
     };
     for (size_t k = 0; k < live.analytical.size(); k++) note(live.analytical.owner[k]);
     for (size_t t = 0; t < live.triangles.size(); t++) note(live.triangles.owner[t]);

@@ -128,9 +128,7 @@ void IntegrationSubset::update(SimState& s, const std::array<FamilyStepMotion, N
     reduced.clear();
     std::vector<uint8_t> stepped(n);
     for (size_t o = 0; o < n; o++) {
-        const bool atRest = motion[ow.family[o]].fixed && dot(ow.vel[o], ow.vel[o]) == 0.f &&
-                            dot(ow.angVel[o], ow.angVel[o]) == 0.f;
-        stepped[o] = !atRest;
+        stepped[o] = !ownerAtRest(s, motion.data(), o);
         if (stepped[o]) owners.push_back((bodyID_t)o);
     }
     all = owners.size() == n;

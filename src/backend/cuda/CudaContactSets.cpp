@@ -61,6 +61,7 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     refreshView();
     // The set's snapshot is the order's: travel is measured from there.
     std::swap(m_baseline, m_orderBaseline);
+    m_subsetStale = true;  // families change only at detections (ChangeFamilyWhen) and uploads
     synchronize(m_stream);
     timing.seconds[(int)Phase::HISTORY_MAPPING] += now() - t0;
 }

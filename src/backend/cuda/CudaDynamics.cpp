@@ -59,6 +59,7 @@ void CudaDynamics::upload(const SimState& s) {
     m_numAnalyticalOwners = (uint32_t)s.numAnalyticalOwners;
     m_domainDiagonal = length(s.domainSize);
     refreshView();
+    m_subsetStale = true;
 }
 
 void CudaDynamics::download(SimState& s) {
@@ -89,6 +90,7 @@ void CudaDynamics::beginRun(const Settings&, const FamilyRules& families) {
     // dT's GPU stays current for the call's steps (and the contact-set work between them).
     select();
     prepareFamilyMotion(families);
+    m_subsetStale = true;
 }
 
 StepOutcome CudaDynamics::step(double time, const Settings& settings, const FamilyRules&, bool storeContactForces,
@@ -102,6 +104,11 @@ StepOutcome CudaDynamics::step(double time, const Settings& settings, const Fami
     const double t0 = now();
     DEME_CUDA_CHECK(CALL, cudaEventRecord(static_cast<cudaEvent_t>(m_forceStart), static_cast<cudaStream_t>(st)));
     launch(kFamilyMotion, 1, NUM_FAMILIES, 0, st, time + settings.dt, m_motion.data());
+    if (m_subsetStale) updateStepSubset();  // after a detection: O(owners), reads this step's motion
+    const bodyID_t* ownerIds = m_subsetAll ? nullptr : m_steppedOwners.data();
+    const bodyID_t* sphereIds = m_subsetAll ? nullptr : m_steppedSpheres.data();
+    const unsigned int nStepped = m_subsetAll ? nO : m_numSteppedOwners;
+    const unsigned int nPlaced = m_subsetAll ? nS : m_numSteppedSpheres;
     StepReduction* red = m_reduction.data();
     launch(kResetReduction, 1, 32, 0, st, red);
     if (nT && m_numContacts) launch(kResolveMesh, blocksFor(m_numContacts, THREADS), THREADS, 0, st, m_view, red);
@@ -111,10 +118,15 @@ StepOutcome CudaDynamics::step(double time, const Settings& settings, const Fami
     m_model.launch(stepView, (float)time, (float)settings.dt, m_numClumps, nO - m_numClumps, red, st,
                    settings.threadsPerBlock);
     DEME_CUDA_CHECK(CALL, cudaEventRecord(static_cast<cudaEvent_t>(m_forceEnd), static_cast<cudaStream_t>(st)));
-    launch(kIntegrate, blocksFor(nO, THREADS), THREADS, 0, st, m_view, (const FamilyStepMotion*)m_motion.data(), consts,
-           (const double*)m_baseline.data(), red);
-    launch(kLargeRot, blocksFor(nO, THREADS), THREADS, 0, st, m_view, (float)settings.dt);
-    launch(kPlaceSpheres, blocksFor(nS, THREADS), THREADS, 0, st, m_view);
+    // Contact forces were summed onto every owner (dormant ones too: trackers read them); only the
+    // stepped owners are integrated and placed.
+    if (nStepped)
+        launch(kIntegrate, blocksFor(nStepped, THREADS), THREADS, 0, st, m_view,
+               (const FamilyStepMotion*)m_motion.data(), consts, (const double*)m_baseline.data(), ownerIds, nStepped,
+               red);
+    if (nStepped)
+        launch(kLargeRot, blocksFor(nStepped, THREADS), THREADS, 0, st, m_view, ownerIds, nStepped, (float)settings.dt);
+    if (nPlaced) launch(kPlaceSpheres, blocksFor(nPlaced, THREADS), THREADS, 0, st, m_view, sphereIds, nPlaced);
     if (nT) launch(kPlaceTris, blocksFor(nT, THREADS), THREADS, 0, st, m_view);
     if (m_numAnalyticalOwners)
         launch(kAnalytical, blocksFor(m_numAnalyticalOwners, THREADS), THREADS, 0, st, m_view, m_numClumps,

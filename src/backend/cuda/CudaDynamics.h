@@ -72,6 +72,8 @@ class CudaDynamics : public DynamicsBackend {
     void compileGenerated(const char* program, const std::string& source, const char* kernelName, CudaModule& module,
                           CudaKernel& kernel);
     void refreshView();
+    // The owners and spheres a step integrates and places (CudaStepSubset.cpp).
+    void updateStepSubset();
 
     int m_device = 0;
     std::string m_name;
@@ -82,7 +84,7 @@ class CudaDynamics : public DynamicsBackend {
     void *m_forceStart = nullptr, *m_forceEnd = nullptr;  // cudaEvent_t
     CudaModule m_dynamicsModule, m_exchangeModule;
     CudaKernel kResetReduction, kCopyDoubles, kClearLoads, kResolveMesh, kIntegrate, kLargeRot, kPlaceSpheres,
-        kPlaceTris, kAnalytical, kMaxTravelSince;
+        kPlaceTris, kAnalytical, kMaxTravelSince, kSteppedFlags, kSteppedScatter;
     // The families' prescriptions, compiled from the user's expressions (recompiled when they change).
     CudaModule m_familyModule;
     CudaKernel kFamilyMotion;
@@ -111,6 +113,13 @@ class CudaDynamics : public DynamicsBackend {
     DeviceBuffer<FamilyStepMotion> m_motion;
     DeviceBuffer<StepReduction> m_reduction;
     DeviceBuffer<unsigned long long> m_maxTravelBits;
+    // The active box: the owners a step integrates (all but fixed ones at rest) and their spheres,
+    // rebuilt at the first step after an upload, a detection's install, a family change or the
+    // start of a call, the only times families, velocities of fixed owners and the set change.
+    bool m_subsetStale = true, m_subsetAll = true;
+    DeviceBuffer<unsigned int> m_ownerStepped, m_ownerStepOffset, m_sphereStepped, m_sphereStepOffset;
+    DeviceBuffer<bodyID_t> m_steppedOwners, m_steppedSpheres;
+    unsigned int m_numSteppedOwners = 0, m_numSteppedSpheres = 0;
 
     // Host-side copies of what the loop needs.
     StateView m_view{};

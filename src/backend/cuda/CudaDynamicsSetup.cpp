@@ -47,6 +47,8 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     kPlaceSpheres = m_dynamicsModule.kernel("deme_place_spheres");
     kPlaceTris = m_dynamicsModule.kernel("deme_place_triangles");
     kAnalytical = m_dynamicsModule.kernel("deme_analytical_step");
+    kSteppedFlags = m_dynamicsModule.kernel("deme_stepped_flags");
+    kSteppedScatter = m_dynamicsModule.kernel("deme_stepped_scatter");
     kMaxTravelSince = m_exchangeModule.kernel("deme_max_travel_since");
     m_model.load("Initialize (contact force model)", layout, m_dynamicsModule, opt);
     m_history.load("Initialize", opt);

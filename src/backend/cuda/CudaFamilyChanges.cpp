@@ -25,6 +25,7 @@ size_t CudaDynamics::applyFamilyConditions(double time, const FamilyRules& famil
     unsigned int changed = 0;
     m_changedCount.downloadAsync(&changed, 1, m_stream);
     synchronize(m_stream);
+    if (changed) m_subsetStale = true;
     return changed;
 }
 

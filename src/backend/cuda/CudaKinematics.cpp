@@ -162,8 +162,8 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     DetectionArgs args{grid, o.margin, familyExtraMargin.data(), familyMask.data(), {}, {}, nullptr, nullptr};
     // The active box: with dormant spheres registered, only the moving ones (`ids`) are binned and
     // searched, and find their dormant partners in the registry.
-    const bool useDormant = dormant.prepare(v, grid, src.ownerFamily, numOwners, familyMask.data(),
-                                            familyExtraMargin.data(), prim, stream);
+    const bool useDormant =
+        dormant.prepare(v, grid, src.ownerFamily, numOwners, familyMask.data(), familyExtraMargin.data(), prim, stream);
     const bodyID_t* ids = useDormant ? dormant.moving() : nullptr;  // null: every sphere
     const unsigned int nSearched = useDormant ? dormant.numMoving() : nS;
     const DormantBinsView dormantBins = useDormant ? dormant.view() : DormantBinsView{nullptr, nullptr, 0.0};
@@ -244,7 +244,8 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
                pairCount.data(), (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data(),
                dst.type.data());
     // Pairs found from the moving side with a dormant sphere of lower id: into (A, B) order.
-    if (useDormant) dormant.sortPairs(v, dst.geomA.data(), dst.geomB.data(), dst.type.data(), total, bitsFor(nS), prim, stream);
+    if (useDormant)
+        dormant.sortPairs(v, dst.geomA.data(), dst.geomB.data(), dst.type.data(), total, bitsFor(nS), prim, stream);
     if (staged) {
         out.geomA.copyFromAsync(localOut.geomA, total, stream);
         out.geomB.copyFromAsync(localOut.geomB, total, stream);

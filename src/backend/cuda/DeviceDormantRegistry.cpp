@@ -92,8 +92,8 @@ void DeviceDormantRegistry::rebuild(const StateView& v, const BinGrid& grid, con
     m_maxReachDev.resizeDiscarding(1);
     m_isMoving.zeroAsync(stream);
     m_isDormant.zeroAsync(stream);
-    launch(m_kFlags, blocksFor(nS, THREADS), THREADS, 0, stream, v, (const uint8_t*)m_dormant.data(),
-           familyExtraMargin, m_isMoving.data(), m_isDormant.data(), m_reach.data());
+    launch(m_kFlags, blocksFor(nS, THREADS), THREADS, 0, stream, v, (const uint8_t*)m_dormant.data(), familyExtraMargin,
+           m_isMoving.data(), m_isDormant.data(), m_reach.data());
     prim.exclusiveSum(m_isMoving.data(), m_movingOffset.data(), nS + 1, stream);
     prim.exclusiveSum(m_isDormant.data(), m_dormantOffset.data(), nS + 1, stream);
     prim.reduceMax(m_reach.data(), m_maxReachDev.data(), nS, stream);

@@ -78,14 +78,17 @@ extern "C" __global__ void deme_force_pass_frictionless_hertz(StateView s, float
     forcePassKernel(s, model, time, dt, firstNonClump, numNonClump, red);
 }
 
-// Integration of every owner (stepOwner), with the step's maxima and first fault combined per warp.
+// Integration of owners ids[0, n) (every owner if ids is null; the active box leaves fixed owners at
+// rest out, deme_stepped_flags), with the step's maxima and first fault combined per warp.
 extern "C" __global__ void deme_integrate(StateView s, const FamilyStepMotion* motion, StepConstants consts,
-                                          const double* travelBaseline, StepReduction* red) {
-    const size_t o = globalIndex();
+                                          const double* travelBaseline, const bodyID_t* ids, unsigned int n,
+                                          StepReduction* red) {
+    const size_t k = globalIndex();
     double travel = 0.0;
     float speed = 0.f;
     unsigned int fault = 0xFFFFFFFFu, large = 0u;
-    if (o < s.numOwners) {
+    if (k < n) {
+        const size_t o = ids ? (size_t)ids[k] : k;
         const OwnerStepResult r = stepOwner(s, o, motion[s.owners.family[o]], consts, travelBaseline[o]);
         s.integrationScratch.flags[o] = r.flags;
         travel = r.travelSinceDetection > 0.0 ? r.travelSinceDetection : 0.0;
@@ -108,16 +111,39 @@ extern "C" __global__ void deme_integrate(StateView s, const FamilyStepMotion* m
 }
 
 // Owners whose rotation this step was too large for the series step: exact step (rare).
-extern "C" __global__ void deme_large_rotations(StateView s, float h) {
-    const size_t o = globalIndex();
-    if (o >= s.numOwners || !(s.integrationScratch.flags[o] & STEP_LARGE_ROTATION)) return;
+// Owners ids[0, n) as deme_integrate's (the flags of owners left out are an older step's).
+extern "C" __global__ void deme_large_rotations(StateView s, const bodyID_t* ids, unsigned int n, float h) {
+    const size_t k = globalIndex();
+    if (k >= n) return;
+    const size_t o = ids ? (size_t)ids[k] : k;
+    if (!(s.integrationScratch.flags[o] & STEP_LARGE_ROTATION)) return;
     s.owners.oriQ[o] = integrateOrientation(s.owners.oriQ[o], s.integrationScratch.midAngVel[o], h);
     s.cache.ownerAngVelGlobal[o] = rotateToGlobal(s.owners.oriQ[o], s.owners.angVel[o]);
 }
 
-extern "C" __global__ void deme_place_spheres(StateView s) {
+// Spheres ids[0, n) (of the owners stepped; every sphere if ids is null).
+extern "C" __global__ void deme_place_spheres(StateView s, const bodyID_t* ids, unsigned int n) {
+    const size_t k = globalIndex();
+    if (k < n) placeSphere(s, ids ? (size_t)ids[k] : k);
+}
+
+// Which owners and spheres a step integrates and places (backend/cpu/Integration.h,
+// IntegrationSubset): 1 in ownerStepped[o] unless owner o is fixed and at rest, 1 in
+// sphereStepped[i] if its owner is stepped. One thread per owner and per sphere.
+extern "C" __global__ void deme_stepped_flags(StateView s, const FamilyStepMotion* motion, unsigned int* ownerStepped,
+                                              unsigned int* sphereStepped) {
     const size_t i = globalIndex();
-    if (i < s.numSpheres) placeSphere(s, i);
+    if (i < s.numOwners) ownerStepped[i] = ownerAtRest(s, motion, i) ? 0u : 1u;
+    if (i < s.numSpheres) sphereStepped[i] = ownerAtRest(s, motion, s.spheres.owner[i]) ? 0u : 1u;
+}
+
+// The stepped owners and spheres at their offsets (the flags' exclusive sums), ascending.
+extern "C" __global__ void deme_stepped_scatter(StateView s, const unsigned int* ownerStepped,
+                                                const unsigned int* ownerOffset, const unsigned int* sphereStepped,
+                                                const unsigned int* sphereOffset, bodyID_t* owners, bodyID_t* spheres) {
+    const size_t i = globalIndex();
+    if (i < s.numOwners && ownerStepped[i]) owners[ownerOffset[i]] = (bodyID_t)i;
+    if (i < s.numSpheres && sphereStepped[i]) spheres[sphereOffset[i]] = (bodyID_t)i;
 }
 
 extern "C" __global__ void deme_place_triangles(StateView s) {

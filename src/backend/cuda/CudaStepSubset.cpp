@@ -1,0 +1,41 @@
+// The owners and spheres a GPU step integrates and places: all of them, or, with fixed owners at
+// rest (the active box's dormant grains, docs/active-box.md), the others only, as the CPU's
+// IntegrationSubset (backend/cpu/Integration.h) with the same rule (dynamics/OwnerStep.h,
+// ownerAtRest) run by kernels/Dynamics.cu. A left-out owner's step would be itself, so the stepped
+// owners' results do not change.
+#include "backend/cuda/CudaDynamics.h"
+
+namespace deme::cuda {
+
+void CudaDynamics::updateStepSubset() {
+    const Stream st = m_stream;
+    const unsigned int nO = m_view.numOwners, nS = m_view.numSpheres;
+    m_subsetStale = false;
+    m_ownerStepped.resizeDiscarding(nO + 1);
+    m_ownerStepOffset.resizeDiscarding(nO + 1);
+    m_sphereStepped.resizeDiscarding(nS + 1);
+    m_sphereStepOffset.resizeDiscarding(nS + 1);
+    m_ownerStepped.zeroAsync(st);
+    m_sphereStepped.zeroAsync(st);
+    const unsigned int n = nO > nS ? nO : nS;
+    if (n)
+        launch(kSteppedFlags, blocksFor(n, 256), 256, 0, st, m_view, (const FamilyStepMotion*)m_motion.data(),
+               m_ownerStepped.data(), m_sphereStepped.data());
+    m_prim.exclusiveSum(m_ownerStepped.data(), m_ownerStepOffset.data(), nO + 1, st);
+    m_prim.exclusiveSum(m_sphereStepped.data(), m_sphereStepOffset.data(), nS + 1, st);
+    unsigned int owners = 0, spheres = 0;
+    m_ownerStepOffset.downloadAsync(&owners, 1, st, nO);
+    m_sphereStepOffset.downloadAsync(&spheres, 1, st, nS);
+    synchronize(st);
+    m_subsetAll = owners == nO;
+    if (m_subsetAll) return;
+    m_numSteppedOwners = owners;
+    m_numSteppedSpheres = spheres;
+    m_steppedOwners.resizeDiscarding(owners);
+    m_steppedSpheres.resizeDiscarding(spheres);
+    launch(kSteppedScatter, blocksFor(n, 256), 256, 0, st, m_view, (const unsigned int*)m_ownerStepped.data(),
+           (const unsigned int*)m_ownerStepOffset.data(), (const unsigned int*)m_sphereStepped.data(),
+           (const unsigned int*)m_sphereStepOffset.data(), m_steppedOwners.data(), m_steppedSpheres.data());
+}
+
+}  // namespace deme::cuda
