@@ -406,6 +406,7 @@ void CudaKinematics::run() {
             // m_geometry, the inbox and the outbox are kT's to read and write until it reports.
             if (order.geometryChanged) w->upload(m_geometry);
             w->detect(order.order, m_submitted, m_inbox, m_outbox, report);
+            m_dormantRebuilds = w->dormant.rebuilds();
         } catch (...) {
             m_mailbox.fail(std::current_exception());
             continue;

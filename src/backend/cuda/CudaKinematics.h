@@ -20,6 +20,7 @@
 // is needed beyond that one event.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <exception>
 #include <memory>
@@ -78,6 +79,8 @@ class CudaKinematics : public KinematicsBackend {
     bool kernelsFromCache() const { return m_fromCache; }
     // Whether kT reaches dT's GPU peer to peer (two GPUs only).
     bool peerAccess() const { return m_peerAccess; }
+    // How often the dormant registry was built (DeviceDormantRegistry), as of the last result taken.
+    size_t dormantRegistryRebuilds() const { return m_dormantRebuilds.load(); }
 
   private:
     struct Work;  // kT's device-side working memory, created and freed on kT's thread
@@ -103,6 +106,7 @@ class CudaKinematics : public KinematicsBackend {
     std::string m_deviceName;
     double m_compileSeconds = 0.0;
     bool m_fromCache = true, m_peerAccess = false;
+    std::atomic<size_t> m_dormantRebuilds{0};
 
     Mailbox m_mailbox{"the GPU kinematics thread"};
     // Start-up: kT reports once it is ready (or why it could not start).

@@ -1,0 +1,107 @@
+// The active box on the GPU (docs/active-box.md): CudaKinematics with a dormant family builds the
+// dormant registry on the device once, bins and searches the moving spheres only, and delivers the
+// CPU's cached detector's contact list (backend/cpu/DormantCache.h, checked against brute force by
+// ActiveBoxDetection.DormantCacheFindsExactlyTheFullSearchsPairs) pair for pair and in order; a
+// family change rebuilds the registry once, and a wall that moves makes it search everything. The
+// same kernels run on the host in CudaDetectionKernels.DormantRegistryMatchesTheCpuCachedDetectorExactly
+// (CI); this one needs a GPU (tests/gpu/run.sh unit) and skips without one.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "DetectionScenes.h"
+#include "MeshBuilders.h"
+#include "backend/cpu/ContactDetector.h"
+#include "backend/cuda/CudaKinematics.h"
+#include "backend/cuda/Device.h"
+#include "kinematics/BinGridSizing.h"
+#include "runtime/FamilyRules.h"
+#include "runtime/Settings.h"
+
+using namespace deme;
+using namespace deme::cuda;
+using namespace deme_test;
+
+TEST(CudaDormantDetection, MatchesTheCpuCachedDetectorPairForPair) {
+    if (usableDevices().empty()) GTEST_SKIP() << "no usable GPU: " << queryDevices().whyNone;
+    FamilyRules rules;
+    rules.motion(2).fixed = true;   // family 2 is dormant: fixed, ...
+    rules.setContact(2, 2, false);  // ... no contacts among its grains
+    Settings settings;
+    settings.familyExtraMargin[1] = 2e-4f;
+    settings.familyExtraMargin[2] = 1e-4f;  // dormant grains reach further
+    const float* extra = settings.familyExtraMargin;
+    uint8_t dormant[NUM_FAMILIES], prescribed[NUM_FAMILIES];
+    rules.dormantFamilies(dormant);
+    rules.prescribedFamilies(prescribed);
+    ASSERT_EQ(dormant[2], 1);
+
+    Scene scene = randomScene(3, 1500);
+    auto floor =
+        std::make_shared<DEMMeshConnected>(gridFloor(-0.02f, -0.02f, -0.015f, 16, 0.0025f, scene.materials.front()));
+    floor->SetFamily(1);
+    scene.meshes.push_back(floor);
+    SimState s = detectionState(scene, "CudaDormantDetection");
+    const BinGrid grid = makeBinGrid(s, 0.0015);
+    ContactDetector cpuDet;
+    cpuDet.setFamilies(dormant, prescribed, s);
+
+    useDevice("CudaDormantDetection", 0);
+    DeviceState dev;
+    dev.upload(s, nullptr);
+    synchronize(nullptr);
+    CudaKinematics kin(0, 0, dev, nullptr);
+    kin.setGeometry(s, grid, rules, settings);
+
+    auto compare = [&](double margin) {
+        SCOPED_TRACE(testing::Message() << "margin " << margin);
+        DetectionOrder order;
+        order.margin = margin;
+        DetectionReport report;
+        kin.detectNow(order, report);
+        const size_t n = report.numPairs;
+        DetectedContacts gpu;
+        gpu.geomA.resize(n);
+        gpu.geomB.resize(n);
+        gpu.type.resize(n);
+        if (n) {
+            kin.outbox().geomA.downloadAsync(gpu.geomA.data(), n, nullptr);
+            kin.outbox().geomB.downloadAsync(gpu.geomB.data(), n, nullptr);
+            kin.outbox().type.downloadAsync(gpu.type.data(), n, nullptr);
+        }
+        synchronize(nullptr);
+        DetectedContacts cpu;
+        double binning = 0.0, search = 0.0;
+        cpuDet.detect(s, grid, margin, rules.contactMask(), extra, cpu, binning, search);
+        EXPECT_GT(cpu.size(), 500u);
+        EXPECT_EQ(gpu.geomA, cpu.geomA);
+        EXPECT_EQ(gpu.geomB, cpu.geomB);
+        EXPECT_EQ(gpu.type, cpu.type);
+    };
+    for (double margin : {0.0, 1e-4, 3e-4}) compare(margin);
+    EXPECT_EQ(kin.dormantRegistryRebuilds(), 1u);  // built once for three margins
+    EXPECT_EQ(cpuDet.dormantCache().rebuilds(), 1u);
+
+    // A grain wakes up, another falls dormant (the snapshot reads the device's families).
+    size_t woke = 0, slept = 0;
+    for (size_t o = 0; o < s.numClumps && (woke == 0 || slept == 0); o++) {
+        if (s.owners.family[o] == 2 && woke == 0)
+            s.owners.family[o] = 0, woke = o + 1;
+        else if (s.owners.family[o] == 0 && slept == 0)
+            s.owners.family[o] = 2, slept = o + 1;
+    }
+    ASSERT_TRUE(woke && slept);
+    dev.owners.family.uploadAsync(s.owners.family.data(), s.owners.family.size(), nullptr);
+    synchronize(nullptr);
+    compare(2e-4);
+    compare(1e-4);
+    EXPECT_EQ(kin.dormantRegistryRebuilds(), 2u);  // once for the change
+
+    // A wall that moves and reaches dormant grains: everything searched, no registry built.
+    s.owners.vel[s.analytical.owner[0]] = make_float3(0, 0, 0.1f);
+    cpuDet.setFamilies(dormant, prescribed, s);
+    kin.setGeometry(s, grid, rules, settings);
+    compare(1e-4);
+    EXPECT_EQ(kin.dormantRegistryRebuilds(), 2u);
+}
