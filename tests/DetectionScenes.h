@@ -63,8 +63,8 @@ inline Scene randomScene(unsigned seed, size_t nClumps) {
 
 // The scene as detection sees it: assembled with the default model, geometry positions computed.
 inline SimState detectionState(const Scene& scene, const char* call) {
-    SimState s = assembleScene(
-        scene, resolveModelLayout(DEMForceModel(DEMForceModel::Kind::FRICTIONAL_HERTZIAN), scene, call));
+    SimState s =
+        assembleScene(scene, resolveModelLayout(DEMForceModel(DEMForceModel::Kind::FRICTIONAL_HERTZIAN), scene, call));
     refreshKinematicCache(s);
     return s;
 }
@@ -82,7 +82,7 @@ struct DetectionRules {
 
 // Every pair within reach by an O(N^2) search: spheres (a < b) and sphere-analytical pairs.
 inline std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, double margin, const uint8_t* mask,
-                                                   const float* extra) {
+                                                          const float* extra) {
     std::set<std::pair<bodyID_t, bodyID_t>> pairs;
     const size_t nS = s.spheres.size();
     std::vector<double3> p(nS);
@@ -118,5 +118,17 @@ inline std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, dou
     return pairs;
 }
 
+// The active box's family change in the detection tests: the first clump of family `dormant` wakes
+// up (to `active`) and the first of family `active` falls dormant. Whether both were found.
+inline bool wakeOneAndFreezeOne(SimState& s, family_t dormant, family_t active) {
+    size_t woke = 0, slept = 0;
+    for (size_t o = 0; o < s.numClumps && (woke == 0 || slept == 0); o++) {
+        if (s.owners.family[o] == dormant && woke == 0)
+            s.owners.family[o] = active, woke = o + 1;
+        else if (s.owners.family[o] == active && slept == 0)
+            s.owners.family[o] = dormant, slept = o + 1;
+    }
+    return woke && slept;
+}
 
 }  // namespace deme_test

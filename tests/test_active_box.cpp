@@ -81,12 +81,7 @@ TEST(ActiveBoxDetection, DormantCacheFindsExactlyTheFullSearchsPairs) {
         EXPECT_LT(det.dormantCache().moving().size(), s.spheres.size());
         EXPECT_GT(det.dormantCache().moving().size(), 0u);
         // A family change (a grain wakes up, another falls dormant) rebuilds it, once.
-        size_t woke = 0, slept = 0;
-        for (size_t o = 0; o < s.numClumps && (woke == 0 || slept == 0); o++) {
-            if (s.owners.family[o] == 2 && woke == 0) s.owners.family[o] = 0, woke = o + 1;
-            else if (s.owners.family[o] == 0 && slept == 0) s.owners.family[o] = 2, slept = o + 1;
-        }
-        ASSERT_TRUE(woke && slept);
+        ASSERT_TRUE(wakeOneAndFreezeOne(s, 2, 0));
         for (double margin : {1e-4, 2e-4})
             EXPECT_EQ(detectPairs(det, s, grid, margin, rules, extra), expectedPairs(s, margin, rules, extra, dormant));
         EXPECT_EQ(det.dormantCache().rebuilds(), 2u);

@@ -339,14 +339,7 @@ TEST(CudaDetectionKernels, DormantRegistryMatchesTheCpuCachedDetectorExactly) {
         };
         for (double margin : {0.0, 1e-4, 3e-4}) compare(margin, true);
         // A grain wakes up, another falls dormant.
-        size_t woke = 0, slept = 0;
-        for (size_t o = 0; o < s.numClumps && (woke == 0 || slept == 0); o++) {
-            if (s.owners.family[o] == 2 && woke == 0)
-                s.owners.family[o] = 0, woke = o + 1;
-            else if (s.owners.family[o] == 0 && slept == 0)
-                s.owners.family[o] = 2, slept = o + 1;
-        }
-        ASSERT_TRUE(woke && slept);
+        ASSERT_TRUE(wakeOneAndFreezeOne(s, 2, 0));
         compare(2e-4, true);
         // A wall that moves and reaches dormant grains: the full search.
         s.owners.vel[s.analytical.owner[0]] = make_float3(0, 0, 0.1f);

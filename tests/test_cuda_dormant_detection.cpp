@@ -84,14 +84,7 @@ TEST(CudaDormantDetection, MatchesTheCpuCachedDetectorPairForPair) {
     EXPECT_EQ(cpuDet.dormantCache().rebuilds(), 1u);
 
     // A grain wakes up, another falls dormant (the snapshot reads the device's families).
-    size_t woke = 0, slept = 0;
-    for (size_t o = 0; o < s.numClumps && (woke == 0 || slept == 0); o++) {
-        if (s.owners.family[o] == 2 && woke == 0)
-            s.owners.family[o] = 0, woke = o + 1;
-        else if (s.owners.family[o] == 0 && slept == 0)
-            s.owners.family[o] = 2, slept = o + 1;
-    }
-    ASSERT_TRUE(woke && slept);
+    ASSERT_TRUE(wakeOneAndFreezeOne(s, 2, 0));
     dev.owners.family.uploadAsync(s.owners.family.data(), s.owners.family.size(), nullptr);
     synchronize(nullptr);
     compare(2e-4);

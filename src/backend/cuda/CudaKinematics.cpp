@@ -24,12 +24,6 @@ constexpr const char* CALL = "DoDynamics";
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-int bitsFor(uint64_t n) {
-    int b = 1;
-    while (b < 64 && (uint64_t(1) << b) <= n) b++;
-    return b;
-}
-
 cudaStream_t toCuda(Stream s) { return static_cast<cudaStream_t>(s); }
 
 // Runs f with GPU `device` current for this thread, then makes `back` current again: kT sizes the

@@ -20,6 +20,13 @@ inline unsigned int blocksFor(unsigned long long n, unsigned int threads) {
     return (unsigned int)((n + threads - 1) / threads);
 }
 
+// Key bits a radix sort must look at for keys below n (at least 1).
+inline int bitsFor(unsigned long long n) {
+    int b = 1;
+    while (b < 64 && (1ull << b) <= n) b++;
+    return b;
+}
+
 // What the message of every call says when the library was built without the CUDA backend.
 inline const char* cudaNotBuiltMessage() {
     return "the CUDA backend was not built into this library (configure with -DDEME_ENABLE_CUDA=ON on a "

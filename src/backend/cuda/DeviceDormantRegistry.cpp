@@ -8,12 +8,6 @@ namespace {
 
 constexpr unsigned int THREADS = 256;
 
-int bitsFor(uint64_t n) {
-    int b = 1;
-    while (b < 64 && (uint64_t(1) << b) <= n) b++;
-    return b;
-}
-
 }  // namespace
 
 DormantFamilies DormantFamilies::of(const SimState& live, const FamilyRules& families) {
