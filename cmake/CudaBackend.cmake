@@ -67,6 +67,7 @@ if(DEME_CUDA_ENABLED)
   list(REMOVE_ITEM deme_cuda_sources ${deme_cuda_dir}/CudaUnavailable.cpp)
   target_sources(deme PRIVATE ${deme_cuda_sources})
   target_compile_definitions(deme PRIVATE DEME_HAS_CUDA=1)
+  set(DEME_CUDA_BUILT ON)  # tests/CMakeLists.txt: the white-box GPU tests link the backend's classes
   set_source_files_properties(${deme_cuda_dir}/Device.cpp PROPERTIES
     COMPILE_DEFINITIONS DEME_CUDA_MIN_ARCH=${deme_cuda_min_arch})
   set_target_properties(deme PROPERTIES

@@ -4,12 +4,14 @@
 // ActiveBoxDetection.DormantCacheFindsExactlyTheFullSearchsPairs) pair for pair and in order; a
 // family change rebuilds the registry once, and a wall that moves makes it search everything. The
 // same kernels run on the host in CudaDetectionKernels.DormantRegistryMatchesTheCpuCachedDetectorExactly
-// (CI); this one needs a GPU (tests/gpu/run.sh unit) and skips without one.
+// (CI); this one needs a GPU (tests/gpu/run.sh unit) and skips without one, or without the CUDA
+// backend built (CudaKinematics exists only then).
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <vector>
 
+#ifdef DEME_TESTS_CUDA_BUILT
 #include "DetectionScenes.h"
 #include "MeshBuilders.h"
 #include "backend/cpu/ContactDetector.h"
@@ -23,6 +25,13 @@ using namespace deme;
 using namespace deme::cuda;
 using namespace deme_test;
 
+#endif
+
+#ifndef DEME_TESTS_CUDA_BUILT
+TEST(CudaDormantDetection, MatchesTheCpuCachedDetectorPairForPair) {
+    GTEST_SKIP() << "the CUDA backend was not built into this library";
+}
+#else
 TEST(CudaDormantDetection, MatchesTheCpuCachedDetectorPairForPair) {
     if (usableDevices().empty()) GTEST_SKIP() << "no usable GPU: " << queryDevices().whyNone;
     FamilyRules rules;
@@ -98,3 +107,4 @@ TEST(CudaDormantDetection, MatchesTheCpuCachedDetectorPairForPair) {
     compare(1e-4);
     EXPECT_EQ(kin.dormantRegistryRebuilds(), 2u);
 }
+#endif
