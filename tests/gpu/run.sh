@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|timing|gpus|settled|profile|compile|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|activebox|timing|gpus|settled|profile|compile|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -119,6 +119,11 @@ for step in "${steps[@]}"; do
             timeout 200 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 spheres 125000 2000 2e-6 $g async 2>&1 |
                 tee -a "$OUT/gpus.jsonl" | tail -n 2
         done
+        ;;
+    activebox)
+        # ACTIVE-BOX on the GPU: 10^6 packed grains, whole bed active (2,000 steps) against 5 % active
+        # (10,000 steps), then the ratio.
+        timeout 200 ./build-gpu/bench/active_box cuda 1000000 0.05 2000 10000 2>&1 | tee -a "$OUT/activebox.jsonl" | tail -n 3
         ;;
     small)
         # SMALL-SYSTEMS on the GPU: the drum and the impact (default warm-up and timed steps), with
