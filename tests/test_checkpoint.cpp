@@ -227,6 +227,50 @@ TEST_F(Checkpoint, RestartAfterInsertionsAndRemovalsIsBitForBit) {
     expectSameRun(savedState(ref, 0, 0), savedState(end, 0, 0), true);
 }
 
+// A family change on a condition (ChangeFamilyWhen) set before the checkpoint goes on after it: it
+// acts only after the checkpoint's time (t = 0.04 s; the second half runs to 0.07 s), so the grains
+// it freezes in the restarted run are frozen by the restored condition, as in the straight run.
+TEST_F(Checkpoint, RestartCarriesFamilyChangeConditions) {
+    const CheckpointScene sc;  // synchronous, fixed n_max: conditions are checked at detections
+    const std::string ref = (dir / "straight.ckpt").string(), mid = (dir / "mid.ckpt").string(),
+                      end = (dir / "restarted.ckpt").string();
+    auto firstHalf = [&](DEMSolver& sim) {
+        auto pile = buildCheckpointScene(sim, sc);
+        sim.SetFamilyFixed(9);
+        sim.ChangeFamilyWhen(0, 9, "t > 0.055 && Z < -0.03");
+        checkpointScenePhase1(sim, sc, N);
+        return sim.Track(pile);
+    };
+    auto frozen = [](const std::shared_ptr<DEMTracker>& t) {
+        size_t n = 0;
+        for (unsigned int f : t->GetFamilies()) n += f == 9;
+        return n;
+    };
+    size_t frozenAtCheckpoint = 0, frozenAtEnd = 0;
+    {
+        DEMSolver sim;
+        auto t = firstHalf(sim);
+        frozenAtCheckpoint = frozen(t);
+        for (size_t k = 0; k < N; k++) sim.DoStepDynamics();
+        frozenAtEnd = frozen(t);
+        sim.WriteCheckpoint(ref);
+    }
+    EXPECT_EQ(frozenAtCheckpoint, 0u);
+    EXPECT_GT(frozenAtEnd, 20u);
+    {
+        DEMSolver sim;
+        firstHalf(sim);
+        sim.WriteCheckpoint(mid);
+    }
+    DEMSolver sim;  // the new process's script: the scene only, no ChangeFamilyWhen
+    auto pile = buildCheckpointScene(sim, sc);
+    sim.ReadCheckpoint(mid);
+    for (size_t k = 0; k < N; k++) sim.DoStepDynamics();
+    sim.WriteCheckpoint(end);
+    EXPECT_EQ(frozen(sim.Track(pile)), frozenAtEnd);
+    expectSameRun(savedState(ref, 0, 0), savedState(end, 0, 0), true);
+}
+
 // A real restart: the first half in one process, the second in another (tools/checkpoint_run.cpp),
 // against the straight run in this one.
 TEST_F(Checkpoint, RestartInANewProcessIsBitForBit) {

@@ -3,6 +3,7 @@
 #include <deme/Error.h>
 
 #include "codegen/Expression.h"
+#include "codegen/FamilyCondition.h"
 #include "io/CheckpointFile.h"
 #include "io/CheckpointState.h"
 #include "runtime/Simulation.h"
@@ -108,6 +109,13 @@ void writeFamilies(const Simulation& sim, ByteWriter& out) {
             out.text(m.ang[i].text());
         }
     }
+    // Family changes on conditions (ChangeFamilyWhen), in the order they are checked.
+    out.value((uint32_t)sim.families.conditions().size());
+    for (const FamilyCondition& c : sim.families.conditions()) {
+        out.value(c.from);
+        out.value(c.to);
+        out.text(c.when.text());
+    }
 }
 void readFamilies(ByteReader& in, Staging& st, const std::string& call) {
     const uint8_t* mask = reinterpret_cast<const uint8_t*>(in.take(NUM_FAMILIES * NUM_FAMILIES, "the contact mask"));
@@ -125,6 +133,15 @@ void readFamilies(ByteReader& in, Staging& st, const std::string& call) {
             m.angPrescribed[i] = in.value<uint8_t>("a family rule") != 0;
             m.ang[i] = expression(m.angPrescribed[i], in.text("a prescribed velocity"));
         }
+    }
+    st.families.conditions().clear();
+    const uint32_t nConditions = in.value<uint32_t>("the family change count");
+    for (uint32_t k = 0; k < nConditions; k++) {
+        FamilyCondition c;
+        c.from = in.value<family_t>("a family change");
+        c.to = in.value<family_t>("a family change");
+        c.when = Expression::parseCondition(in.text("a family change condition"), familyConditionVariables(), call);
+        st.families.conditions().push_back(std::move(c));
     }
 }
 

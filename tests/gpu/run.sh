@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|timing|gpus|settled|profile|compile|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|activebox|timing|gpus|settled|profile|compile|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -73,8 +73,9 @@ for step in "${steps[@]}"; do
         # CPU instances, the CPU's bit-for-bit tests (Async.*, Determinism.*, RunMonitor.*,
         # ForceModelBitIdentity.*), the tests that start no simulation, TSAN and package tests.
         # GpuParity.* (whose CPU halves are the slowest tests here) run in the unit step.
-        DEME_BACKEND=cuda ctest --test-dir build-gpu -j8 -R '/cuda$|^demo_' --timeout 400 \
-            >"$OUT/suite.log" 2>&1
+        # SUITE_EXCLUDE (a ctest regex) leaves tests out, e.g. the slowest ones when a command is short.
+        DEME_BACKEND=cuda ctest --test-dir build-gpu -j"${SUITE_JOBS:-8}" -R '/cuda$|^demo_' ${SUITE_EXCLUDE:+-E "$SUITE_EXCLUDE"} \
+            --timeout 400 >"$OUT/suite.log" 2>&1
         echo "suite (cuda instances and demos): rc $?"
         grep -E 'tests passed|\(Failed\)|\(Timeout\)|\(SEGFAULT\)|Exception' "$OUT/suite.log" | head -40
         ;;
@@ -119,6 +120,11 @@ for step in "${steps[@]}"; do
             timeout 200 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 spheres 125000 2000 2e-6 $g async 2>&1 |
                 tee -a "$OUT/gpus.jsonl" | tail -n 2
         done
+        ;;
+    activebox)
+        # ACTIVE-BOX on the GPU: 10^6 packed grains, whole bed active (2,000 steps) against 5 % active
+        # (10,000 steps), then the ratio.
+        timeout 200 ./build-gpu/bench/active_box cuda 1000000 0.05 2000 10000 2>&1 | tee -a "$OUT/activebox.jsonl" | tail -n 3
         ;;
     small)
         # SMALL-SYSTEMS on the GPU: the drum and the impact (default warm-up and timed steps), with
