@@ -207,6 +207,28 @@ DEME_BACKEND_TEST(SceneEdits, DefaultExitPolicyStopsTheRunNamingTheGrain) {
     EXPECT_EQ(sim.GetNumRemovedClumps(), 0u);
 }
 
+// Every owner of the scene falls out of the domain under the "remove" policy: the run goes on with
+// none left (every per-owner sweep over nothing), and the removed mass is all the mass there was.
+DEME_BACKEND_TEST(SceneEdits, RunGoesOnWhenEveryGrainHasLeft) {
+    DEMSolver sim;
+    sim.SetVerbosity("QUIET");
+    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.3, 0.5));
+    sim.InstructBoxDomainDimension(1, 1, 1);
+    const double r = 0.01, m = sphereMass(r, 1000);
+    auto ball = sim.LoadSphereType((float)m, (float)r, mat);
+    sim.AddClumps(ball, {make_float3(0, 0, -0.3f), make_float3(0.2f, 0, -0.2f)});
+    sim.SetDomainExitPolicy("remove");
+    sim.SetInitTimeStep(1e-4);
+    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    sim.Initialize();
+    sim.DoDynamics(0.4);  // both fall out through z = -0.5 within 0.32 s
+    EXPECT_EQ(sim.GetNumClumps(), 0u);
+    EXPECT_EQ(sim.GetNumRemovedClumps(), 2u);
+    EXPECT_NEAR(sim.GetRemovedMass(), 2 * m, 1e-6 * m);
+    sim.DoDynamics(0.01);  // and further steps with nothing to step
+    EXPECT_NEAR(sim.GetSimTime(), 0.41, 1e-9);
+}
+
 // Bad input: each a deme::Error naming the call, with nothing changed.
 DEME_BACKEND_TEST(SceneEdits, BadInputIsAnErrorNamingTheCall) {
     DEMSolver sim;

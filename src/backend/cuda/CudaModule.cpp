@@ -51,6 +51,9 @@ CudaKernel CudaModule::kernel(const std::string& name) const {
 
 void launchKernel(const CudaKernel& kernel, Dim3 grid, Dim3 block, size_t sharedBytes, Stream stream, void** args) {
     if (!kernel.handle) throwError("launchKernel", "no kernel to launch");
+    // A grid over no items (a scene whose last clumps were removed, say) is no work; CUDA would call
+    // a zero grid an invalid argument.
+    if (grid.x == 0 || grid.y == 0 || grid.z == 0) return;
     const std::string call = "launching kernel '" + kernel.name + "'";
     // cudaLaunchKernel takes a cudaKernel_t cast to a function pointer (CUDA 12+).
     DEME_CUDA_CHECK(call.c_str(), cudaLaunchKernel(static_cast<const void*>(kernel.handle),
