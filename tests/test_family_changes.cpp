@@ -109,6 +109,33 @@ DEME_BACKEND_TEST(FamilyChanges, ConditionsReadTimeAndVelocity) {
     for (int i = 0; i < N; i++) EXPECT_EQ(row.tr->GetFamily(i), speedOf(i) > 1.f ? 2u : 0u) << "grain " << i;
 }
 
+// ClearFamilyChangeConditions ends every condition between calls: the grains the condition caught
+// before stay frozen, and those that cross the plane afterwards fly on (x = x0 + v t, 1e-5 m).
+DEME_BACKEND_TEST(FamilyChanges, ClearedConditionsCatchNoMoreGrains) {
+    Row row;
+    row.sim.ChangeFamilyWhen(0, 1, "X > 0");
+    row.sim.Initialize();
+    row.tr = row.sim.Track(row.batch);
+    row.sim.DoDynamics(0.4);  // past the plane by then: v > 1.25 m/s, grains 25..39
+    const std::vector<unsigned int> caught = row.tr->GetFamilies();
+    int before = 0;
+    for (unsigned int f : caught) before += f == 1u;
+    ASSERT_GT(before, 0);
+    row.sim.ClearFamilyChangeConditions();
+    row.sim.DoDynamics(T - 0.4);  // grains 20..24 cross now
+    const double t = row.sim.GetSimTime();
+    int crossedAfter = 0;
+    for (int i = 0; i < N; i++) {
+        EXPECT_EQ(row.tr->GetFamily(i), caught[i]) << "grain " << i;
+        if (caught[i] == 0u) {
+            const double free = -0.5 + (double)speedOf(i) * t;
+            EXPECT_NEAR(row.tr->Pos(i).x, free, 1e-5) << "grain " << i;
+            crossedAfter += free > 0.0;
+        }
+    }
+    EXPECT_GT(crossedAfter, 0);  // some did cross the plane after the conditions went
+}
+
 // SetFamily freezes one grain between calls; SetFamilies sets them all, and the grains it puts back
 // in family 0 move on from where they stopped.
 DEME_BACKEND_TEST(FamilyChanges, TrackerSetFamilyFreezesOneGrainOnly) {

@@ -50,6 +50,23 @@ def test_change_family_when_freezes_grains_past_a_plane(sim):
     np.testing.assert_array_equal(tr.Velocities()[crossed, 0], 0)
 
 
+def test_cleared_conditions_catch_no_more_grains(sim):
+    batch, speeds = row(sim)
+    sim.ChangeFamilyWhen(0, 1, "X > 0")
+    sim.Initialize()
+    tr = sim.Track(batch)
+    sim.DoDynamics(0.4)  # past the plane by then: v > 1.25 m/s, grains 13..19
+    caught = tr.GetFamilies().copy()
+    assert caught.sum() > 0
+    sim.ClearFamilyChangeConditions()
+    sim.DoDynamics(0.1)  # grains 10..12 cross now
+    np.testing.assert_array_equal(tr.GetFamilies(), caught)
+    free_x = -0.5 + speeds * sim.GetSimTime()
+    flying = caught == 0
+    assert (free_x[flying] > 0).any()  # some crossed the plane after the conditions went
+    np.testing.assert_allclose(tr.Positions()[flying, 0], free_x[flying], atol=1e-5)
+
+
 def test_tracker_set_family_and_bad_input(sim):
     batch, speeds = row(sim)
     with pytest.raises(deme.Error, match="ChangeFamilyWhen"):
