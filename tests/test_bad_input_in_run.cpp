@@ -13,33 +13,36 @@ using namespace deme_test;
 
 DEME_BACKEND_TEST_SUITE(BadInputInRun);
 
-DEME_BACKEND_TEST(BadInputInRun, DivergenceNamesOwner) {
-    // Two stiff, light spheres (E = 1e9 Pa, m = 1 g, r = 0.01 m) placed with half a radius of overlap:
-    // Hertz gives F ~ 4/3 * E/(2(1-nu^2)) * sqrt(r/2) * delta^1.5 ~ 5e4 N, i.e. ~0.5 m/s gained in the
-    // first 1e-5 s step, so they pass 1 m/s within a few steps.
-    DEMSolver sim;
+namespace {
+
+// Two stiff, light spheres (E = 1e9 Pa, m = 1 g, r = 0.01 m), centres `gap` apart along z, with an
+// error-out velocity of 1 m/s.
+void twoStiffSpheres(DEMSolver& sim, float gap) {
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial({{"E", 1e9}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}});
     sim.InstructBoxDomainDimension(1, 1, 1);
     auto t = sim.LoadSphereType(1e-3f, 0.01f, mat);
-    sim.AddClumps(t, {make_float3(0, 0, 0), make_float3(0, 0, 0.015f)});
+    sim.AddClumps(t, {make_float3(0, 0, 0), make_float3(0, 0, gap)});
     sim.SetInitTimeStep(1e-5);
     sim.SetErrorOutVelocity(1.0f);
     sim.Initialize();
+}
+
+}  // namespace
+
+DEME_BACKEND_TEST(BadInputInRun, DivergenceNamesOwner) {
+    // Placed with half a radius of overlap: Hertz gives F ~ 4/3 * E/(2(1-nu^2)) * sqrt(r/2) *
+    // delta^1.5 ~ 5e4 N, i.e. ~0.5 m/s gained in the first 1e-5 s step, so they pass 1 m/s within a
+    // few steps.
+    DEMSolver sim;
+    twoStiffSpheres(sim, 0.015f);
     EXPECT_DEME_ERROR([&] { sim.DoDynamics(1e-3); }, {"DoDynamics", "owner", "SetErrorOutVelocity"});
 }
 
 DEME_BACKEND_TEST(BadInputInRun, NoDivergenceWithoutOverlap) {
     // Control for the test above: the same spheres apart stay below 1 m/s and run without error.
     DEMSolver sim;
-    sim.SetVerbosity("QUIET");
-    auto mat = sim.LoadMaterial({{"E", 1e9}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}});
-    sim.InstructBoxDomainDimension(1, 1, 1);
-    auto t = sim.LoadSphereType(1e-3f, 0.01f, mat);
-    sim.AddClumps(t, {make_float3(0, 0, 0), make_float3(0, 0, 0.05f)});
-    sim.SetInitTimeStep(1e-5);
-    sim.SetErrorOutVelocity(1.0f);
-    sim.Initialize();
+    twoStiffSpheres(sim, 0.05f);
     EXPECT_NO_THROW(sim.DoDynamics(1e-3));
 }
 
