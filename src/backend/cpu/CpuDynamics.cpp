@@ -68,7 +68,7 @@ void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
     installDetectedContacts(m_s, m_kinematics.takenPairs());
     buildOwnerContactIndex(m_s);
     m_baseline.swap(m_orderBaseline);
-    m_subsetStale = true;  // families change only at detections (ChangeFamilyWhen) and uploads
+    m_subsetStale = true;  // the reduction's list (owners stepped or in a contact) follows the set
 }
 
 bool CpuDynamics::travelAtSnapshot(std::vector<double>& travel) const {
