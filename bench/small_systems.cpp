@@ -1,6 +1,6 @@
 // SMALL-SYSTEMS: the lab-scale runs of calibration sweeps, where a GPU is limited by what every step
 // pays in launches and host synchronisations rather than by bandwidth.
-//   small_systems drum|impact [warm steps] [timed steps] [backend] [auto|sync|async]
+//   small_systems drum|impact [warm steps] [timed steps] [backend] [auto|sync|async] [solvers]
 // drum:   a drum turning at 2 rad/s about y (R = 0.1 m, 60 mm long), 8,000 spheres of r = 2 mm under
 //         30,000 of r = 1 mm, dt = 0.8 us; warm-up default 20,000 steps (the lattice collapses into
 //         a bed and the drum starts dragging it), then the timed steps (default 20,000).
@@ -9,13 +9,18 @@
 //         bed settles), then released at 5 m/s for the timed steps (default 200,000: 0.1 s).
 // backend: cpu, cuda or auto (the solver's choice; default). Prints one JSON line: steps/s and
 //         sphere-steps/s of the timed steps; DEME_BENCH_TIMING=1 adds the phase timings (of the whole
-//         run) and the collaboration counters.
+//         run) and the collaboration counters (of the first solver).
+// solvers: that many independent solvers of the case, each on its own thread, timed together (a
+//         sweep on one GPU): the line adds total_steps_per_s over all of them; steps_per_s is the
+//         first solver's.
 #include <deme/deme.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -94,24 +99,16 @@ Impact setUpImpact(DEMSolver& sim) {
     return im;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    const std::string which = argc > 1 ? argv[1] : "";
-    if (which != "drum" && which != "impact") {
-        std::fprintf(stderr, "usage: %s drum|impact [warm steps] [timed steps] [cpu|cuda|auto] [auto|sync|async]\n",
-                     argv[0]);
-        return 2;
-    }
-    const bool drum = which == "drum";
-    // An argument left out or given as "" takes its default.
-    auto arg = [&](int i) { return argc > i && *argv[i] ? std::string(argv[i]) : std::string(); };
-    const unsigned long warm = arg(2).empty() ? (drum ? 20000 : 40000) : std::stoul(arg(2));
-    const unsigned long steps = arg(3).empty() ? (drum ? 20000 : 200000) : std::stoul(arg(3));
-    const std::string backend = arg(4).empty() ? "auto" : arg(4);
-    const std::string mode = arg(5).empty() ? "auto" : arg(5);
-
+// One run of the case: set up, warm-up, then `steps` timed steps; the timed part starts when `go`
+// says so (several solvers start together) and the run reports to `done`.
+struct Run {
     DEMSolver sim;
+    std::shared_ptr<DEMTracker> ball;
+    double dt = 0.0, wall = 0.0;
+};
+
+void setUp(Run& run, bool drum, const std::string& backend, const std::string& mode, unsigned long warm) {
+    DEMSolver& sim = run.sim;
     sim.SetVerbosity("WARNING");
     if (backend != "auto") sim.SetBackend(backend);
     Impact impact;
@@ -122,16 +119,65 @@ int main(int argc, char** argv) {
     sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
     if (mode != "auto") sim.SetSynchronousContactDetection(mode == "sync");
     sim.Initialize();
-    const double dt = drum ? 0.8e-6 : 0.5e-6;
-    std::shared_ptr<DEMTracker> ball = drum ? nullptr : sim.Track(impact.ball);
-    sim.DoDynamics((double)warm * dt);
-    if (ball) {
+    run.dt = drum ? 0.8e-6 : 0.5e-6;
+    run.ball = drum ? nullptr : sim.Track(impact.ball);
+    sim.DoDynamics((double)warm * run.dt);
+    if (run.ball) {
         sim.ChangeFamily(1, 0);
-        ball->SetVel(make_float3(0, 0, -5.f));
+        run.ball->SetVel(make_float3(0, 0, -5.f));
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::string which = argc > 1 ? argv[1] : "";
+    if (which != "drum" && which != "impact") {
+        std::fprintf(stderr,
+                     "usage: %s drum|impact [warm steps] [timed steps] [cpu|cuda|auto] [auto|sync|async] [solvers]\n",
+                     argv[0]);
+        return 2;
+    }
+    const bool drum = which == "drum";
+    // An argument left out or given as "" takes its default.
+    auto arg = [&](int i) { return argc > i && *argv[i] ? std::string(argv[i]) : std::string(); };
+    const unsigned long warm = arg(2).empty() ? (drum ? 20000 : 40000) : std::stoul(arg(2));
+    const unsigned long steps = arg(3).empty() ? (drum ? 20000 : 200000) : std::stoul(arg(3));
+    const std::string backend = arg(4).empty() ? "auto" : arg(4);
+    const std::string mode = arg(5).empty() ? "auto" : arg(5);
+    // Several independent solvers, each on its own thread (a calibration sweep on one GPU): set up
+    // and warmed one after the other, then timed together.
+    const unsigned long solvers = arg(6).empty() ? 1 : std::max(1ul, std::stoul(arg(6)));
+
+    std::vector<std::unique_ptr<Run>> runs;
+    for (unsigned long i = 0; i < solvers; i++) {
+        runs.push_back(std::make_unique<Run>());
+        setUp(*runs.back(), drum, backend, mode, warm);
     }
     const double t1 = deme_bench::seconds();
-    sim.DoDynamics((double)steps * dt);
+    std::vector<std::thread> threads;
+    std::vector<std::string> failures(solvers);
+    for (unsigned long i = 0; i < solvers; i++)
+        threads.emplace_back([&, i] {
+            Run& r = *runs[i];
+            try {
+                const double t = deme_bench::seconds();
+                r.sim.DoDynamics((double)steps * r.dt);
+                r.wall = deme_bench::seconds() - t;
+            } catch (const std::exception& e) {
+                failures[i] = e.what();
+            }
+        });
+    for (std::thread& t : threads) t.join();
     const double wall = deme_bench::seconds() - t1;
+    for (const std::string& f : failures)
+        if (!f.empty()) {
+            std::fprintf(stderr, "small_systems: %s\n", f.c_str());
+            return 1;
+        }
+    DEMSolver& sim = runs[0]->sim;
+    const std::shared_ptr<DEMTracker>& ball = runs[0]->ball;
+    const double dt = runs[0]->dt;
     const double spheres = (double)sim.GetNumSpheres();
 
     deme_bench::JsonLine j;
@@ -141,9 +187,12 @@ int main(int argc, char** argv) {
         .add("dt", dt)
         .add("warmup_steps", (double)warm)
         .add("steps", (double)steps)
+        .add("solvers", (double)solvers)
         .add("wall_s", wall)
-        .add("steps_per_s", (double)steps / wall)
-        .add("sphere_steps_per_s", spheres * (double)steps / wall)
+        .add("steps_per_s", (double)steps / runs[0]->wall)
+        .add("sphere_steps_per_s", spheres * (double)steps / runs[0]->wall)
+        .add("total_steps_per_s", (double)solvers * (double)steps / wall)
+        .add("total_sphere_steps_per_s", (double)solvers * spheres * (double)steps / wall)
         .add("detection", sim.UsesAsyncContactDetection() ? "async" : "sync")
         .add("update_freq", (double)sim.GetUpdateFreq())
         .add("dT_wait_share", sim.GetDynamicsWaitShare())

@@ -57,32 +57,52 @@ struct LoopModel {
             setTravel = orderTravel;
         }
     }
+    // Steps between looks at the schedule (runtime/Simulation's batches): 0 looks before every step;
+    // otherwise the loop runs batches of stepsBeforeReview(step, async, batchPoll) steps, each ended
+    // early after a step that lets the set in use expire (dynamics/StepBatch.h).
+    unsigned int batchPoll = 0;
+    unsigned long long batches = 0, latestTake = 0;
+
+    void decide(unsigned long long step) {
+        if (sched.needsDetection()) detectNow(step);
+        if (inFlight && step >= readyAt) {
+            latestTake = std::max(latestTake, step - readyAt);
+            take(step);
+        }
+        if (sched.due(step)) {
+            stats.dynamicsWaits++;
+            if (inFlight) take(step);  // waits for it
+            if (sched.due(step)) detectNow(step);
+        }
+        if (sched.shouldOrder(step)) {
+            inFlight = true;
+            orderStep = step;
+            orderGeneration = sched.generation();
+            orderMargin = sched.marginFor(settings, 0.f);
+            orderTravel = travel;
+            readyAt = step + latency;
+            sched.ordered(stats);
+        }
+    }
+    // The step itself: it must run on a set that is still valid. True: it ends its batch.
+    bool step(unsigned long long step) {
+        if (travel - setTravel > sched.margin() || step - sched.acsStep() > sched.nMax()) stepsOnExpiredSet++;
+        travel += travelPerStep;
+        forceSeconds += forcePerStep;
+        stats.contactSetSizeSum += 1.0;
+        stats.realContactSum += 1.0 - std::min(1.0, falsePositivesPer20 * sched.nMax() / 20.0);
+        stats.steps++;
+        sched.afterStep(travel - setTravel);
+        return travel - setTravel > sched.margin();
+    }
     void run(unsigned long long from, unsigned long long to) {
-        for (unsigned long long step = from; step < to; step++) {
-            if (sched.needsDetection()) detectNow(step);
-            if (inFlight && step >= readyAt) take(step);
-            if (sched.due(step)) {
-                stats.dynamicsWaits++;
-                if (inFlight) take(step);  // waits for it
-                if (sched.due(step)) detectNow(step);
-            }
-            if (sched.shouldOrder(step)) {
-                inFlight = true;
-                orderStep = step;
-                orderGeneration = sched.generation();
-                orderMargin = sched.marginFor(settings, 0.f);
-                orderTravel = travel;
-                readyAt = step + latency;
-                sched.ordered(stats);
-            }
-            // The step itself: it must run on a set that is still valid.
-            if (travel - setTravel > sched.margin() || step - sched.acsStep() > sched.nMax()) stepsOnExpiredSet++;
-            travel += travelPerStep;
-            forceSeconds += forcePerStep;
-            stats.contactSetSizeSum += 1.0;
-            stats.realContactSum += 1.0 - std::min(1.0, falsePositivesPer20 * sched.nMax() / 20.0);
-            stats.steps++;
-            sched.afterStep(travel - setTravel);
+        for (unsigned long long s = from; s < to;) {
+            decide(s);
+            const unsigned long long k =
+                batchPoll ? std::min(to - s, sched.stepsBeforeReview(s, settings.asyncDetection, batchPoll)) : 1;
+            batches++;
+            for (unsigned long long j = 0; j < k; j++)
+                if (step(s++)) break;
         }
     }
 };
@@ -242,4 +262,50 @@ TEST(DetectionSchedule, SyncLoopDetectsEveryNmaxSteps) {
     EXPECT_EQ(m.inlineDetections, 10u);
     EXPECT_EQ(m.stats.syncDetections, 10u);
     EXPECT_EQ(m.stats.ordersSent, 0u);
+}
+
+// Batches (runtime/Simulation: the host looks only between them): every step still runs on a valid
+// set, in both modes, with sets expiring by age and by travel; asynchronously, a result is taken at
+// most one poll interval after it is ready, the waits stop once n_max has adapted, and the host looks
+// far less often than every step.
+TEST(DetectionSchedule, BatchedLoopNeverStepsOnAnExpiredSet) {
+    for (bool async : {true, false})
+        for (double travelPerStep : {1e-7, 5e-7}) {
+            SCOPED_TRACE(std::string(async ? "async" : "sync") + ", travel per step " + std::to_string(travelPerStep));
+            LoopModel m;
+            m.settings = settingsWith(async ? 2 : 40, true);
+            m.settings.asyncDetection = async;
+            m.settings.maxVelocity = travelPerStep > 2e-7 ? 0.01f : 1.f;  // the fast case expires by travel
+            m.sched.configure(m.settings);
+            m.latency = 6;
+            m.travelPerStep = travelPerStep;
+            m.batchPoll = 16;
+            m.run(0, 2000);
+            const unsigned long long waits = m.stats.dynamicsWaits;
+            m.run(2000, 6000);
+            EXPECT_EQ(m.stepsOnExpiredSet, 0u);
+            EXPECT_EQ(m.stats.steps, 6000u);
+            if (async) EXPECT_LT(m.latestTake, 16u);
+            if (travelPerStep < 2e-7) {
+                EXPECT_LT(m.batches, 6000u / 4);
+                if (async) EXPECT_EQ(m.stats.dynamicsWaits, waits);
+            }
+        }
+}
+
+// The review horizon: up to the set's n_max, up to the order's step with none in flight, and the
+// poll interval with one in flight; never zero.
+TEST(DetectionSchedule, StepsBeforeReview) {
+    DetectionSchedule s;
+    s.configure(settingsWith(40, false));
+    CollaborationStats stats;
+    s.installed(100, 1e-3, stats);
+    EXPECT_EQ(s.stepsBeforeReview(100, false, 16), 40u);
+    EXPECT_EQ(s.stepsBeforeReview(130, false, 16), 10u);
+    EXPECT_EQ(s.stepsBeforeReview(140, false, 16), 1u);  // due: detected at the next look
+    // Asynchronous, no latency observed yet: an order is due at once, then looks every 16 steps.
+    EXPECT_EQ(s.stepsBeforeReview(100, true, 16), 40u);
+    s.ordered(stats);
+    EXPECT_EQ(s.stepsBeforeReview(100, true, 16), 16u);
+    EXPECT_EQ(s.stepsBeforeReview(135, true, 16), 5u);
 }

@@ -28,6 +28,7 @@ void writeFamily(std::ostringstream& o, unsigned int f, const FamilyMotion& m) {
 std::string familyMotionKernelSource(const std::array<FamilyMotion, NUM_FAMILIES>& motions) {
     std::ostringstream o;
     o << "// Generated: the families' prescribed motion (codegen/FamilyMotionSource.cpp).\n"
+         "#include \"dynamics/StepBatch.h\"\n"
          "#include \"state/FamilyStepMotion.h\"\n"
          "\n"
          "namespace deme {\n"
@@ -38,10 +39,12 @@ std::string familyMotionKernelSource(const std::array<FamilyMotion, NUM_FAMILIES
          "\n"
          "extern \"C\" __global__ void "
       << kFamilyMotionKernel
-      << "(double t, deme::FamilyStepMotion* out) {\n"
+      << "(const deme::StepBatchControl* ctl, deme::FamilyStepMotion* out) {\n"
          "    using namespace deme;\n"
          "    const unsigned int f = blockIdx.x * blockDim.x + threadIdx.x;\n"
-         "    if (f >= NUM_FAMILIES) return;\n"
+         "    if (f >= NUM_FAMILIES || ctl->stop) return;\n"
+         "    // The prescriptions at the end of the step, as the CPU evaluates them.\n"
+         "    const double t = ctl->time + ctl->dt;\n"
          "    FamilyStepMotion s;\n"
          "    (void)t;\n"
          "    switch (f) {\n";

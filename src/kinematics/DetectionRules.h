@@ -82,6 +82,22 @@ DEME_HD_INLINE bool analyticalInReach(const S& s, const DetectionArgs& a, const 
     return dist < eA + marginOf(s, a, o);
 }
 
+// The first entry of a bin's entries [e0, e1) whose sphere id is above `sa` (e1 if none). A bin's
+// entries are in ascending id order on both backends (spheres are registered in id order, and the
+// GPU's sort by bin is stable), so a sphere skips at once the bins that hold no higher id -- all of
+// them for the last sphere, however many bins a large one spans -- and the lower ids of the others.
+DEME_HD_INLINE uint32_t firstEntryAbove(const BinsView& bins, uint32_t e0, uint32_t e1, bodyID_t sa) {
+    if (e0 == e1 || bins.items[e1 - 1] <= sa) return e1;
+    while (e0 < e1) {
+        const uint32_t mid = (e0 + e1) >> 1;
+        if (bins.items[mid] <= sa)
+            e0 = mid + 1;
+        else
+            e1 = mid;
+    }
+    return e0;
+}
+
 // Sorts ids[0, n) ascending (a sphere's partner lists are short).
 DEME_HD_INLINE void sortIds(bodyID_t* ids, unsigned int n) {
     for (unsigned int k = 1; k < n; k++) {
@@ -123,9 +139,9 @@ DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, b
         for (int y = bLo[1]; y <= bHi[1]; y++)
             for (int x = bLo[0]; x <= bHi[0]; x++) {
                 const uint64_t bin = binIndex(g, x, y, z);
-                for (uint32_t e = a.sphereBins.start[bin]; e < a.sphereBins.start[bin + 1]; e++) {
+                const uint32_t e1 = a.sphereBins.start[bin + 1];
+                for (uint32_t e = firstEntryAbove(a.sphereBins, a.sphereBins.start[bin], e1, sa); e < e1; e++) {
                     const bodyID_t b = a.sphereBins.items[e];
-                    if (b <= sa) continue;
                     const bodyID_t oB = s.spheres.owner[b];
                     if (oB == oA || !maskRow[s.owners.family[oB]]) continue;
                     const double3 pB = s.cache.spherePos[b];

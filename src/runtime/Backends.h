@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/StepBatch.h"
 #include "kinematics/BinGrid.h"
 #include "runtime/FamilyRules.h"
 #include "runtime/Settings.h"
@@ -51,6 +52,25 @@ struct StepOutcome {
     unsigned int kernelError = 0, kernelErrorItem = 0;  // GPU only: KernelError bits and the sphere
 };
 
+// A batch of steps the dynamics side runs without the host looking in between (dynamics/StepBatch.h):
+// at most `maxSteps` from `time` with the set in use (of margin `margin`), ended early after a step
+// that lets that set expire or finds a fault.
+struct StepBatchRequest {
+    unsigned long long maxSteps = 1;
+    double time = 0.0;
+    double margin = 0.0;
+    // Per-contact forces stored in the batch's last step (the host may read them after it); the
+    // CPU stores them in every step.
+    bool storeContactForcesAtEnd = true;
+};
+
+struct StepBatchResult {
+    unsigned long long steps = 0;        // completed (at least one)
+    double time = 0.0;                   // the clock after them
+    unsigned long long realContactSum = 0;  // pairs in contact, summed over the steps
+    StepOutcome last;                    // the last completed step's
+};
+
 class KinematicsBackend {
   public:
     virtual ~KinematicsBackend() = default;
@@ -81,11 +101,10 @@ class DynamicsBackend {
     virtual void uploadTrackerLoads(const SimState& s) = 0;
     // Before the steps of one DoDynamics call (the GPU compiles changed prescriptions here).
     virtual void beginRun(const Settings& settings, const FamilyRules& families) = 0;
-    // One step with the contact set in use: contact forces, their reduction onto owners, integration
-    // and the cached poses. Per-contact forces are stored where `storeContactForces` says (a step
-    // after which the host may read them).
-    virtual StepOutcome step(double time, const Settings& settings, const FamilyRules& families,
-                             bool storeContactForces, TimingStats& timing) = 0;
+    // Steps with the contact set in use, as one batch: per step, contact forces, their reduction
+    // onto owners, integration and the cached poses; after each, the rule of dynamics/StepBatch.h.
+    virtual StepBatchResult steps(const StepBatchRequest& batch, const Settings& settings,
+                                  const FamilyRules& families, TimingStats& timing) = 0;
 
     // The OwnerStepFlag bits of every owner from the last step (dynamics/OwnerStep.h), after a step
     // that reported a fault: which owners left the domain.
@@ -115,6 +134,8 @@ class DynamicsBackend {
 
     // The margin-free facts the messages and reports need.
     virtual std::string description() const = 0;  // "CPU, 2 threads", "GPU 0 (NVIDIA H200)"
+    // How the steps were launched, for the timing report ("" where there is nothing to say).
+    virtual std::string launchReport() const { return ""; }
     virtual bool onGpu() const = 0;
 };
 

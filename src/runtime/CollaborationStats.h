@@ -5,6 +5,8 @@ namespace deme {
 
 struct CollaborationStats {
     unsigned long long steps = 0;
+    unsigned long long batches = 0;           // step batches: where the host looked between steps
+    unsigned long long batchesEndedEarly = 0;  // by a step that let the set expire, or a fault
     unsigned long long acsUpdates = 0;        // contact sets installed by dynamics
     unsigned long long ordersSent = 0;        // work orders sent to kinematics
     unsigned long long dynamicsWaits = 0;     // times dynamics had to wait for (or run) a detection

@@ -24,7 +24,12 @@ class ContactSetManager {
     // Before each step: makes the set in use valid for it. `maxSpeed` is the fastest geometry point
     // after the previous step (sizes the margin of new detections).
     void prepareStep(const Settings& settings, unsigned long long step, float maxSpeed, TimingStats& timing);
-    // After each step: the largest travel of any owner since the current set's snapshot.
+    // After prepareStep: how many steps may run as one batch before the next prepareStep
+    // (DetectionSchedule::stepsBeforeReview).
+    unsigned long long stepsBeforeReview(unsigned long long step, bool async, unsigned int pollSteps) const {
+        return m_schedule.stepsBeforeReview(step, async, pollSteps);
+    }
+    // After each step (or batch): the largest travel of any owner since the current set's snapshot.
     void afterStep(double maxTravel) { m_schedule.afterStep(maxTravel); }
     // Waits for the order in flight, if any, and takes its result if it may serve
     // (DoDynamicsThenSync, and before host-side edits).

@@ -48,6 +48,23 @@ class DetectionSchedule {
         return !m_orderInFlight && step - m_acsStep >= m_freq.orderAge();
     }
     bool orderInFlight() const { return m_orderInFlight; }
+    // After the decisions before step `step` (the set in use serves it): how many steps may run, as
+    // one batch (dynamics/StepBatch.h), before the schedule must look again: until the set has
+    // served n_max steps; asynchronously, until an order is due, or, with one in flight,
+    // `pollSteps` steps between looks for its result. A travel beyond the margin ends a batch early
+    // by itself.
+    unsigned long long stepsBeforeReview(unsigned long long step, bool async, unsigned int pollSteps) const {
+        const unsigned long long age = step - m_acsStep, n = m_freq.nMax();
+        unsigned long long k = age < n ? n - age : 1;
+        if (async) {
+            const unsigned long long orderAt = m_freq.orderAge();
+            if (m_orderInFlight)
+                k = std::min<unsigned long long>(k, std::max(1u, pollSteps));
+            else if (orderAt > age)
+                k = std::min(k, orderAt - age);
+        }
+        return std::max<unsigned long long>(k, 1);
+    }
     void ordered(CollaborationStats& stats) {
         m_orderInFlight = true;
         stats.ordersSent++;

@@ -1,9 +1,13 @@
 // Watches one DoDynamics call from between its steps, where the state is consistent: progress
-// reports and interrupt requests (a GUI's stop button, Ctrl-C in Python) are hooks it polls at most
-// every `pollSeconds` of wall time, so that they cost nothing on a step's scale. A hook that returns
-// true stops the call after the current step; the run can go on with the next call.
+// reports and interrupt requests (a GUI's stop button, Ctrl-C in Python) are hooks it polls about
+// every POLL_SECONDS of wall time, so that they cost nothing on a step's scale. A hook that returns
+// true stops the call after the current step; the run can go on with the next call. The steps run
+// in batches (runtime/Simulation.cpp); the monitor sizes them from the measured time per step, so
+// that a batch ends about when the next poll is due, and a slow step (a large scene on the CPU)
+// makes a batch of one.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <map>
@@ -33,27 +37,38 @@ class RunMonitor {
         m_progress.simTime = simTime;
         m_progress.simTimeEnd = simTime + (double)steps * dt;
         m_progress.spheres = spheres;
-        m_start = m_lastPoll = std::chrono::steady_clock::now();
+        m_start = m_lastPoll = m_batchStart = std::chrono::steady_clock::now();
         m_stopped = m_pollPending = false;
     }
-    // Before each step: whether the hooks are polled after it (the clock is read every 8 steps
-    // only). The GPU stores per-contact forces in such a step, so that a call stopped after it
-    // leaves them current.
-    bool pollsAfterThisStep() {
-        m_pollPending = false;
-        if (m_hooks.empty() || ((m_progress.stepsDone + 1) & 7) != 0) return false;
-        const auto now = std::chrono::steady_clock::now();
-        m_pollPending = std::chrono::duration<double>(now - m_lastPoll).count() >= POLL_SECONDS;
+    // Before a batch of steps: how many may run before the hooks are next due (no limit without
+    // hooks; one step while the time per step is not yet known).
+    unsigned long long stepsBeforePoll() {
+        m_batchStart = std::chrono::steady_clock::now();
+        if (m_hooks.empty()) return ~0ull;
+        const double left = POLL_SECONDS - seconds(m_batchStart - m_lastPoll);
+        if (!(m_secondsPerStep > 0.0) || left <= m_secondsPerStep) return 1;
+        return (unsigned long long)std::min(left / m_secondsPerStep, 1e9);
+    }
+    // Before a batch of `steps` steps: whether the hooks are polled after its last one (when the
+    // poll falls due by then). The GPU stores per-contact forces in such a step, so that a call
+    // stopped after it leaves them current.
+    bool pollsAfter(unsigned long long steps) {
+        m_pollPending = !m_hooks.empty() &&
+                        seconds(m_batchStart - m_lastPoll) + (double)steps * m_secondsPerStep >= POLL_SECONDS;
         return m_pollPending;
     }
-    // After each step; true: stop the call now.
-    bool afterStep(double simTime) {
-        m_progress.stepsDone++;
+    // After a batch: `steps` were taken, and `asPlanned` says whether the batch ran to the end that
+    // pollsAfter was asked about. True: stop the call now.
+    bool afterSteps(unsigned long long steps, bool asPlanned, double simTime) {
+        const auto now = std::chrono::steady_clock::now();
+        m_progress.stepsDone += steps;
+        if (steps > 0) m_secondsPerStep = seconds(now - m_batchStart) / (double)steps;
         if (!m_pollPending) return false;
         m_pollPending = false;
-        m_lastPoll = std::chrono::steady_clock::now();
+        if (!asPlanned) return false;  // polled after the batch that reaches that step
+        m_lastPoll = now;
         m_progress.simTime = simTime;
-        m_progress.wallSeconds = std::chrono::duration<double>(m_lastPoll - m_start).count();
+        m_progress.wallSeconds = seconds(m_lastPoll - m_start);
         m_stopped = poll();
         return m_stopped;
     }
@@ -69,6 +84,7 @@ class RunMonitor {
     const RunProgress& progress() const { return m_progress; }
 
   private:
+    static double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
     bool poll() {
         bool stop = false;
         for (auto& h : m_hooks) stop = h.second(m_progress) || stop;
@@ -77,7 +93,8 @@ class RunMonitor {
     std::map<int, RunHook> m_hooks;
     int m_nextId = 0;
     RunProgress m_progress;
-    std::chrono::steady_clock::time_point m_start, m_lastPoll;
+    std::chrono::steady_clock::time_point m_start, m_lastPoll, m_batchStart;
+    double m_secondsPerStep = 0.0;  // of the last batch (kept between calls: the same scene, most likely)
     bool m_stopped = false, m_pollPending = false;
 };
 

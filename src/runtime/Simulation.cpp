@@ -95,7 +95,21 @@ void Simulation::uploadIfEdited() {
     m_backendStale = false;
 }
 
-// The engine's one step loop, on either backend.
+namespace {
+
+// Steps a batch may hold at most: a GPU queues them with one host synchronisation at the end, so a
+// long batch costs it nothing; the cap keeps the progress report and STEP_METRIC lines regular.
+constexpr unsigned long long MAX_BATCH_STEPS = 256;
+// Asynchronous detection, with an order in flight: steps between looks for its result. A result
+// taken up to this many steps late only raises the latency n_max adapts to; looking every step
+// would cost a GPU one host synchronisation per step.
+constexpr unsigned int ASYNC_POLL_STEPS = 16;
+
+}  // namespace
+
+// The engine's one step loop, on either backend: steps run in batches (dynamics/StepBatch.h) between
+// the points where the host must look -- the contact-set schedule's decisions, the monitor's polls,
+// the call's end -- and a batch ends early after a step that lets the set in use expire or faults.
 void Simulation::advance(unsigned long long n) {
     m_monitor.begin(n, m_time, settings.dt, m_state.spheres.size());
     CollaborationStats& collab = m_contacts.stats();
@@ -105,35 +119,46 @@ void Simulation::advance(unsigned long long n) {
     const bool loads = m_state.hasTrackerLoads;
     if (loads) dynamics.uploadTrackerLoads(m_state);
     dynamics.beginRun(settings, families);
-    for (unsigned long long k = 0; k < n; k++) {
-        // Per-contact forces are stored in a step the host can read them after: the call's last, or
-        // one after which the monitor may stop the call.
-        const bool polled = m_monitor.pollsAfterThisStep();
+    for (unsigned long long k = 0; k < n;) {
         // A contact set serves at most n_max steps, and only while nobody has travelled its margin.
         m_contacts.prepareStep(settings, m_step, m_lastMaxSpeed, m_timing);
-        const StepOutcome r = dynamics.step(m_time, settings, families, k + 1 == n || polled, m_timing);
+        StepBatchRequest batch;
+        batch.maxSteps = std::min({n - k, MAX_BATCH_STEPS, m_monitor.stepsBeforePoll(),
+                                   m_contacts.stepsBeforeReview(m_step, settings.asyncDetection, ASYNC_POLL_STEPS)});
+        batch.time = m_time;
+        batch.margin = m_contacts.margin();
+        // Per-contact forces are stored in a step the host can read them after: the call's last, or
+        // one after which the monitor may stop the call.
+        const bool polled = m_monitor.pollsAfter(batch.maxSteps);
+        batch.storeContactForcesAtEnd = k + batch.maxSteps == n || polled;
+        const StepBatchResult r = dynamics.steps(batch, settings, families, m_timing);
+        const StepOutcome& last = r.last;
         m_hostStale = dynamics.onGpu();
-        m_time += settings.dt;
-        m_step++;
-        m_timing.steps++;
-        collab.steps++;
-        collab.contactSetSizeSum += (double)dynamics.numContacts();
-        collab.realContactSum += (double)r.realContacts;
-        m_realContacts = r.realContacts;
-        m_realSphereSphere = r.realSphereSphere;
-        m_lastMaxSpeed = r.maxSpeed;
-        m_contacts.afterStep(r.maxTravel);
-        if (r.fault || r.kernelError) {
-            StepOutcome fault = r;
-            if (r.kernelError || !removeLeavingClumps(fault)) reportFault(fault);
+        m_time = r.time;
+        m_step += r.steps;
+        k += r.steps;
+        m_timing.steps += r.steps;
+        collab.steps += r.steps;
+        collab.batches++;
+        if (r.steps < batch.maxSteps) collab.batchesEndedEarly++;
+        collab.contactSetSizeSum += (double)dynamics.numContacts() * (double)r.steps;
+        collab.realContactSum += (double)r.realContactSum;
+        m_realContacts = last.realContacts;
+        m_realSphereSphere = last.realSphereSphere;
+        m_lastMaxSpeed = last.maxSpeed;
+        // Travel only grows, so the last step's is the batch's largest.
+        m_contacts.afterStep(last.maxTravel);
+        if (last.fault || last.kernelError) {
+            StepOutcome fault = last;
+            if (last.kernelError || !removeLeavingClumps(fault)) reportFault(fault);
             uploadIfEdited();  // the clumps are gone from the backend's state too
             dynamics.beginRun(settings, families);
         }
-        if (settings.verbosity >= Verbosity::STEP_METRIC && m_timing.steps % 1000 == 0)
+        if (settings.verbosity >= Verbosity::STEP_METRIC && m_timing.steps / 1000 != (m_timing.steps - r.steps) / 1000)
             log(Verbosity::STEP_METRIC,
                 "t = " + std::to_string(m_time) + " s, contacts " + std::to_string(m_realContacts) + ", max speed " +
                     std::to_string(m_lastMaxSpeed) + " m/s, n_max " + std::to_string(m_contacts.nMax()));
-        if (m_monitor.afterStep(m_time)) break;
+        if (m_monitor.afterSteps(r.steps, r.steps == batch.maxSteps, m_time)) break;
     }
     m_monitor.end(m_time);
     collab.dynamicsSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

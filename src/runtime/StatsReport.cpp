@@ -23,6 +23,8 @@ std::string timingReport(const Simulation& sim) {
     if (wall > 0 && t.steps > 0)
         os << ", " << std::scientific << std::setprecision(3)
            << (double)sim.state().spheres.size() * (double)t.steps / wall << " sphere-steps/s";
+    const std::string launches = sim.launchReport();
+    if (!launches.empty()) os << "\n  " << launches;
     return os.str();
 }
 
@@ -50,7 +52,10 @@ std::string collaborationReport(const Simulation& sim) {
        << "  contact set: " << std::setprecision(0) << c.contactSetSizeSum / steps << " pairs on average, "
        << std::setprecision(1)
        << (c.contactSetSizeSum > 0 ? 100.0 * (1.0 - c.realContactSum / c.contactSetSizeSum) : 0.0)
-       << " % false positives (pairs not in contact)";
+       << " % false positives (pairs not in contact)\n"
+       << "  step batches " << c.batches << " (the host looked between steps every " << std::setprecision(1)
+       << (c.batches ? steps / (double)c.batches : 0.0) << " steps on average), " << c.batchesEndedEarly
+       << " ended early by an expired contact set or a fault";
     return os.str();
 }
 

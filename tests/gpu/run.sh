@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|activebox|timing|gpus|settled|profile|compile|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|activebox|timing|gpus|settled|profile|compile|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -56,7 +56,7 @@ for step in "${steps[@]}"; do
         # command (`MIXERS=".base/build-gpu/bench/mixer ./build-gpu/bench/mixer" tests/gpu/run.sh settled`).
         base="${BASE:-.base}"
         (cmake -S "$base" -B "$base/build-gpu" -DCMAKE_BUILD_TYPE=Release -DDEME_ENABLE_CUDA=ON -DDEME_BUILD_TESTS=OFF \
-            -DDEME_BUILD_DEMOS=OFF && cmake --build "$base/build-gpu" -j"$jobs" --target mixer) >"$OUT/baseline-build.log" 2>&1 || {
+            -DDEME_BUILD_DEMOS=OFF && cmake --build "$base/build-gpu" -j"$jobs" --target mixer small_systems) >"$OUT/baseline-build.log" 2>&1 || {
             tail -n 40 "$OUT/baseline-build.log"
             exit 1
         }
@@ -128,14 +128,29 @@ for step in "${steps[@]}"; do
         ;;
     small)
         # SMALL-SYSTEMS on the GPU: the drum and the impact (default warm-up and timed steps), with
-        # the phase timings, each in both detection modes.
-        for c in drum impact; do
-            for mode in sync async; do
-                DEME_BENCH_TIMING=1 timeout 200 ./build-gpu/bench/small_systems $c "" "" cuda $mode >>"$OUT/small.log" 2>&1
-                echo "small $c $mode: rc $?"
+        # the phase timings, each in both detection modes; then the drum with its steps launched
+        # kernel by kernel instead of replayed from step graphs (DEME_CUDA_GRAPHS=0).
+        # SMALL_BIN lists the benchmark binaries (a baseline's and this build's, same command).
+        for bin in ${SMALL_BIN:-./build-gpu/bench/small_systems}; do
+            echo "{\"binary\": \"$bin\"}" >>"$OUT/small.log"
+            for c in drum impact; do
+                for mode in sync async; do
+                    DEME_BENCH_TIMING=1 timeout 200 "$bin" $c "" "" cuda $mode >>"$OUT/small.log" 2>&1
+                    echo "small $bin $c $mode: rc $?"
+                done
             done
         done
-        grep -E '^\{' "$OUT/small.log" | cut -c1-400
+        DEME_CUDA_GRAPHS=0 DEME_BENCH_TIMING=1 timeout 200 ./build-gpu/bench/small_systems drum "" "" cuda async >>"$OUT/small.log" 2>&1
+        echo "small drum async, no graphs: rc $?"
+        grep -E '^\{' "$OUT/small.log" | cut -c1-300
+        ;;
+    sweep)
+        # Many small runs on one GPU at once (a calibration sweep): 1, 2, 4 and 8 drum solvers, each
+        # on its own thread, timed together (5,000 warm-up and 20,000 timed steps each).
+        for n in ${SWEEP:-1 2 4 8}; do
+            timeout 300 ./build-gpu/bench/small_systems drum 5000 20000 cuda async "$n" >>"$OUT/sweep.jsonl" 2>&1
+            echo "sweep $n solvers: rc $? $(tail -n 1 "$OUT/sweep.jsonl" | grep -o '"total_steps_per_s": [0-9.e+]*')"
+        done
         ;;
     timing)
         # The phase timings (kinematics' binning and pair search, dynamics' force pass...) and the

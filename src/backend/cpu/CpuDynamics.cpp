@@ -21,8 +21,30 @@ void CpuDynamics::upload(const SimState& s) {
     m_subsetStale = true;
 }
 
+StepBatchResult CpuDynamics::steps(const StepBatchRequest& batch, const Settings& settings,
+                                   const FamilyRules& families, TimingStats& timing) {
+    StepBatchControl c = beginStepBatch(batch.time, settings.dt, batch.margin);
+    StepBatchResult r;
+    while (c.stepsDone < batch.maxSteps && !c.stop) {
+        r.last = step(c.time, settings, families, timing);
+        const StepOutcome& o = r.last;
+        StepTally t;
+        t.maxTravel = o.maxTravel;
+        t.maxSpeed = o.maxSpeed;
+        t.firstFault = o.fault ? (unsigned int)o.faultOwner : NO_FAULT;
+        t.errorFlags = t.errorItem = 0u;
+        t.realContacts = o.realContacts;
+        t.realSphereSphere = o.realSphereSphere;
+        finishBatchStep(c, t);
+    }
+    r.steps = c.stepsDone;
+    r.time = c.time;
+    r.realContactSum = c.realContactSum;
+    return r;
+}
+
 StepOutcome CpuDynamics::step(double time, const Settings& settings, const FamilyRules& families,
-                              bool /*storeContactForces: the CPU stores them in every step*/, TimingStats& timing) {
+                              TimingStats& timing) {
     StepOutcome out;
     {
         PhaseTimer t(timing, Phase::INTEGRATION);

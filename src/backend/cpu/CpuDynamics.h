@@ -25,8 +25,8 @@ class CpuDynamics : public DynamicsBackend {
     void download(SimState&) override {}
     void uploadTrackerLoads(const SimState&) override {}
     void beginRun(const Settings&, const FamilyRules&) override { m_subsetStale = true; }
-    StepOutcome step(double time, const Settings& settings, const FamilyRules& families, bool storeContactForces,
-                     TimingStats& timing) override;
+    StepBatchResult steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules& families,
+                          TimingStats& timing) override;
     void downloadStepFlags(std::vector<uint8_t>& flags) override { flags = m_s.integrationScratch.flags; }
     size_t applyFamilyConditions(double time, const FamilyRules& families) override;
     void markOrderBaseline() override;
@@ -41,6 +41,9 @@ class CpuDynamics : public DynamicsBackend {
     const CpuForceModel& model() const { return m_model; }
 
   private:
+    // One step from `time` (per-contact forces are stored in every step).
+    StepOutcome step(double time, const Settings& settings, const FamilyRules& families, TimingStats& timing);
+
     SimState& m_s;
     CpuForceModel m_model;
     CpuKinematics& m_kinematics;

@@ -1,25 +1,11 @@
 #include "backend/cuda/CudaDynamics.h"
 
-#include <algorithm>
-#include <chrono>
-#include <cstring>
-
 #include <cuda_runtime_api.h>
 
 #include "backend/cuda/CudaCheck.h"
 #include "backend/cuda/Device.h"
-#include "dynamics/OwnerStep.h"
 
 namespace deme::cuda {
-
-namespace {
-
-constexpr unsigned int THREADS = 256;
-constexpr const char* CALL = "DoDynamics";
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-}  // namespace
 
 void CudaDynamics::refreshView() {
     m_state.viewInto(m_view);
@@ -91,70 +77,6 @@ void CudaDynamics::beginRun(const Settings&, const FamilyRules& families) {
     select();
     prepareFamilyMotion(families);
     m_subsetStale = true;
-}
-
-StepOutcome CudaDynamics::step(double time, const Settings& settings, const FamilyRules&, bool storeContactForces,
-                               TimingStats& timing) {
-    const Stream st = m_stream;
-    const unsigned int nO = m_view.numOwners, nS = m_view.numSpheres, nT = m_view.numTriangles;
-    const StepConstants consts{settings.gravity, (float)settings.dt,
-                               settings.dt,      settings.errorOutVelocity * settings.errorOutVelocity,
-                               m_view.frame,     m_view.domainSize};
-    if (m_steps++ == m_profileFromStep) startProfilerCapture();
-    const double t0 = now();
-    DEME_CUDA_CHECK(CALL, cudaEventRecord(static_cast<cudaEvent_t>(m_forceStart), static_cast<cudaStream_t>(st)));
-    launch(kFamilyMotion, 1, NUM_FAMILIES, 0, st, time + settings.dt, m_motion.data());
-    if (m_subsetStale) updateStepSubset();  // after a detection: O(owners), reads this step's motion
-    const bodyID_t* ownerIds = m_subsetAll ? nullptr : m_steppedOwners.data();
-    const bodyID_t* sphereIds = m_subsetAll ? nullptr : m_steppedSpheres.data();
-    const unsigned int nStepped = m_subsetAll ? nO : m_numSteppedOwners;
-    const unsigned int nPlaced = m_subsetAll ? nS : m_numSteppedSpheres;
-    StepReduction* red = m_reduction.data();
-    launch(kResetReduction, 1, 32, 0, st, red);
-    if (nT && m_numContacts) launch(kResolveMesh, blocksFor(m_numContacts, THREADS), THREADS, 0, st, m_view, red);
-    launch(kClearLoads, blocksFor(nO, THREADS), THREADS, 0, st, m_view);
-    StateView stepView = m_view;
-    if (!storeContactForces) stepView.contacts.force = nullptr;
-    m_model.launch(stepView, (float)time, (float)settings.dt, m_numClumps, nO - m_numClumps, red, st,
-                   settings.threadsPerBlock);
-    DEME_CUDA_CHECK(CALL, cudaEventRecord(static_cast<cudaEvent_t>(m_forceEnd), static_cast<cudaStream_t>(st)));
-    // Contact forces were summed onto every owner (dormant ones too: trackers read them); only the
-    // stepped owners are integrated and placed.
-    if (nStepped)
-        launch(kIntegrate, blocksFor(nStepped, THREADS), THREADS, 0, st, m_view,
-               (const FamilyStepMotion*)m_motion.data(), consts, (const double*)m_baseline.data(), ownerIds, nStepped,
-               red);
-    if (nStepped)
-        launch(kLargeRot, blocksFor(nStepped, THREADS), THREADS, 0, st, m_view, ownerIds, nStepped, (float)settings.dt);
-    if (nPlaced) launch(kPlaceSpheres, blocksFor(nPlaced, THREADS), THREADS, 0, st, m_view, sphereIds, nPlaced);
-    if (nT) launch(kPlaceTris, blocksFor(nT, THREADS), THREADS, 0, st, m_view);
-    if (m_numAnalyticalOwners)
-        launch(kAnalytical, blocksFor(m_numAnalyticalOwners, THREADS), THREADS, 0, st, m_view, m_numClumps,
-               m_numAnalyticalOwners, (float)settings.dt, m_domainDiagonal, (const double*)m_baseline.data(), red);
-    StepReduction r;
-    m_reduction.downloadAsync(&r, 1, st);
-    synchronize(st);
-    float forceMs = 0.f;
-    DEME_CUDA_CHECK(CALL, cudaEventElapsedTime(&forceMs, static_cast<cudaEvent_t>(m_forceStart),
-                                               static_cast<cudaEvent_t>(m_forceEnd)));
-    const double stepSeconds = now() - t0, forceSeconds = std::min(stepSeconds, 1e-3 * (double)forceMs);
-    timing.seconds[(int)Phase::FORCE] += forceSeconds;
-    timing.seconds[(int)Phase::INTEGRATION] += stepSeconds - forceSeconds;
-
-    StepOutcome out;
-    out.realContacts = r.realContacts;
-    out.realSphereSphere = r.realSphereSphere;
-    std::memcpy(&out.maxSpeed, &r.maxSpeedBits, sizeof(float));
-    std::memcpy(&out.maxTravel, &r.maxTravelBits, sizeof(double));
-    out.kernelError = r.errorFlags;
-    out.kernelErrorItem = r.errorItem;
-    if (r.firstFault != 0xFFFFFFFFu) {
-        out.fault = true;
-        out.faultOwner = r.firstFault;
-        m_state.integrationScratch.flags.downloadAsync(&out.faultFlags, 1, st, r.firstFault);
-        synchronize(st);
-    }
-    return out;
 }
 
 std::string CudaDynamics::description() const { return "GPU " + std::to_string(m_device) + " (" + m_name + ")"; }

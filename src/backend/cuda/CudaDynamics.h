@@ -6,8 +6,9 @@
 //
 // The host SimState stays the record between calls: upload() copies it to the device after
 // Initialize and after host-side edits, download() copies the evolved state back when the host needs
-// it. Files: CudaDynamics.cpp (state copies and the step), CudaContactSets.cpp (installing a
-// detected set), CudaDynamicsKernels.cpp (the kernels' compilation).
+// it. Files: CudaDynamics.cpp (state copies), CudaStepBatch.cpp (the steps, in batches replayed from
+// a captured step), CudaContactSets.cpp (installing a detected set), CudaDynamicsSetup.cpp (the
+// kernels' compilation).
 #pragma once
 
 #include <memory>
@@ -18,6 +19,8 @@
 #include "backend/cuda/DeviceHistoryMapping.h"
 #include "backend/cuda/DevicePrimitives.h"
 #include "backend/cuda/DeviceState.h"
+#include "backend/cuda/LaunchList.h"
+#include "backend/cuda/StepGraph.h"
 #include "backend/cuda/kernels/KernelArgs.cuh"
 #include "forcemodel/ModelLayout.h"
 #include "runtime/Backends.h"
@@ -41,8 +44,8 @@ class CudaDynamics : public DynamicsBackend {
     void download(SimState& s) override;
     void uploadTrackerLoads(const SimState& s) override;
     void beginRun(const Settings& settings, const FamilyRules& families) override;
-    StepOutcome step(double time, const Settings& settings, const FamilyRules& families, bool storeContactForces,
-                     TimingStats& timing) override;
+    StepBatchResult steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules& families,
+                          TimingStats& timing) override;
     void downloadStepFlags(std::vector<uint8_t>& flags) override;
     size_t applyFamilyConditions(double time, const FamilyRules& families) override;
     void markOrderBaseline() override;
@@ -53,6 +56,7 @@ class CudaDynamics : public DynamicsBackend {
     bool travelAtSnapshot(std::vector<double>& travel) const override;
     bool resumeContactSet(const SimState& s, const std::vector<double>& travel) override;
     std::string description() const override;
+    std::string launchReport() const override;
     bool onGpu() const override { return true; }
 
     // What kinematics orders snapshot, on this stream.
@@ -72,19 +76,29 @@ class CudaDynamics : public DynamicsBackend {
     void compileGenerated(const char* program, const std::string& source, const char* kernelName, CudaModule& module,
                           CudaKernel& kernel);
     void refreshView();
+    // Writes one step's launches into `list` (CudaStepBatch.cpp): per-contact forces stored or not.
+    void recordStep(LaunchList& list, const Settings& settings, bool storeContactForces);
     // The owners and spheres a step integrates and places (CudaStepSubset.cpp).
     void updateStepSubset();
 
     int m_device = 0;
     std::string m_name;
     Stream m_stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
-    // Around each step's force phase on dT's stream: its GPU time, read after the step's one host
-    // synchronisation, splits the step between the force and integration phases (the timing report
-    // and synchronous n_max adaptation use it) without a synchronisation of its own.
+    // Around each step's force phase on dT's stream (recorded inside the step graph): its GPU time,
+    // read after the batch's one host synchronisation, splits the batch between the force and
+    // integration phases (the timing report and synchronous n_max adaptation use it).
     void *m_forceStart = nullptr, *m_forceEnd = nullptr;  // cudaEvent_t
+    double m_forceSecondsPerStep = 0.0;                   // the last measured
     CudaModule m_dynamicsModule, m_exchangeModule;
-    CudaKernel kResetReduction, kCopyDoubles, kClearLoads, kResolveMesh, kIntegrate, kLargeRot, kPlaceSpheres,
-        kPlaceTris, kAnalytical, kMaxTravelSince, kSteppedFlags, kSteppedScatter;
+    CudaKernel kBeginBatch, kFinishStep, kCopyDoubles, kClearLoads, kResolveMesh, kIntegrate, kPlaceGeometry,
+        kMaxTravelSince, kSteppedFlags, kSteppedScatter;
+    // The batch's control block (dynamics/StepBatch.h) on the device, and its pinned host copy.
+    DeviceBuffer<StepBatchControl> m_control;
+    StepBatchControl* m_controlHost = nullptr;
+    // One step's launches, without and with stored contact forces, and their graphs.
+    LaunchList m_plainStep, m_storingStep;
+    StepGraph m_plainGraph, m_storingGraph;
+    bool m_useGraphs = true;
     // The families' prescriptions, compiled from the user's expressions (recompiled when they change).
     CudaModule m_familyModule;
     CudaKernel kFamilyMotion;

@@ -16,12 +16,14 @@ namespace deme::cuda {
 CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(device) {
     compileKernels(model);
     if (const char* p = std::getenv("DEME_CUDA_PROFILE_FROM_STEP")) m_profileFromStep = std::strtoull(p, nullptr, 10);
+    m_useGraphs = stepGraphsEnabled();
 }
 
 CudaDynamics::~CudaDynamics() {
     if (m_stream && cudaStreamDestroy(static_cast<cudaStream_t>(m_stream)) != cudaSuccess) cudaGetLastError();
     for (void* e : {m_forceStart, m_forceEnd})
         if (e && cudaEventDestroy(static_cast<cudaEvent_t>(e)) != cudaSuccess) cudaGetLastError();
+    if (m_controlHost && cudaFreeHost(m_controlHost) != cudaSuccess) cudaGetLastError();
 }
 
 void CudaDynamics::select() const { useDevice("DoDynamics", m_device); }
@@ -38,15 +40,13 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     m_fromCache = d.cacheHit && x.cacheHit;
     m_dynamicsModule = CudaModule("Initialize", d.image);
     m_exchangeModule = CudaModule("Initialize", x.image);
-    kResetReduction = m_dynamicsModule.kernel("deme_reset_reduction");
+    kBeginBatch = m_dynamicsModule.kernel("deme_begin_batch");
+    kFinishStep = m_dynamicsModule.kernel("deme_finish_step");
     kCopyDoubles = m_dynamicsModule.kernel("deme_copy_doubles");
     kClearLoads = m_dynamicsModule.kernel("deme_clear_owner_loads");
     kResolveMesh = m_dynamicsModule.kernel("deme_resolve_mesh_contacts");
     kIntegrate = m_dynamicsModule.kernel("deme_integrate");
-    kLargeRot = m_dynamicsModule.kernel("deme_large_rotations");
-    kPlaceSpheres = m_dynamicsModule.kernel("deme_place_spheres");
-    kPlaceTris = m_dynamicsModule.kernel("deme_place_triangles");
-    kAnalytical = m_dynamicsModule.kernel("deme_analytical_step");
+    kPlaceGeometry = m_dynamicsModule.kernel("deme_place_geometry");
     kSteppedFlags = m_dynamicsModule.kernel("deme_stepped_flags");
     kSteppedScatter = m_dynamicsModule.kernel("deme_stepped_scatter");
     kMaxTravelSince = m_exchangeModule.kernel("deme_max_travel_since");
@@ -63,6 +63,11 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     DEME_CUDA_CHECK("Initialize", cudaEventCreate(&end));
     m_forceStart = start;
     m_forceEnd = end;
+    // The batch's control block, read back after every batch: pinned, so the copy is a plain DMA.
+    void* host = nullptr;
+    DEME_CUDA_CHECK("Initialize", cudaMallocHost(&host, sizeof(StepBatchControl)));
+    m_controlHost = static_cast<StepBatchControl*>(host);
+    m_control.resizeDiscarding(1);
 }
 
 void CudaDynamics::compileGenerated(const char* program, const std::string& source, const char* kernelName,

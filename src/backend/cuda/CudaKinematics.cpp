@@ -196,10 +196,12 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     });
     triLo.resizeDiscarding(nT);
     triHi.resizeDiscarding(nT);
-    binItems(triBins, nT, (const bodyID_t*)nullptr, nT, [&] {
-        launch(kTriBoxes, blocksFor(nT, THREADS), THREADS, 0, stream, v, args, triLo.data(), triHi.data(),
-               triBins.lo.data(), triBins.hi.data(), triBins.count.data());
-    });
+    // No triangles, no bins for them (and no host round trip to size them).
+    if (nT)
+        binItems(triBins, nT, (const bodyID_t*)nullptr, nT, [&] {
+            launch(kTriBoxes, blocksFor(nT, THREADS), THREADS, 0, stream, v, args, triLo.data(), triHi.data(),
+                   triBins.lo.data(), triBins.hi.data(), triBins.count.data());
+        });
     synchronize(stream);
     const double t1 = now();
     r.binningSeconds = t1 - t0;

@@ -103,12 +103,12 @@ void DeviceForceModel::download(SimState& s) const {
     fetch(m_geometryWildcards, s.wildcards.geometry, m_numGeometryWildcards, m_params.numGeometries);
 }
 
-void DeviceForceModel::launch(const StateView& view, float time, float dt, unsigned int firstNonClump,
-                              unsigned int numNonClump, StepReduction* red, Stream stream,
+void DeviceForceModel::record(LaunchList& list, const StateView& view, const StepBatchControl* ctl,
+                              unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red,
                               unsigned int threadsPerBlock) const {
     if (view.numContacts == 0) return;
-    cuda::launch(m_kernel, blocksFor(view.numContacts, threadsPerBlock), threadsPerBlock, 0, stream, view, time, dt,
-                 m_params, firstNonClump, numNonClump, red);
+    list.kernel(m_kernel, blocksFor(view.numContacts, threadsPerBlock), threadsPerBlock, 0, view, ctl, m_params,
+                firstNonClump, numNonClump, red);
 }
 
 }  // namespace deme::cuda

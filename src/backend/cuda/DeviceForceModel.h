@@ -9,6 +9,7 @@
 
 #include "backend/cuda/CudaModule.h"
 #include "backend/cuda/DeviceBuffer.h"
+#include "backend/cuda/LaunchList.h"
 #include "backend/cuda/NvrtcCompiler.h"
 #include "backend/cuda/kernels/ForceModelParams.cuh"
 #include "forcemodel/ModelLayout.h"
@@ -17,6 +18,7 @@
 namespace deme {
 struct StateView;
 struct StepReduction;
+struct StepBatchControl;
 }  // namespace deme
 
 namespace deme::cuda {
@@ -32,10 +34,11 @@ class DeviceForceModel {
     void upload(const SimState& s);
     // Owner and geometry wildcards back into `s` (the sizes upload() took).
     void download(SimState& s) const;
-    // The force pass over the view's contact set, on `stream`, in blocks of `threadsPerBlock`
-    // (SetForceCalcThreadsPerBlock; the kernel takes blocks of any size).
-    void launch(const StateView& view, float time, float dt, unsigned int firstNonClump, unsigned int numNonClump,
-                StepReduction* red, Stream stream, unsigned int threadsPerBlock) const;
+    // The force pass over the view's contact set, into a step's launch list, in blocks of
+    // `threadsPerBlock` (SetForceCalcThreadsPerBlock; the kernel takes blocks of any size); the step's
+    // time and size come from the batch's control block `ctl`.
+    void record(LaunchList& list, const StateView& view, const StepBatchControl* ctl, unsigned int firstNonClump,
+                unsigned int numNonClump, StepReduction* red, unsigned int threadsPerBlock) const;
 
     double compileSeconds() const { return m_compileSeconds; }
     bool fromCache() const { return m_fromCache; }

@@ -22,15 +22,59 @@ __device__ inline void raiseError(StepReduction* red, unsigned int flag, unsigne
 
 }  // namespace
 
-extern "C" __global__ void deme_reset_reduction(StepReduction* red) {
-    if (globalIndex() != 0) return;
+// The steps of a batch (dynamics/StepBatch.h): every step kernel takes the batch's control block and
+// does nothing once it says the batch has ended, so that the host can queue a whole batch of steps
+// (replays of one captured step, backend/cuda/StepGraph.h) and look only at its end.
+__device__ inline void clearReduction(StepReduction* red) {
     red->maxTravelBits = 0ull;
     red->maxSpeedBits = 0u;
-    red->firstFault = 0xFFFFFFFFu;
+    red->firstFault = NO_FAULT;
     red->anyLargeRotation = 0u;
     red->errorFlags = 0u;
     red->errorItem = 0u;
     red->realContacts = red->realSphereSphere = 0ull;
+}
+
+// Before a batch: its control block, and a clear reduction for its first step. One thread.
+extern "C" __global__ void deme_begin_batch(StepBatchControl* ctl, double time, double dt, double margin,
+                                            StepReduction* red) {
+    if (globalIndex() != 0) return;
+    *ctl = beginStepBatch(time, dt, margin);
+    clearReduction(red);
+}
+
+// A step's last kernel, one block: the analytical owners' step (cached components; travel bounded
+// by the fastest surface point), then, in one thread, the step's tally into the control block (the
+// rule that may end the batch) and a clear reduction for the next step.
+extern "C" __global__ void deme_finish_step(StateView s, StepBatchControl* ctl, unsigned int firstAnalyticalOwner,
+                                            unsigned int numAnalyticalOwners, float h, double domainDiagonal,
+                                            const double* travelBaseline, StepReduction* red) {
+    if (ctl->stop) return;
+    for (unsigned int j = threadIdx.x; j < numAnalyticalOwners; j += blockDim.x) {
+        const unsigned int o = firstAnalyticalOwner + j;
+        float rate = 0.f;
+        for (unsigned int k = 0; k < s.numAnalytical; k++) {
+            if (s.analytical.owner[k] != o) continue;
+            placeAnalytical(s, k);
+            rate = fmaxf(rate, analyticalSurfaceSpeed(s, k, domainDiagonal));
+        }
+        s.owners.travel[o] += (double)(rate * h);
+        const double since = s.owners.travel[o] - travelBaseline[o];
+        if (since > 0.0) atomicMax(&red->maxTravelBits, (unsigned long long)__double_as_longlong(since));
+        if (rate > 0.f) atomicMax(&red->maxSpeedBits, __float_as_uint(rate));
+    }
+    __syncthreads();
+    if (threadIdx.x != 0) return;
+    StepTally t;
+    t.maxTravel = __longlong_as_double((long long)red->maxTravelBits);
+    t.maxSpeed = __uint_as_float(red->maxSpeedBits);
+    t.firstFault = red->firstFault;
+    t.errorFlags = red->errorFlags;
+    t.errorItem = red->errorItem;
+    t.realContacts = red->realContacts;
+    t.realSphereSphere = red->realSphereSphere;
+    finishBatchStep(*ctl, t);
+    clearReduction(red);
 }
 
 extern "C" __global__ void deme_copy_doubles(double* dst, const double* src, unsigned int n) {
@@ -38,7 +82,8 @@ extern "C" __global__ void deme_copy_doubles(double* dst, const double* src, uns
     if (i < n) dst[i] = src[i];
 }
 
-extern "C" __global__ void deme_clear_owner_loads(StateView s) {
+extern "C" __global__ void deme_clear_owner_loads(StateView s, const StepBatchControl* ctl) {
+    if (ctl->stop) return;
     const size_t o = globalIndex();
     if (o >= s.numOwners) return;
     s.owners.contactForce[o] = make_float3(0.f);
@@ -47,7 +92,8 @@ extern "C" __global__ void deme_clear_owner_loads(StateView s) {
 
 // One thread per sphere-triangle contact that opens its sphere's run (contacts are sorted by
 // sphere, a sphere's triangle contacts last).
-extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, StepReduction* red) {
+extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBatchControl* ctl, StepReduction* red) {
+    if (ctl->stop) return;
     const size_t i = globalIndex();
     const ContactView& c = s.contacts;
     if (i >= s.numContacts || c.type[i] != SPHERE_TRIANGLE) return;
@@ -61,32 +107,35 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, StepReduction
 
 // Force passes of the built-in models (kernels/ForcePassKernel.cuh); a custom model's pass is
 // generated and compiled at Initialize (forcemodel/CudaCodeGen.cpp). All take the same arguments.
-extern "C" __global__ void deme_force_pass_frictional_hertz(StateView s, float time, float dt, ForceModelParams p,
-                                                            unsigned int firstNonClump, unsigned int numNonClump,
-                                                            StepReduction* red) {
+extern "C" __global__ void deme_force_pass_frictional_hertz(StateView s, const StepBatchControl* ctl,
+                                                            ForceModelParams p, unsigned int firstNonClump,
+                                                            unsigned int numNonClump, StepReduction* red) {
     const unsigned int n = p.numMaterials;
     const FrictionalHertzModel model{PairTable{p.mu, n}, PairTable{p.Crr, n}, PairTable{p.E_eff, n},
                                      PairTable{p.G_eff, n}, PairTable{p.beta_CoR, n}};
-    forcePassKernel(s, model, time, dt, firstNonClump, numNonClump, red);
+    forcePassKernel(s, model, ctl, firstNonClump, numNonClump, red);
 }
 
-extern "C" __global__ void deme_force_pass_frictionless_hertz(StateView s, float time, float dt, ForceModelParams p,
-                                                              unsigned int firstNonClump, unsigned int numNonClump,
-                                                              StepReduction* red) {
+extern "C" __global__ void deme_force_pass_frictionless_hertz(StateView s, const StepBatchControl* ctl,
+                                                              ForceModelParams p, unsigned int firstNonClump,
+                                                              unsigned int numNonClump, StepReduction* red) {
     const unsigned int n = p.numMaterials;
     const FrictionlessHertzModel model{PairTable{p.E_eff, n}, PairTable{p.beta_CoR, n}};
-    forcePassKernel(s, model, time, dt, firstNonClump, numNonClump, red);
+    forcePassKernel(s, model, ctl, firstNonClump, numNonClump, red);
 }
 
 // Integration of owners ids[0, n) (every owner if ids is null; the active box leaves fixed owners at
-// rest out, deme_stepped_flags), with the step's maxima and first fault combined per warp.
-extern "C" __global__ void deme_integrate(StateView s, const FamilyStepMotion* motion, StepConstants consts,
-                                          const double* travelBaseline, const bodyID_t* ids, unsigned int n,
-                                          StepReduction* red) {
+// rest out, deme_stepped_flags), with the step's maxima and first fault combined per warp. An owner
+// whose rotation this step was too large for the series step takes the exact (scalar) step at once
+// (rare; the CPU does these in a sweep of their own so that its main sweep vectorises).
+extern "C" __global__ void deme_integrate(StateView s, const StepBatchControl* ctl, const FamilyStepMotion* motion,
+                                          StepConstants consts, const double* travelBaseline, const bodyID_t* ids,
+                                          unsigned int n, StepReduction* red) {
+    if (ctl->stop) return;
     const size_t k = globalIndex();
     double travel = 0.0;
     float speed = 0.f;
-    unsigned int fault = 0xFFFFFFFFu, large = 0u;
+    unsigned int fault = NO_FAULT, large = 0u;
     if (k < n) {
         const size_t o = ids ? (size_t)ids[k] : k;
         const OwnerStepResult r = stepOwner(s, o, motion[s.owners.family[o]], consts, travelBaseline[o]);
@@ -95,6 +144,10 @@ extern "C" __global__ void deme_integrate(StateView s, const FamilyStepMotion* m
         speed = r.speed;
         if (r.flags & STEP_FAULTS) fault = (unsigned int)o;
         large = (r.flags & STEP_LARGE_ROTATION) ? 1u : 0u;
+        if (large) {
+            s.owners.oriQ[o] = integrateOrientation(s.owners.oriQ[o], s.integrationScratch.midAngVel[o], consts.h);
+            s.cache.ownerAngVelGlobal[o] = rotateToGlobal(s.owners.oriQ[o], s.owners.angVel[o]);
+        }
     }
     for (int off = 16; off > 0; off >>= 1) {
         travel = fmax(travel, __shfl_down_sync(0xFFFFFFFFu, travel, off));
@@ -105,26 +158,23 @@ extern "C" __global__ void deme_integrate(StateView s, const FamilyStepMotion* m
     if ((threadIdx.x & 31u) == 0u) {
         if (travel > 0.0) atomicMax(&red->maxTravelBits, (unsigned long long)__double_as_longlong(travel));
         if (speed > 0.f) atomicMax(&red->maxSpeedBits, __float_as_uint(speed));
-        if (fault != 0xFFFFFFFFu) atomicMin(&red->firstFault, fault);
+        if (fault != NO_FAULT) atomicMin(&red->firstFault, fault);
         if (large) red->anyLargeRotation = 1u;
     }
 }
 
-// Owners whose rotation this step was too large for the series step: exact step (rare).
-// Owners ids[0, n) as deme_integrate's (the flags of owners left out are an older step's).
-extern "C" __global__ void deme_large_rotations(StateView s, const bodyID_t* ids, unsigned int n, float h) {
+// The cached poses after integration: spheres ids[0, numSpheres) of the owners stepped (every sphere
+// if ids is null), then every triangle of an owner that moved. One thread per item.
+extern "C" __global__ void deme_place_geometry(StateView s, const StepBatchControl* ctl, const bodyID_t* ids,
+                                               unsigned int numSpheres, unsigned int numTriangles) {
+    if (ctl->stop) return;
     const size_t k = globalIndex();
-    if (k >= n) return;
-    const size_t o = ids ? (size_t)ids[k] : k;
-    if (!(s.integrationScratch.flags[o] & STEP_LARGE_ROTATION)) return;
-    s.owners.oriQ[o] = integrateOrientation(s.owners.oriQ[o], s.integrationScratch.midAngVel[o], h);
-    s.cache.ownerAngVelGlobal[o] = rotateToGlobal(s.owners.oriQ[o], s.owners.angVel[o]);
-}
-
-// Spheres ids[0, n) (of the owners stepped; every sphere if ids is null).
-extern "C" __global__ void deme_place_spheres(StateView s, const bodyID_t* ids, unsigned int n) {
-    const size_t k = globalIndex();
-    if (k < n) placeSphere(s, ids ? (size_t)ids[k] : k);
+    if (k < numSpheres) {
+        placeSphere(s, ids ? (size_t)ids[k] : k);
+        return;
+    }
+    const size_t t = k - numSpheres;
+    if (t < numTriangles && (s.integrationScratch.flags[s.triangles.owner[t]] & STEP_MOVED)) placeTriangle(s, t);
 }
 
 // Which owners and spheres a step integrates and places (backend/cpu/Integration.h,
@@ -144,31 +194,6 @@ extern "C" __global__ void deme_stepped_scatter(StateView s, const unsigned int*
     const size_t i = globalIndex();
     if (i < s.numOwners && ownerStepped[i]) owners[ownerOffset[i]] = (bodyID_t)i;
     if (i < s.numSpheres && sphereStepped[i]) spheres[sphereOffset[i]] = (bodyID_t)i;
-}
-
-extern "C" __global__ void deme_place_triangles(StateView s) {
-    const size_t t = globalIndex();
-    if (t < s.numTriangles && (s.integrationScratch.flags[s.triangles.owner[t]] & STEP_MOVED)) placeTriangle(s, t);
-}
-
-// Analytical owners (few): cached components, and travel bounded by the fastest surface point.
-// One thread per analytical owner.
-extern "C" __global__ void deme_analytical_step(StateView s, unsigned int firstOwner, unsigned int numOwners, float h,
-                                                double domainDiagonal, const double* travelBaseline,
-                                                StepReduction* red) {
-    const size_t j = globalIndex();
-    if (j >= numOwners) return;
-    const unsigned int o = firstOwner + (unsigned int)j;
-    float rate = 0.f;
-    for (unsigned int k = 0; k < s.numAnalytical; k++) {
-        if (s.analytical.owner[k] != o) continue;
-        placeAnalytical(s, k);
-        rate = fmaxf(rate, analyticalSurfaceSpeed(s, k, domainDiagonal));
-    }
-    s.owners.travel[o] += (double)(rate * h);
-    const double since = s.owners.travel[o] - travelBaseline[o];
-    if (since > 0.0) atomicMax(&red->maxTravelBits, (unsigned long long)__double_as_longlong(since));
-    if (rate > 0.f) atomicMax(&red->maxSpeedBits, __float_as_uint(rate));
 }
 
 }  // namespace deme

@@ -22,11 +22,15 @@ __device__ inline void atomicAdd3(float3* target, const float3& v) {
 
 }  // namespace force_pass_detail
 
-// The body of a force-pass kernel: one thread per contact, blocks of any size.
+// The body of a force-pass kernel: one thread per contact, blocks of any size. The step's time and
+// size come from the batch's control block (dynamics/StepBatch.h), which also says whether the batch
+// has ended (then the pass does nothing).
 template <class Model>
-__device__ inline void forcePassKernel(const StateView& s, const Model& model, float time, float dt,
+__device__ inline void forcePassKernel(const StateView& s, const Model& model, const StepBatchControl* ctl,
                                        unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red) {
     using force_pass_detail::atomicAdd3;
+    if (ctl->stop) return;  // the same for every thread: no barrier is left waiting
+    const float time = (float)ctl->time, dt = (float)ctl->dt;
     __shared__ float3 blockForce[SHARED_LOAD_SLOTS], blockTorque[SHARED_LOAD_SLOTS];
     __shared__ unsigned int blockReal, blockSS;
     const unsigned int slots = numNonClump < SHARED_LOAD_SLOTS ? numNonClump : SHARED_LOAD_SLOTS;

@@ -4,9 +4,12 @@
 
 #include <deme/VariableTypes.h>
 
+#include "dynamics/StepBatch.h"
+
 namespace deme {
 
-// Per-step results that kernels combine with atomics and the host reads back after each step.
+// Per-step results that kernels combine with atomics; the step's last kernel (deme_finish_step)
+// tallies them into the batch's control block (dynamics/StepBatch.h) and clears them for the next.
 struct StepReduction {
     unsigned long long maxTravelBits;  // largest travel since detection (a non-negative double's bits)
     unsigned int maxSpeedBits;         // fastest geometry point (a non-negative float's bits)

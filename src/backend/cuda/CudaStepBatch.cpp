@@ -1,0 +1,133 @@
+// CudaDynamics' steps, in batches (dynamics/StepBatch.h): one step's kernels are written down once
+// as a launch list and replayed for every step of the batch as a CUDA graph (StepGraph.h); the
+// step's time, size and the rule that ends a batch early live in a control block in device memory,
+// so nothing in the replayed step changes from one step to the next. The host synchronises once per
+// batch, when it reads the control block back.
+#include <algorithm>
+#include <chrono>
+#include <string>
+
+#include <cuda_runtime_api.h>
+
+#include "backend/cuda/CudaCheck.h"
+#include "backend/cuda/CudaDynamics.h"
+#include "backend/cuda/Device.h"
+#include "dynamics/OwnerStep.h"
+
+namespace deme::cuda {
+
+namespace {
+
+constexpr unsigned int THREADS = 256;
+constexpr const char* CALL = "DoDynamics";
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+}  // namespace
+
+void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool storeContactForces) {
+    list.clear();
+    const unsigned int nO = m_view.numOwners, nT = m_view.numTriangles;
+    const StepConstants consts{settings.gravity, (float)settings.dt,
+                               settings.dt,      settings.errorOutVelocity * settings.errorOutVelocity,
+                               m_view.frame,     m_view.domainSize};
+    const StepBatchControl* ctl = m_control.data();
+    const bodyID_t* ownerIds = m_subsetAll ? nullptr : m_steppedOwners.data();
+    const bodyID_t* sphereIds = m_subsetAll ? nullptr : m_steppedSpheres.data();
+    const unsigned int nStepped = m_subsetAll ? nO : m_numSteppedOwners;
+    const unsigned int nPlaced = m_subsetAll ? m_view.numSpheres : m_numSteppedSpheres;
+    StepReduction* red = m_reduction.data();
+    StateView stepView = m_view;
+    if (!storeContactForces) stepView.contacts.force = nullptr;
+
+    list.eventRecord(m_forceStart);
+    list.kernel(kFamilyMotion, 1, NUM_FAMILIES, 0, ctl, m_motion.data());
+    if (nT && m_numContacts) list.kernel(kResolveMesh, blocksFor(m_numContacts, THREADS), THREADS, 0, m_view, ctl, red);
+    list.kernel(kClearLoads, blocksFor(nO, THREADS), THREADS, 0, m_view, ctl);
+    m_model.record(list, stepView, ctl, m_numClumps, nO - m_numClumps, red, settings.threadsPerBlock);
+    list.eventRecord(m_forceEnd);
+    // Contact forces were summed onto every owner (dormant ones too: trackers read them); only the
+    // stepped owners are integrated and placed.
+    list.kernel(kIntegrate, blocksFor(nStepped, THREADS), THREADS, 0, m_view, ctl,
+                (const FamilyStepMotion*)m_motion.data(), consts, (const double*)m_baseline.data(), ownerIds, nStepped,
+                red);
+    list.kernel(kPlaceGeometry, blocksFor((unsigned long long)nPlaced + nT, THREADS), THREADS, 0, m_view, ctl, sphereIds,
+                nPlaced, nT);
+    const unsigned int finishThreads = m_numAnalyticalOwners > 32 ? THREADS : 32;
+    list.kernel(kFinishStep, 1, finishThreads, 0, m_view, m_control.data(), m_numClumps, m_numAnalyticalOwners,
+                (float)settings.dt, m_domainDiagonal, (const double*)m_baseline.data(), red);
+}
+
+StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules&,
+                                    TimingStats& timing) {
+    const Stream st = m_stream;
+    const unsigned long long n = std::max<unsigned long long>(batch.maxSteps, 1);
+    if (m_profileFromStep >= m_steps && m_profileFromStep < m_steps + n) startProfilerCapture();
+    m_steps += n;
+    const double t0 = now();
+    StepBatchControl* ctl = m_control.data();
+    launch(kBeginBatch, 1, 1, 0, st, ctl, batch.time, settings.dt, batch.margin, m_reduction.data());
+    if (m_subsetStale) {
+        // After an upload, a detection or a family change: O(owners), reads this step's motion.
+        launch(kFamilyMotion, 1, NUM_FAMILIES, 0, st, (const StepBatchControl*)ctl, m_motion.data());
+        updateStepSubset();
+    }
+    recordStep(m_plainStep, settings, false);
+    if (batch.storeContactForcesAtEnd) recordStep(m_storingStep, settings, true);
+    for (unsigned long long k = 0; k < n; k++) {
+        const bool store = batch.storeContactForcesAtEnd && k + 1 == n;
+        const LaunchList& list = store ? m_storingStep : m_plainStep;
+        if (m_useGraphs)
+            (store ? m_storingGraph : m_plainGraph).launch(list, st);
+        else
+            list.enqueue(st);
+    }
+    m_control.downloadAsync(m_controlHost, 1, st);
+    synchronize(st);
+    const StepBatchControl c = *m_controlHost;
+
+    // The force phase's GPU time of the batch's last step (events inside the step), for every step
+    // of a batch that ran to its end; a batch that ended early ran no-op steps last, so it is
+    // charged the last measured time.
+    if (c.stepsDone == n) {
+        float forceMs = 0.f;
+        if (cudaEventElapsedTime(&forceMs, static_cast<cudaEvent_t>(m_forceStart),
+                                 static_cast<cudaEvent_t>(m_forceEnd)) == cudaSuccess)
+            m_forceSecondsPerStep = 1e-3 * (double)forceMs;
+        else
+            cudaGetLastError();  // no timing this batch; the last one's stands
+    }
+    const double batchSeconds = now() - t0;
+    const double forceSeconds = std::min(batchSeconds, m_forceSecondsPerStep * (double)c.stepsDone);
+    timing.seconds[(int)Phase::FORCE] += forceSeconds;
+    timing.seconds[(int)Phase::INTEGRATION] += batchSeconds - forceSeconds;
+
+    StepBatchResult r;
+    r.steps = c.stepsDone;
+    r.time = c.time;
+    r.realContactSum = c.realContactSum;
+    StepOutcome& out = r.last;
+    out.realContacts = c.last.realContacts;
+    out.realSphereSphere = c.last.realSphereSphere;
+    out.maxSpeed = c.last.maxSpeed;
+    out.maxTravel = c.last.maxTravel;
+    out.kernelError = c.last.errorFlags;
+    out.kernelErrorItem = c.last.errorItem;
+    if (c.last.firstFault != NO_FAULT) {
+        out.fault = true;
+        out.faultOwner = c.last.firstFault;
+        m_state.integrationScratch.flags.downloadAsync(&out.faultFlags, 1, st, c.last.firstFault);
+        synchronize(st);
+    }
+    return r;
+}
+
+std::string CudaDynamics::launchReport() const {
+    if (!m_useGraphs) return "steps launched kernel by kernel (DEME_CUDA_GRAPHS=0)";
+    const unsigned long long made = m_plainGraph.captures() + m_storingGraph.captures();
+    const unsigned long long updated = m_plainGraph.updates() + m_storingGraph.updates();
+    return "steps replayed from CUDA graphs: " + std::to_string(made) + " captured (" + std::to_string(updated) +
+           " of them updated in place, " + std::to_string(made - updated) + " instantiated)";
+}
+
+}  // namespace deme::cuda

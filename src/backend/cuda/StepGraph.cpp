@@ -1,0 +1,69 @@
+#include "backend/cuda/StepGraph.h"
+
+#include <cstdlib>
+#include <cstring>
+
+#include <cuda_runtime_api.h>
+
+#include "backend/cuda/CudaCheck.h"
+
+namespace deme::cuda {
+
+namespace {
+constexpr const char* CALL = "DoDynamics";
+}
+
+bool stepGraphsEnabled() {
+    const char* v = std::getenv("DEME_CUDA_GRAPHS");
+    return !(v && std::strcmp(v, "0") == 0);
+}
+
+StepGraph::~StepGraph() {
+    if (m_exec && cudaGraphExecDestroy(static_cast<cudaGraphExec_t>(m_exec)) != cudaSuccess) cudaGetLastError();
+}
+
+void StepGraph::make(const LaunchList& list, Stream stream) {
+    cudaStream_t st = static_cast<cudaStream_t>(stream);
+    // Thread-local capture: the kinematics thread goes on using the GPU meanwhile.
+    DEME_CUDA_CHECK(CALL, cudaStreamBeginCapture(st, cudaStreamCaptureModeThreadLocal));
+    cudaGraph_t graph = nullptr;
+    try {
+        list.enqueue(stream);
+    } catch (...) {
+        if (cudaStreamEndCapture(st, &graph) == cudaSuccess && graph) cudaGraphDestroy(graph);
+        cudaGetLastError();
+        throw;
+    }
+    DEME_CUDA_CHECK(CALL, cudaStreamEndCapture(st, &graph));
+    bool updated = false;
+    if (m_exec) {
+        cudaGraphExecUpdateResultInfo info{};
+        if (cudaGraphExecUpdate(static_cast<cudaGraphExec_t>(m_exec), graph, &info) == cudaSuccess) {
+            updated = true;
+            m_updates++;
+        } else {
+            cudaGetLastError();  // another shape of graph (a kernel more or less): made anew below
+            cudaGraphExecDestroy(static_cast<cudaGraphExec_t>(m_exec));
+            m_exec = nullptr;
+        }
+    }
+    if (!updated) {
+        cudaGraphExec_t exec = nullptr;
+        const cudaError_t e = cudaGraphInstantiate(&exec, graph, 0);
+        cudaGraphDestroy(graph);
+        DEME_CUDA_CHECK(CALL, e);
+        m_exec = exec;
+    } else {
+        cudaGraphDestroy(graph);
+    }
+    m_captures++;
+    m_made = list;
+}
+
+void StepGraph::launch(const LaunchList& list, Stream stream) {
+    if (list.empty()) return;
+    if (!m_exec || list != m_made) make(list, stream);
+    DEME_CUDA_CHECK(CALL, cudaGraphLaunch(static_cast<cudaGraphExec_t>(m_exec), static_cast<cudaStream_t>(stream)));
+}
+
+}  // namespace deme::cuda

@@ -1,0 +1,38 @@
+// One step of the dynamics side as a CUDA graph, replayed for every step of a batch: a step is a
+// handful of small kernels, and at lab scale (10^4-10^5 grains) launching them one by one costs
+// more than running them. The graph is made from the step's launch list (LaunchList.h) by stream
+// capture and kept while the list stays the same; when it changes (a new contact set, a grown
+// array, a recompiled prescription), the graph is updated in place where CUDA allows, or made anew.
+// DEME_CUDA_GRAPHS=0 launches the lists directly instead (docs/cuda-backend.md).
+#pragma once
+
+#include "backend/cuda/CudaTypes.h"
+#include "backend/cuda/LaunchList.h"
+
+namespace deme::cuda {
+
+class StepGraph {
+  public:
+    StepGraph() = default;
+    ~StepGraph();
+    StepGraph(const StepGraph&) = delete;
+    StepGraph& operator=(const StepGraph&) = delete;
+
+    // Queues `list` on `stream` once, through the graph made from it.
+    void launch(const LaunchList& list, Stream stream);
+    // Graphs made (captures) and updated in place so far, for the timing report and tests.
+    unsigned long long captures() const { return m_captures; }
+    unsigned long long updates() const { return m_updates; }
+
+  private:
+    void make(const LaunchList& list, Stream stream);
+
+    LaunchList m_made;       // the list the graph was made from
+    void* m_exec = nullptr;  // a cudaGraphExec_t
+    unsigned long long m_captures = 0, m_updates = 0;
+};
+
+// Whether step graphs are used (DEME_CUDA_GRAPHS unset or not "0").
+bool stepGraphsEnabled();
+
+}  // namespace deme::cuda

@@ -1,0 +1,55 @@
+// The launch lists a GPU step is recorded into (backend/cuda/LaunchList.h): a step graph is made
+// again exactly when the list differs from the one it was made from, so equality must see every
+// kernel, shape and argument byte, and nothing else. Host-only: nothing here touches a GPU.
+#include <gtest/gtest.h>
+
+#include "backend/cuda/LaunchList.h"
+
+using namespace deme::cuda;
+
+namespace {
+
+struct Args {
+    double time;
+    unsigned int n;
+};
+
+LaunchList stepOf(const CudaKernel& a, const CudaKernel& b, unsigned int n, const int* p, double t, void* event) {
+    LaunchList l;
+    l.eventRecord(event);
+    l.kernel(a, blocksFor(n, 256), 256, 0, p, n);
+    l.kernel(b, 1, 32, 0, Args{t, n}, p);
+    return l;
+}
+
+}  // namespace
+
+TEST(LaunchList, EqualExactlyWhenKernelsShapesAndArgumentsAre) {
+    int x = 0, y = 0, e1 = 0, e2 = 0;
+    CudaKernel a{&x, "a"}, b{&y, "b"};
+    const LaunchList base = stepOf(a, b, 1000, &x, 0.5, &e1);
+    EXPECT_EQ(base.size(), 3u);
+    EXPECT_TRUE(base == stepOf(a, b, 1000, &x, 0.5, &e1));
+    EXPECT_TRUE(base != stepOf(a, b, 1001, &x, 0.5, &e1));  // an argument and the grid
+    EXPECT_TRUE(base != stepOf(a, b, 1000, &y, 0.5, &e1));  // a pointer
+    EXPECT_TRUE(base != stepOf(a, b, 1000, &x, 0.25, &e1));  // a double inside a struct
+    EXPECT_TRUE(base != stepOf(b, a, 1000, &x, 0.5, &e1));  // other kernels
+    EXPECT_TRUE(base != stepOf(a, b, 1000, &x, 0.5, &e2));  // another event
+    // A kernel recompiled in place (the same object, a new handle) is another kernel.
+    CudaKernel moved = a;
+    const LaunchList before = stepOf(moved, b, 1000, &x, 0.5, &e1);
+    moved.handle = &y;
+    EXPECT_TRUE(before != stepOf(moved, b, 1000, &x, 0.5, &e1));
+}
+
+TEST(LaunchList, AGridOfNoBlocksIsLeftOut) {
+    int x = 0;
+    CudaKernel a{&x, "a"};
+    LaunchList l;
+    l.kernel(a, blocksFor(0, 256), 256, 0, 0u);
+    EXPECT_TRUE(l.empty());
+    l.kernel(a, 1, 1, 0, 0u);
+    EXPECT_EQ(l.size(), 1u);
+    l.clear();
+    EXPECT_TRUE(l.empty());
+}

@@ -1,0 +1,180 @@
+// Steps run in batches (dynamics/StepBatch.h): the host looks only between batches, and a batch ends
+// early after a step that lets the contact set in use expire or faults. None of that may show in the
+// trajectory: a run of N steps in one call equals N calls of one step, bit for bit, on every backend
+// (the scene gives each grain at most one contact, the floor, so that the GPU's atomic sums have one
+// term and are exact), and the step clock that prescribed motion reads advances within a batch.
+// On a GPU the batch's steps are replays of one captured step (backend/cuda/StepGraph.h); they must
+// equal the same kernels launched one by one.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <vector>
+
+#include "BackendFixture.h"
+#include "TestHelpers.h"
+#include "backend/cuda/Device.h"
+
+using namespace deme;
+using namespace deme_test;
+
+DEME_BACKEND_TEST_SUITE(StepBatches);
+
+namespace {
+
+constexpr double DT = 2e-5;
+constexpr float R = 0.005f;
+
+struct Trajectory {
+    std::vector<float3> pos, vel, angVel;
+    double time = 0.0;
+};
+
+// 64 spheres dropped together from rest onto a floor, far enough apart never to touch each other,
+// with a little spin and sideways speed (friction and rolling resistance act), all pulled down at
+// 500 m/s^2 more than gravity (a tracker load, which the margin does not foresee): whenever they
+// start falling from rest (at the start, at each apex of their bounces) their contact sets expire by
+// travel before n_max, in the middle of a batch. One more sphere, in family 3, far from the others,
+// is carried sideways at vx = 0.3 t.
+struct BouncingSpheres {
+    DEMSolver sim;
+    std::shared_ptr<DEMClumpBatch> grains, carried;
+    std::shared_ptr<DEMTracker> tracker, carriedTracker;
+
+    explicit BouncingSpheres(bool async) {
+        sim.SetVerbosity("QUIET");
+        auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.9, 0.4, 0.02));
+        sim.InstructBoxDomainDimension(1.0, 1.0, 1.0);
+        sim.AddBCPlane(make_float3(0, 0, -0.4f), make_float3(0, 0, 1), mat);
+        auto type = sim.LoadSphereType((float)sphereMass(R, 2500), R, mat);
+        std::vector<float3> pts;
+        for (int i = 0; i < 8; i++)
+            for (int j = 0; j < 8; j++)
+                pts.push_back(make_float3(-0.35f + 0.1f * i, -0.35f + 0.1f * j, -0.4f + R + 0.01f));
+        grains = sim.AddClumps(type, pts);
+        carried = sim.AddClumps(type, {make_float3(-0.3f, 0.4f, 0.3f)});
+        carried->SetFamily(3);
+        sim.SetFamilyPrescribedLinVel(3, "0.3 * t", "0", "0");
+        sim.SetInitTimeStep(DT);
+        sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+        sim.SetCDUpdateFreq(30);
+        sim.SetSynchronousContactDetection(!async);
+        sim.Initialize();
+        tracker = sim.Track(grains);
+        carriedTracker = sim.Track(carried);
+        for (size_t k = 0; k < pts.size(); k++) {
+            tracker->SetVel(make_float3(0.002f * (float)(k % 5), -0.001f * (float)(k % 3), 0.f), k);
+            tracker->SetAngVel(make_float3(0.5f * (float)(k % 7), 0.f, -0.3f * (float)(k % 2)), k);
+        }
+    }
+
+    // The extra pull, for the next call.
+    void pull() {
+        for (size_t k = 0; k < 64; k++) tracker->AddAcc(make_float3(0, 0, -500.f), k);
+    }
+
+    Trajectory state() const {
+        Trajectory t;
+        for (size_t k = 0; k < 64; k++) {
+            t.pos.push_back(tracker->Pos(k));
+            t.vel.push_back(tracker->Vel(k));
+            t.angVel.push_back(tracker->AngVelGlobal(k));
+        }
+        t.pos.push_back(carriedTracker->Pos());
+        t.vel.push_back(carriedTracker->Vel());
+        t.angVel.push_back(carriedTracker->AngVelGlobal());
+        t.time = sim.GetSimTime();
+        return t;
+    }
+};
+
+bool same(const float3& a, const float3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+void expectBitForBit(const Trajectory& a, const Trajectory& b) {
+    ASSERT_EQ(a.pos.size(), b.pos.size());
+    EXPECT_EQ(a.time, b.time);
+    size_t differ = 0;
+    for (size_t k = 0; k < a.pos.size(); k++)
+        if (!same(a.pos[k], b.pos[k]) || !same(a.vel[k], b.vel[k]) || !same(a.angVel[k], b.angVel[k])) differ++;
+    EXPECT_EQ(differ, 0u) << "grains whose state differs";
+}
+
+constexpr int STEPS = 3000;
+
+// How many step batches ended early, from the collaboration report.
+unsigned long long batchesEndedEarly(const DEMSolver& sim) {
+    testing::internal::CaptureStdout();
+    sim.ShowThreadCollaborationStats();
+    const std::string report = testing::internal::GetCapturedStdout();
+    const std::string tail = " ended early";
+    const size_t at = report.find(tail);
+    if (at == std::string::npos) return 0;
+    const size_t start = report.rfind(", ", at);
+    return std::stoull(report.substr(start + 2, at - start - 2));
+}
+
+Trajectory inOneCall(bool async, unsigned long long* endedEarly = nullptr) {
+    BouncingSpheres s(async);
+    s.pull();
+    s.sim.DoDynamics(STEPS * DT);
+    if (endedEarly) *endedEarly = batchesEndedEarly(s.sim);
+    return s.state();
+}
+
+Trajectory stepByStep(bool async) {
+    BouncingSpheres s(async);
+    for (int k = 0; k < STEPS; k++) {
+        s.pull();
+        s.sim.DoStepDynamics();
+    }
+    return s.state();
+}
+
+}  // namespace
+
+// Batches of up to 30 steps (n_max), many ended early by travel, against a host that looks after
+// every step; synchronous detection, then asynchronous (whose sets arrive at other steps, which the
+// trajectory does not depend on).
+DEME_BACKEND_TEST(StepBatches, OneCallEqualsStepByStepBitForBit) {
+    for (bool async : {false, true}) {
+        SCOPED_TRACE(async ? "asynchronous detection" : "synchronous detection");
+        unsigned long long endedEarly = 0;
+        const Trajectory one = inOneCall(async, &endedEarly);
+        EXPECT_GT(endedEarly, 10u);
+        // The floor held them: without it they would have fallen 0.9 m by now.
+        for (size_t k = 0; k < 64; k++) EXPECT_GT(one.pos[k].z, -0.4f + 0.9f * R);
+        expectBitForBit(one, stepByStep(async));
+    }
+}
+
+// The clock that prescribed motion reads advances with every step of a batch: the carried sphere's
+// velocity at the end of step n is 0.3 (n + 1) dt, so after N steps it has moved
+// 0.3 dt^2 N (N + 1) / 2. A clock held at the batch's start would leave it up to a batch behind
+// (0.3 x 30 dt x dt per step: 2e-4 of the distance here).
+DEME_BACKEND_TEST(StepBatches, PrescribedMotionReadsTheClockOfEachStep) {
+    BouncingSpheres s(false);
+    const float3 x0 = s.carriedTracker->Pos();
+    s.sim.DoDynamics(STEPS * DT);
+    const double n = STEPS;
+    const double expected = 0.3 * DT * DT * n * (n + 1) / 2;
+    EXPECT_NEAR(s.carriedTracker->Pos().x - x0.x, expected, 1e-6 * expected + 1e-7);
+    EXPECT_NEAR(s.carriedTracker->Vel().x, 0.3 * n * DT, 1e-6);
+    EXPECT_NEAR(s.sim.GetSimTime(), n * DT, 1e-12);
+}
+
+// GPU only: a batch replayed from a captured step graph equals the same kernels launched one by one
+// (DEME_CUDA_GRAPHS=0), bit for bit.
+TEST(CudaStepGraphs, ReplayEqualsDirectLaunchesBitForBit) {
+    if (!cuda::cudaBackendBuilt() || cuda::usableDevices().empty()) GTEST_SKIP() << "needs a GPU";
+    ScopedEnvironmentVariable backend("DEME_BACKEND", "cuda");
+    Trajectory graphs, direct;
+    {
+        ScopedEnvironmentVariable on("DEME_CUDA_GRAPHS", "1");
+        graphs = inOneCall(false);
+    }
+    {
+        ScopedEnvironmentVariable off("DEME_CUDA_GRAPHS", "0");
+        direct = inOneCall(false);
+    }
+    expectBitForBit(graphs, direct);
+}
