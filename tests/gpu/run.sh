@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|activebox|timing|gpus|settled|profile|compile|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|profile-small|activebox|timing|gpus|settled|profile|compile|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -186,6 +186,18 @@ for step in "${steps[@]}"; do
             ./build-gpu/bench/mixer .benchdata/internal_mixer.obj 0.004 spheres 125000 4 2e-6 >"$OUT/ncu.csv" 2>"$OUT/ncu.err"
         echo "profile: rc $? ($(wc -l <"$OUT/ncu.csv") lines)"
         tail -n 5 "$OUT/ncu.err"
+        ;;
+    profile-small)
+        # Nsight Compute: every kernel of some drum and impact steps (launched one by one,
+        # DEME_CUDA_GRAPHS=0, synchronous detection, so a detection's kernels are among them), after
+        # the warm-up: durations, DRAM traffic, grid and register counts.
+        for c in drum impact; do
+            DEME_CUDA_GRAPHS=0 DEME_CUDA_PROFILE_FROM_STEP=20001 timeout 300 ncu --profile-from-start off --clock-control none \
+                --launch-count 90 --csv \
+                --metrics gpu__time_duration.sum,dram__bytes_read.sum,dram__bytes_write.sum,launch__grid_size,launch__block_size,launch__registers_per_thread,sm__warps_active.avg.pct_of_peak_sustained_active \
+                ./build-gpu/bench/small_systems $c 20000 300 cuda sync >"$OUT/ncu-$c.csv" 2>"$OUT/ncu-$c.err"
+            echo "profile-small $c: rc $? ($(wc -l <"$OUT/ncu-$c.csv") lines)"
+        done
         ;;
     compile)
         # A custom force model's Initialize cost on the GPU backend (NVRTC plus the host build).

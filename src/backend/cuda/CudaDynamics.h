@@ -84,11 +84,6 @@ class CudaDynamics : public DynamicsBackend {
     int m_device = 0;
     std::string m_name;
     Stream m_stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
-    // Around each step's force phase on dT's stream (recorded inside the step graph): its GPU time,
-    // read after the batch's one host synchronisation, splits the batch between the force and
-    // integration phases (the timing report and synchronous n_max adaptation use it).
-    void *m_forceStart = nullptr, *m_forceEnd = nullptr;  // cudaEvent_t
-    double m_forceSecondsPerStep = 0.0;                   // the last measured
     CudaModule m_dynamicsModule, m_exchangeModule;
     CudaKernel kBeginBatch, kFinishStep, kCopyDoubles, kClearLoads, kResolveMesh, kIntegrate, kPlaceGeometry,
         kMaxTravelSince, kSteppedFlags, kSteppedScatter;

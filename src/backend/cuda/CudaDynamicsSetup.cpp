@@ -21,8 +21,6 @@ CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(devi
 
 CudaDynamics::~CudaDynamics() {
     if (m_stream && cudaStreamDestroy(static_cast<cudaStream_t>(m_stream)) != cudaSuccess) cudaGetLastError();
-    for (void* e : {m_forceStart, m_forceEnd})
-        if (e && cudaEventDestroy(static_cast<cudaEvent_t>(e)) != cudaSuccess) cudaGetLastError();
     if (m_controlHost && cudaFreeHost(m_controlHost) != cudaSuccess) cudaGetLastError();
 }
 
@@ -58,11 +56,6 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     cudaStream_t st = nullptr;
     DEME_CUDA_CHECK("Initialize", cudaStreamCreateWithFlags(&st, cudaStreamNonBlocking));
     m_stream = st;
-    cudaEvent_t start = nullptr, end = nullptr;
-    DEME_CUDA_CHECK("Initialize", cudaEventCreate(&start));
-    DEME_CUDA_CHECK("Initialize", cudaEventCreate(&end));
-    m_forceStart = start;
-    m_forceEnd = end;
     // The batch's control block, read back after every batch: pinned, so the copy is a plain DMA.
     void* host = nullptr;
     DEME_CUDA_CHECK("Initialize", cudaMallocHost(&host, sizeof(StepBatchControl)));

@@ -40,15 +40,15 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     StateView stepView = m_view;
     if (!storeContactForces) stepView.contacts.force = nullptr;
 
-    list.eventRecord(m_forceStart);
+    // The force phase: from clearing the loads (which stamps its start) to integration (which adds
+    // its length to the control block).
     list.kernel(kFamilyMotion, 1, NUM_FAMILIES, 0, ctl, m_motion.data());
+    list.kernel(kClearLoads, blocksFor(nO, THREADS), THREADS, 0, m_view, m_control.data());
     if (nT && m_numContacts) list.kernel(kResolveMesh, blocksFor(m_numContacts, THREADS), THREADS, 0, m_view, ctl, red);
-    list.kernel(kClearLoads, blocksFor(nO, THREADS), THREADS, 0, m_view, ctl);
     m_model.record(list, stepView, ctl, m_numClumps, nO - m_numClumps, red, settings.threadsPerBlock);
-    list.eventRecord(m_forceEnd);
     // Contact forces were summed onto every owner (dormant ones too: trackers read them); only the
     // stepped owners are integrated and placed.
-    list.kernel(kIntegrate, blocksFor(nStepped, THREADS), THREADS, 0, m_view, ctl,
+    list.kernel(kIntegrate, blocksFor(nStepped, THREADS), THREADS, 0, m_view, m_control.data(),
                 (const FamilyStepMotion*)m_motion.data(), consts, (const double*)m_baseline.data(), ownerIds, nStepped,
                 red);
     list.kernel(kPlaceGeometry, blocksFor((unsigned long long)nPlaced + nT, THREADS), THREADS, 0, m_view, ctl, sphereIds,
@@ -86,19 +86,9 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
     synchronize(st);
     const StepBatchControl c = *m_controlHost;
 
-    // The force phase's GPU time of the batch's last step (events inside the step), for every step
-    // of a batch that ran to its end; a batch that ended early ran no-op steps last, so it is
-    // charged the last measured time.
-    if (c.stepsDone == n) {
-        float forceMs = 0.f;
-        if (cudaEventElapsedTime(&forceMs, static_cast<cudaEvent_t>(m_forceStart),
-                                 static_cast<cudaEvent_t>(m_forceEnd)) == cudaSuccess)
-            m_forceSecondsPerStep = 1e-3 * (double)forceMs;
-        else
-            cudaGetLastError();  // no timing this batch; the last one's stands
-    }
+    // The force phases' device time, summed over the batch's steps by the kernels themselves.
     const double batchSeconds = now() - t0;
-    const double forceSeconds = std::min(batchSeconds, m_forceSecondsPerStep * (double)c.stepsDone);
+    const double forceSeconds = std::min(batchSeconds, 1e-9 * (double)c.forcePhaseNs);
     timing.seconds[(int)Phase::FORCE] += forceSeconds;
     timing.seconds[(int)Phase::INTEGRATION] += batchSeconds - forceSeconds;
 

@@ -2,20 +2,11 @@
 
 #include <deme/Error.h>
 
-#include <cuda_runtime_api.h>
-
-#include "backend/cuda/CudaCheck.h"
-
 namespace deme::cuda {
 
 void LaunchList::enqueue(Stream stream) const {
     std::vector<void*> argv;
     for (const Item& it : m_items) {
-        if (!it.kernel) {
-            DEME_CUDA_CHECK("DoDynamics", cudaEventRecord(static_cast<cudaEvent_t>(it.event),
-                                                          static_cast<cudaStream_t>(stream)));
-            continue;
-        }
         argv.clear();
         for (size_t a = it.firstArg; a < it.firstArg + it.numArgs; a++)
             argv.push_back(const_cast<unsigned char*>(m_bytes.data()) + m_args[a].offset);

@@ -1,4 +1,4 @@
-// A recorded sequence of kernel launches and event records, with copies of the launches' arguments:
+// A recorded sequence of kernel launches, with copies of their arguments:
 // what one step of the dynamics side queues, written down first so that it can be queued directly or
 // captured once into a CUDA graph and replayed (StepGraph.h), and compared with the sequence a
 // graph was made from (two lists are the same when every kernel, shape and argument byte is).
@@ -42,24 +42,17 @@ class LaunchList {
         it.numArgs = m_args.size() - it.firstArg;
         m_items.push_back(it);
     }
-    // Records `event` (a cudaEvent_t) at this point of the sequence.
-    void eventRecord(void* event) {
-        Item it;
-        it.event = event;
-        m_items.push_back(it);
-    }
-
     // Queues the sequence on `stream` (also while the stream is being captured into a graph).
     // Throws deme::Error naming the kernel if a launch is refused.
     void enqueue(Stream stream) const;
 
-    // The same kernels and events in the same order, with the same shapes and argument bytes.
+    // The same kernels in the same order, with the same shapes and argument bytes.
     bool operator==(const LaunchList& o) const {
         if (m_items.size() != o.m_items.size() || m_args.size() != o.m_args.size() || m_bytes != o.m_bytes)
             return false;
         for (size_t i = 0; i < m_items.size(); i++) {
             const Item &a = m_items[i], &b = o.m_items[i];
-            if (a.handle != b.handle || a.event != b.event || !same(a.grid, b.grid) || !same(a.block, b.block) ||
+            if (a.handle != b.handle || !same(a.grid, b.grid) || !same(a.block, b.block) ||
                 a.sharedBytes != b.sharedBytes || a.firstArg != b.firstArg || a.numArgs != b.numArgs)
                 return false;
         }
@@ -72,9 +65,8 @@ class LaunchList {
   private:
     static bool same(const Dim3& a, const Dim3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
     struct Item {
-        const CudaKernel* kernel = nullptr;  // null: an event record (for the name in messages)
+        const CudaKernel* kernel = nullptr;  // for its name in messages
         void* handle = nullptr;              // the kernel launched (compared: a kernel may be recompiled)
-        void* event = nullptr;
         Dim3 grid, block;
         size_t sharedBytes = 0;
         size_t firstArg = 0, numArgs = 0;

@@ -20,6 +20,13 @@ __device__ inline void raiseError(StepReduction* red, unsigned int flag, unsigne
     if (atomicOr(&red->errorFlags, flag) == 0u) red->errorItem = item;
 }
 
+// The GPU's nanosecond clock, the same on every multiprocessor.
+__device__ inline unsigned long long deviceClockNs() {
+    unsigned long long t;
+    asm volatile("mov.u64 %0, %%globaltimer;" : "=l"(t));
+    return t;
+}
+
 }  // namespace
 
 // The steps of a batch (dynamics/StepBatch.h): every step kernel takes the batch's control block and
@@ -82,9 +89,11 @@ extern "C" __global__ void deme_copy_doubles(double* dst, const double* src, uns
     if (i < n) dst[i] = src[i];
 }
 
-extern "C" __global__ void deme_clear_owner_loads(StateView s, const StepBatchControl* ctl) {
+// The force phase's first kernel: it also stamps the phase's start (StepBatchControl).
+extern "C" __global__ void deme_clear_owner_loads(StateView s, StepBatchControl* ctl) {
     if (ctl->stop) return;
     const size_t o = globalIndex();
+    if (o == 0) ctl->forcePhaseStartNs = deviceClockNs();
     if (o >= s.numOwners) return;
     s.owners.contactForce[o] = make_float3(0.f);
     s.owners.contactTorque[o] = make_float3(0.f);
@@ -128,11 +137,13 @@ extern "C" __global__ void deme_force_pass_frictionless_hertz(StateView s, const
 // rest out, deme_stepped_flags), with the step's maxima and first fault combined per warp. An owner
 // whose rotation this step was too large for the series step takes the exact (scalar) step at once
 // (rare; the CPU does these in a sweep of their own so that its main sweep vectorises).
-extern "C" __global__ void deme_integrate(StateView s, const StepBatchControl* ctl, const FamilyStepMotion* motion,
+extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, const FamilyStepMotion* motion,
                                           StepConstants consts, const double* travelBaseline, const bodyID_t* ids,
                                           unsigned int n, StepReduction* red) {
     if (ctl->stop) return;
     const size_t k = globalIndex();
+    // The force phase has ended (the kernels of a stream run one after the other).
+    if (k == 0) ctl->forcePhaseNs += deviceClockNs() - ctl->forcePhaseStartNs;
     double travel = 0.0;
     float speed = 0.f;
     unsigned int fault = NO_FAULT, large = 0u;
