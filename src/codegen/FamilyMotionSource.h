@@ -10,8 +10,13 @@
 
 namespace deme {
 
-// Name of the generated kernel: deme_family_motion(double t, FamilyStepMotion* out), one thread per
-// family (NUM_FAMILIES threads), writing every family's entry.
+// Name of the generated kernel, the first of a GPU step (dynamics/StepBatch.h):
+//   deme_family_motion(StepBatchControl* ctl, FamilyStepMotion* out, float3* contactForce,
+//                      float3* contactTorque, unsigned int numOwners)
+// threads 0 .. NUM_FAMILIES - 1 write every family's entry for the end of the step (time
+// ctl->time + ctl->dt); threads 0 .. numOwners - 1 clear the owners' contact loads for the step's
+// force pass, and thread 0 stamps the force phase's start into the control block. Nothing once the
+// batch has ended (ctl->stop).
 inline constexpr const char* kFamilyMotionKernel = "deme_family_motion";
 
 std::string familyMotionKernelSource(const std::array<FamilyMotion, NUM_FAMILIES>& motions);

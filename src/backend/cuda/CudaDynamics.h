@@ -85,11 +85,12 @@ class CudaDynamics : public DynamicsBackend {
     std::string m_name;
     Stream m_stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
     CudaModule m_dynamicsModule, m_exchangeModule;
-    CudaKernel kBeginBatch, kFinishStep, kCopyDoubles, kClearLoads, kResolveMesh, kIntegrate, kPlaceGeometry,
-        kMaxTravelSince, kSteppedFlags, kSteppedScatter;
+    CudaKernel kBeginBatch, kCopyDoubles, kResolveMesh, kIntegrate, kPlaceAndFinish, kMaxTravelSince, kSteppedFlags,
+        kSteppedScatter;
     // The batch's control block (dynamics/StepBatch.h) on the device, and its pinned host copy.
     DeviceBuffer<StepBatchControl> m_control;
     StepBatchControl* m_controlHost = nullptr;
+    DeviceBuffer<unsigned int> m_blocksDone;  // deme_place_and_finish's count of finished blocks
     // One step's launches, without and with stored contact forces, and their graphs.
     LaunchList m_plainStep, m_storingStep;
     StepGraph m_plainGraph, m_storingGraph;

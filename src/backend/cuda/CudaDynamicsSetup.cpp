@@ -39,12 +39,10 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     m_dynamicsModule = CudaModule("Initialize", d.image);
     m_exchangeModule = CudaModule("Initialize", x.image);
     kBeginBatch = m_dynamicsModule.kernel("deme_begin_batch");
-    kFinishStep = m_dynamicsModule.kernel("deme_finish_step");
     kCopyDoubles = m_dynamicsModule.kernel("deme_copy_doubles");
-    kClearLoads = m_dynamicsModule.kernel("deme_clear_owner_loads");
     kResolveMesh = m_dynamicsModule.kernel("deme_resolve_mesh_contacts");
     kIntegrate = m_dynamicsModule.kernel("deme_integrate");
-    kPlaceGeometry = m_dynamicsModule.kernel("deme_place_geometry");
+    kPlaceAndFinish = m_dynamicsModule.kernel("deme_place_and_finish");
     kSteppedFlags = m_dynamicsModule.kernel("deme_stepped_flags");
     kSteppedScatter = m_dynamicsModule.kernel("deme_stepped_scatter");
     kMaxTravelSince = m_exchangeModule.kernel("deme_max_travel_since");
@@ -61,6 +59,9 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     DEME_CUDA_CHECK("Initialize", cudaMallocHost(&host, sizeof(StepBatchControl)));
     m_controlHost = static_cast<StepBatchControl*>(host);
     m_control.resizeDiscarding(1);
+    m_blocksDone.resizeDiscarding(1);
+    m_blocksDone.zeroAsync(nullptr);
+    synchronize(nullptr);
 }
 
 void CudaDynamics::compileGenerated(const char* program, const std::string& source, const char* kernelName,

@@ -40,10 +40,11 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     StateView stepView = m_view;
     if (!storeContactForces) stepView.contacts.force = nullptr;
 
-    // The force phase: from clearing the loads (which stamps its start) to integration (which adds
-    // its length to the control block).
-    list.kernel(kFamilyMotion, 1, NUM_FAMILIES, 0, ctl, m_motion.data());
-    list.kernel(kClearLoads, blocksFor(nO, THREADS), THREADS, 0, m_view, m_control.data());
+    // The force phase: from the first kernel (which clears the loads and stamps the phase's start)
+    // to integration (which adds the phase's length to the control block).
+    list.kernel(kFamilyMotion, blocksFor(std::max<unsigned int>(nO, NUM_FAMILIES), THREADS), THREADS, 0,
+                m_control.data(), m_motion.data(), m_state.owners.contactForce.data(),
+                m_state.owners.contactTorque.data(), nO);
     if (nT && m_numContacts) list.kernel(kResolveMesh, blocksFor(m_numContacts, THREADS), THREADS, 0, m_view, ctl, red);
     m_model.record(list, stepView, ctl, m_numClumps, nO - m_numClumps, red, settings.threadsPerBlock);
     // Contact forces were summed onto every owner (dormant ones too: trackers read them); only the
@@ -51,11 +52,11 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     list.kernel(kIntegrate, blocksFor(nStepped, THREADS), THREADS, 0, m_view, m_control.data(),
                 (const FamilyStepMotion*)m_motion.data(), consts, (const double*)m_baseline.data(), ownerIds, nStepped,
                 red);
-    list.kernel(kPlaceGeometry, blocksFor((unsigned long long)nPlaced + nT, THREADS), THREADS, 0, m_view, ctl, sphereIds,
-                nPlaced, nT);
-    const unsigned int finishThreads = m_numAnalyticalOwners > 32 ? THREADS : 32;
-    list.kernel(kFinishStep, 1, finishThreads, 0, m_view, m_control.data(), m_numClumps, m_numAnalyticalOwners,
-                (float)settings.dt, m_domainDiagonal, (const double*)m_baseline.data(), red);
+    // At least one block: it also ends the step.
+    const unsigned int placeBlocks = std::max(1u, blocksFor((unsigned long long)nPlaced + nT, THREADS));
+    list.kernel(kPlaceAndFinish, placeBlocks, THREADS, 0, m_view, m_control.data(), sphereIds, nPlaced, nT, m_numClumps,
+                m_numAnalyticalOwners, (float)settings.dt, m_domainDiagonal, (const double*)m_baseline.data(), red,
+                m_blocksDone.data());
 }
 
 StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules&,
@@ -69,7 +70,7 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
     launch(kBeginBatch, 1, 1, 0, st, ctl, batch.time, settings.dt, batch.margin, m_reduction.data());
     if (m_subsetStale) {
         // After an upload, a detection or a family change: O(owners), reads this step's motion.
-        launch(kFamilyMotion, 1, NUM_FAMILIES, 0, st, (const StepBatchControl*)ctl, m_motion.data());
+        launch(kFamilyMotion, 1, NUM_FAMILIES, 0, st, ctl, m_motion.data(), (float3*)nullptr, (float3*)nullptr, 0u);
         updateStepSubset();
     }
     recordStep(m_plainStep, settings, false);

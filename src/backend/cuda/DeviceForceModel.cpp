@@ -1,6 +1,8 @@
 #include "backend/cuda/DeviceForceModel.h"
 
 #include <cstddef>
+#include <cstdlib>
+#include <string>
 
 #include <deme/Error.h>
 
@@ -34,12 +36,14 @@ void put(DeviceBuffer<float>& d, const std::vector<float>& h) {
 
 void DeviceForceModel::load(const std::string& call, const ModelLayout& layout, const CudaModule& dynamics,
                             const CudaCompileOptions& options) {
+    const char* regs = std::getenv("DEME_CUDA_FORCE_REGS");
+    const std::string variant = regs && std::string(regs) == "64" ? "_r64" : "";
     switch (layout.kind) {
         case DEMForceModel::Kind::FRICTIONAL_HERTZIAN:
-            m_kernel = dynamics.kernel("deme_force_pass_frictional_hertz");
+            m_kernel = dynamics.kernel("deme_force_pass_frictional_hertz" + variant);
             return;
         case DEMForceModel::Kind::FRICTIONLESS_HERTZIAN:
-            m_kernel = dynamics.kernel("deme_force_pass_frictionless_hertz");
+            m_kernel = dynamics.kernel("deme_force_pass_frictionless_hertz" + variant);
             return;
         default:
             break;

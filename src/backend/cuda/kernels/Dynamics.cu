@@ -50,13 +50,13 @@ extern "C" __global__ void deme_begin_batch(StepBatchControl* ctl, double time, 
     clearReduction(red);
 }
 
-// A step's last kernel, one block: the analytical owners' step (cached components; travel bounded
-// by the fastest surface point), then, in one thread, the step's tally into the control block (the
-// rule that may end the batch) and a clear reduction for the next step.
-extern "C" __global__ void deme_finish_step(StateView s, StepBatchControl* ctl, unsigned int firstAnalyticalOwner,
-                                            unsigned int numAnalyticalOwners, float h, double domainDiagonal,
-                                            const double* travelBaseline, StepReduction* red) {
-    if (ctl->stop) return;
+// The end of a step, run by one block once everything else of the step is done: the analytical
+// owners' step (cached components; travel bounded by the fastest surface point), then, in one
+// thread, the step's tally into the control block (the rule that may end the batch) and a clear
+// reduction for the next step.
+__device__ inline void finishStep(StateView& s, StepBatchControl* ctl, unsigned int firstAnalyticalOwner,
+                                  unsigned int numAnalyticalOwners, float h, double domainDiagonal,
+                                  const double* travelBaseline, StepReduction* red) {
     for (unsigned int j = threadIdx.x; j < numAnalyticalOwners; j += blockDim.x) {
         const unsigned int o = firstAnalyticalOwner + j;
         float rate = 0.f;
@@ -89,16 +89,6 @@ extern "C" __global__ void deme_copy_doubles(double* dst, const double* src, uns
     if (i < n) dst[i] = src[i];
 }
 
-// The force phase's first kernel: it also stamps the phase's start (StepBatchControl).
-extern "C" __global__ void deme_clear_owner_loads(StateView s, StepBatchControl* ctl) {
-    if (ctl->stop) return;
-    const size_t o = globalIndex();
-    if (o == 0) ctl->forcePhaseStartNs = deviceClockNs();
-    if (o >= s.numOwners) return;
-    s.owners.contactForce[o] = make_float3(0.f);
-    s.owners.contactTorque[o] = make_float3(0.f);
-}
-
 // One thread per sphere-triangle contact that opens its sphere's run (contacts are sorted by
 // sphere, a sphere's triangle contacts last).
 extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBatchControl* ctl, StepReduction* red) {
@@ -116,22 +106,25 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
 
 // Force passes of the built-in models (kernels/ForcePassKernel.cuh); a custom model's pass is
 // generated and compiled at Initialize (forcemodel/CudaCodeGen.cpp). All take the same arguments.
-extern "C" __global__ void deme_force_pass_frictional_hertz(StateView s, const StepBatchControl* ctl,
-                                                            ForceModelParams p, unsigned int firstNonClump,
-                                                            unsigned int numNonClump, StepReduction* red) {
-    const unsigned int n = p.numMaterials;
-    const FrictionalHertzModel model{PairTable{p.mu, n}, PairTable{p.Crr, n}, PairTable{p.E_eff, n},
-                                     PairTable{p.G_eff, n}, PairTable{p.beta_CoR, n}};
-    forcePassKernel(s, model, ctl, firstNonClump, numNonClump, red);
-}
-
-extern "C" __global__ void deme_force_pass_frictionless_hertz(StateView s, const StepBatchControl* ctl,
-                                                              ForceModelParams p, unsigned int firstNonClump,
-                                                              unsigned int numNonClump, StepReduction* red) {
-    const unsigned int n = p.numMaterials;
-    const FrictionlessHertzModel model{PairTable{p.E_eff, n}, PairTable{p.beta_CoR, n}};
-    forcePassKernel(s, model, ctl, firstNonClump, numNonClump, red);
-}
+// The _r64 variants cap the registers at 64 (twice the resident blocks, a few spilled values).
+#define DEME_BUILT_IN_FORCE_PASSES(SUFFIX, ATTR)                                                               \
+    extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                 \
+        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,             \
+        unsigned int numNonClump, StepReduction* red) {                                                        \
+        const unsigned int n = p.numMaterials;                                                                 \
+        const FrictionalHertzModel model{PairTable{p.mu, n}, PairTable{p.Crr, n}, PairTable{p.E_eff, n},      \
+                                         PairTable{p.G_eff, n}, PairTable{p.beta_CoR, n}};                    \
+        forcePassKernel(s, model, ctl, firstNonClump, numNonClump, red);                                       \
+    }                                                                                                          \
+    extern "C" __global__ void ATTR deme_force_pass_frictionless_hertz##SUFFIX(                               \
+        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,             \
+        unsigned int numNonClump, StepReduction* red) {                                                        \
+        const unsigned int n = p.numMaterials;                                                                 \
+        const FrictionlessHertzModel model{PairTable{p.E_eff, n}, PairTable{p.beta_CoR, n}};                  \
+        forcePassKernel(s, model, ctl, firstNonClump, numNonClump, red);                                       \
+    }
+DEME_BUILT_IN_FORCE_PASSES(, )
+DEME_BUILT_IN_FORCE_PASSES(_r64, __maxnreg__(64))
 
 // Integration of owners ids[0, n) (every owner if ids is null; the active box leaves fixed owners at
 // rest out, deme_stepped_flags), with the step's maxima and first fault combined per warp. An owner
@@ -174,18 +167,34 @@ extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, co
     }
 }
 
-// The cached poses after integration: spheres ids[0, numSpheres) of the owners stepped (every sphere
-// if ids is null), then every triangle of an owner that moved. One thread per item.
-extern "C" __global__ void deme_place_geometry(StateView s, const StepBatchControl* ctl, const bodyID_t* ids,
-                                               unsigned int numSpheres, unsigned int numTriangles) {
+// A step's last kernel: the cached poses after integration -- spheres ids[0, numSpheres) of the owners
+// stepped (every sphere if ids is null), then every triangle of an owner that moved, one thread per
+// item -- and the end of the step (finishStep), by the block that finishes last (`blocksDone`
+// counts them, and is zero again after the kernel). The end needs nothing of the poses, so one
+// kernel does both; the block that sets ctl->stop is the last one to read it.
+extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* ctl, const bodyID_t* ids,
+                                                 unsigned int numSpheres, unsigned int numTriangles,
+                                                 unsigned int firstAnalyticalOwner, unsigned int numAnalyticalOwners,
+                                                 float h, double domainDiagonal, const double* travelBaseline,
+                                                 StepReduction* red, unsigned int* blocksDone) {
     if (ctl->stop) return;
     const size_t k = globalIndex();
     if (k < numSpheres) {
         placeSphere(s, ids ? (size_t)ids[k] : k);
-        return;
+    } else {
+        const size_t t = k - numSpheres;
+        if (t < numTriangles && (s.integrationScratch.flags[s.triangles.owner[t]] & STEP_MOVED)) placeTriangle(s, t);
     }
-    const size_t t = k - numSpheres;
-    if (t < numTriangles && (s.integrationScratch.flags[s.triangles.owner[t]] & STEP_MOVED)) placeTriangle(s, t);
+    __shared__ bool lastBlock;
+    __syncthreads();
+    if (threadIdx.x == 0) {
+        __threadfence();
+        lastBlock = atomicAdd(blocksDone, 1u) == gridDim.x - 1;
+    }
+    __syncthreads();
+    if (!lastBlock) return;
+    if (threadIdx.x == 0) *blocksDone = 0u;
+    finishStep(s, ctl, firstAnalyticalOwner, numAnalyticalOwners, h, domainDiagonal, travelBaseline, red);
 }
 
 // Which owners and spheres a step integrates and places (backend/cpu/Integration.h,
