@@ -86,7 +86,7 @@ class CudaDynamics : public DynamicsBackend {
     Stream m_stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
     CudaModule m_dynamicsModule, m_exchangeModule;
     CudaKernel kBeginBatch, kCopyDoubles, kResolveMesh, kIntegrate, kPlaceAndFinish, kMaxTravelSince, kSteppedFlags,
-        kSteppedScatter;
+        kSteppedScatter, kMarkContactOwners, kScatterFlagged;
     // The batch's control block (dynamics/StepBatch.h) on the device, and its pinned host copy.
     DeviceBuffer<StepBatchControl> m_control;
     StepBatchControl* m_controlHost = nullptr;
@@ -128,8 +128,8 @@ class CudaDynamics : public DynamicsBackend {
     // start of a call, the only times families, velocities of fixed owners and the set change.
     bool m_subsetStale = true, m_subsetAll = true;
     DeviceBuffer<unsigned int> m_ownerStepped, m_ownerStepOffset, m_sphereStepped, m_sphereStepOffset;
-    DeviceBuffer<bodyID_t> m_steppedOwners, m_steppedSpheres;
-    unsigned int m_numSteppedOwners = 0, m_numSteppedSpheres = 0;
+    DeviceBuffer<bodyID_t> m_steppedOwners, m_steppedSpheres, m_loadOwners;
+    unsigned int m_numSteppedOwners = 0, m_numSteppedSpheres = 0, m_numLoadOwners = 0;
 
     // Host-side copies of what the loop needs.
     StateView m_view{};

@@ -45,6 +45,8 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     kPlaceAndFinish = m_dynamicsModule.kernel("deme_place_and_finish");
     kSteppedFlags = m_dynamicsModule.kernel("deme_stepped_flags");
     kSteppedScatter = m_dynamicsModule.kernel("deme_stepped_scatter");
+    kMarkContactOwners = m_dynamicsModule.kernel("deme_mark_contact_owners");
+    kScatterFlagged = m_dynamicsModule.kernel("deme_scatter_flagged");
     kMaxTravelSince = m_exchangeModule.kernel("deme_max_travel_since");
     m_model.load("Initialize (contact force model)", layout, m_dynamicsModule, opt);
     m_history.load("Initialize", opt);

@@ -42,9 +42,11 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
 
     // The force phase: from the first kernel (which clears the loads and stamps the phase's start)
     // to integration (which adds the phase's length to the control block).
-    list.kernel(kFamilyMotion, blocksFor(std::max<unsigned int>(nO, NUM_FAMILIES), THREADS), THREADS, 0,
+    const bodyID_t* clearIds = m_subsetAll ? nullptr : m_loadOwners.data();
+    const unsigned int nCleared = m_subsetAll ? nO : m_numLoadOwners;
+    list.kernel(kFamilyMotion, blocksFor(std::max<unsigned int>(nCleared, NUM_FAMILIES), THREADS), THREADS, 0,
                 m_control.data(), m_motion.data(), m_state.owners.contactForce.data(),
-                m_state.owners.contactTorque.data(), nO);
+                m_state.owners.contactTorque.data(), clearIds, nCleared);
     if (nT && m_numContacts) list.kernel(kResolveMesh, blocksFor(m_numContacts, THREADS), THREADS, 0, m_view, ctl, red);
     m_model.record(list, stepView, ctl, m_numClumps, nO - m_numClumps, red, settings.threadsPerBlock);
     // Contact forces were summed onto every owner (dormant ones too: trackers read them); only the
@@ -70,7 +72,8 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
     launch(kBeginBatch, 1, 1, 0, st, ctl, batch.time, settings.dt, batch.margin, m_reduction.data());
     if (m_subsetStale) {
         // After an upload, a detection or a family change: O(owners), reads this step's motion.
-        launch(kFamilyMotion, 1, NUM_FAMILIES, 0, st, ctl, m_motion.data(), (float3*)nullptr, (float3*)nullptr, 0u);
+        launch(kFamilyMotion, 1, NUM_FAMILIES, 0, st, ctl, m_motion.data(), (float3*)nullptr, (float3*)nullptr,
+               (const bodyID_t*)nullptr, 0u);
         updateStepSubset();
     }
     recordStep(m_plainStep, settings, false);

@@ -2,7 +2,9 @@
 // rest (the active box's dormant grains, docs/active-box.md), the others only, as the CPU's
 // IntegrationSubset (backend/cpu/Integration.h) with the same rule (dynamics/OwnerStep.h,
 // ownerAtRest) run by kernels/Dynamics.cu. A left-out owner's step would be itself, so the stepped
-// owners' results do not change.
+// owners' results do not change. With such a subset, the owners whose loads a step clears are also a
+// subset: the stepped ones and those of some contact of the set (others get no load); all loads are
+// cleared once here, so that an owner that drops out of the list reads zero.
 #include "backend/cuda/CudaDynamics.h"
 
 namespace deme::cuda {
@@ -36,6 +38,20 @@ void CudaDynamics::updateStepSubset() {
     launch(kSteppedScatter, blocksFor(n, 256), 256, 0, st, m_view, (const unsigned int*)m_ownerStepped.data(),
            (const unsigned int*)m_ownerStepOffset.data(), (const unsigned int*)m_sphereStepped.data(),
            (const unsigned int*)m_sphereStepOffset.data(), m_steppedOwners.data(), m_steppedSpheres.data());
+    // The owners whose loads a step clears: the stepped ones (their flags, reused) and those of the
+    // contacts.
+    if (m_numContacts)
+        launch(kMarkContactOwners, blocksFor(m_numContacts, 256), 256, 0, st, m_view, m_ownerStepped.data());
+    m_prim.exclusiveSum(m_ownerStepped.data(), m_ownerStepOffset.data(), nO + 1, st);
+    unsigned int cleared = 0;
+    m_ownerStepOffset.downloadAsync(&cleared, 1, st, nO);
+    synchronize(st);
+    m_numLoadOwners = cleared;
+    m_loadOwners.resizeDiscarding(cleared);
+    launch(kScatterFlagged, blocksFor(nO, 256), 256, 0, st, (const unsigned int*)m_ownerStepped.data(),
+           (const unsigned int*)m_ownerStepOffset.data(), nO, m_loadOwners.data());
+    m_state.owners.contactForce.zeroAsync(st);
+    m_state.owners.contactTorque.zeroAsync(st);
 }
 
 }  // namespace deme::cuda

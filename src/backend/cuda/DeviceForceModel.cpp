@@ -36,8 +36,10 @@ void put(DeviceBuffer<float>& d, const std::vector<float>& h) {
 
 void DeviceForceModel::load(const std::string& call, const ModelLayout& layout, const CudaModule& dynamics,
                             const CudaCompileOptions& options) {
+    // The built-in passes capped at 64 registers (BENCHMARKS.md, SMALL-SYSTEMS: twice the resident
+    // blocks for a few spilled values); DEME_CUDA_FORCE_REGS=0 takes the uncapped ones.
     const char* regs = std::getenv("DEME_CUDA_FORCE_REGS");
-    const std::string variant = regs && std::string(regs) == "64" ? "_r64" : "";
+    const std::string variant = regs && std::string(regs) == "0" ? "" : "_r64";
     switch (layout.kind) {
         case DEMForceModel::Kind::FRICTIONAL_HERTZIAN:
             m_kernel = dynamics.kernel("deme_force_pass_frictional_hertz" + variant);

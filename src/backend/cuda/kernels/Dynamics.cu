@@ -106,7 +106,9 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
 
 // Force passes of the built-in models (kernels/ForcePassKernel.cuh); a custom model's pass is
 // generated and compiled at Initialize (forcemodel/CudaCodeGen.cpp). All take the same arguments.
-// The _r64 variants cap the registers at 64 (twice the resident blocks, a few spilled values).
+// The _r64 variants, the ones used (DeviceForceModel.cpp), cap the registers at 64: four blocks of 256
+// threads fit a multiprocessor instead of two, for 48 bytes spilled (to L1). Measured on one H200:
+// +5 % steps per second on both SMALL-SYSTEMS cases (BENCHMARKS.md).
 #define DEME_BUILT_IN_FORCE_PASSES(SUFFIX, ATTR)                                                               \
     extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                 \
         StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,             \
@@ -205,6 +207,23 @@ extern "C" __global__ void deme_stepped_flags(StateView s, const FamilyStepMotio
     const size_t i = globalIndex();
     if (i < s.numOwners) ownerStepped[i] = ownerAtRest(s, motion, i) ? 0u : 1u;
     if (i < s.numSpheres) sphereStepped[i] = ownerAtRest(s, motion, s.spheres.owner[i]) ? 0u : 1u;
+}
+
+// The active box: flags[o] = 1 for the owners of both geometries of every contact of the set (the
+// owners whose loads a step may change besides the stepped ones). One thread per contact.
+extern "C" __global__ void deme_mark_contact_owners(StateView s, unsigned int* flags) {
+    const size_t i = globalIndex();
+    if (i >= s.numContacts) return;
+    const ContactView& c = s.contacts;
+    flags[s.spheres.owner[c.geomA[i]]] = 1u;
+    flags[geometryOwner(s, c.type[i], c.geomB[i])] = 1u;
+}
+
+// ids[offset[i]] = i for every i < n with flags[i] set (offset: the flags' exclusive sum).
+extern "C" __global__ void deme_scatter_flagged(const unsigned int* flags, const unsigned int* offset, unsigned int n,
+                                                bodyID_t* ids) {
+    const size_t i = globalIndex();
+    if (i < n && flags[i]) ids[offset[i]] = (bodyID_t)i;
 }
 
 // The stepped owners and spheres at their offsets (the flags' exclusive sums), ascending.
