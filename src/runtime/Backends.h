@@ -52,6 +52,32 @@ struct StepOutcome {
     unsigned int kernelError = 0, kernelErrorItem = 0;  // GPU only: KernelError bits and the sphere
 };
 
+// A step's outcome as the end-of-step rule tallies it (dynamics/StepBatch.h), and back (the fault's
+// flags are the backend's to fill in).
+inline StepTally tallyOf(const StepOutcome& o) {
+    StepTally t;
+    t.maxTravel = o.maxTravel;
+    t.maxSpeed = o.maxSpeed;
+    t.firstFault = o.fault ? (unsigned int)o.faultOwner : NO_FAULT;
+    t.errorFlags = o.kernelError;
+    t.errorItem = o.kernelErrorItem;
+    t.realContacts = o.realContacts;
+    t.realSphereSphere = o.realSphereSphere;
+    return t;
+}
+inline StepOutcome outcomeOf(const StepTally& t) {
+    StepOutcome o;
+    o.realContacts = (size_t)t.realContacts;
+    o.realSphereSphere = (size_t)t.realSphereSphere;
+    o.maxSpeed = t.maxSpeed;
+    o.maxTravel = t.maxTravel;
+    o.fault = t.firstFault != NO_FAULT;
+    o.faultOwner = o.fault ? t.firstFault : 0;
+    o.kernelError = t.errorFlags;
+    o.kernelErrorItem = t.errorItem;
+    return o;
+}
+
 // A batch of steps the dynamics side runs without the host looking in between (dynamics/StepBatch.h):
 // at most `maxSteps` from `time` with the set in use (of margin `margin`), ended early after a step
 // that lets that set expire or finds a fault.

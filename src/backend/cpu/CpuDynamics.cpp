@@ -27,15 +27,7 @@ StepBatchResult CpuDynamics::steps(const StepBatchRequest& batch, const Settings
     StepBatchResult r;
     while (c.stepsDone < batch.maxSteps && !c.stop) {
         r.last = step(c.time, settings, families, timing);
-        const StepOutcome& o = r.last;
-        StepTally t;
-        t.maxTravel = o.maxTravel;
-        t.maxSpeed = o.maxSpeed;
-        t.firstFault = o.fault ? (unsigned int)o.faultOwner : NO_FAULT;
-        t.errorFlags = t.errorItem = 0u;
-        t.realContacts = o.realContacts;
-        t.realSphereSphere = o.realSphereSphere;
-        finishBatchStep(c, t);
+        finishBatchStep(c, tallyOf(r.last));
     }
     r.steps = c.stepsDone;
     r.time = c.time;

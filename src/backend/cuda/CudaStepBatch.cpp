@@ -100,17 +100,9 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
     r.steps = c.stepsDone;
     r.time = c.time;
     r.realContactSum = c.realContactSum;
-    StepOutcome& out = r.last;
-    out.realContacts = c.last.realContacts;
-    out.realSphereSphere = c.last.realSphereSphere;
-    out.maxSpeed = c.last.maxSpeed;
-    out.maxTravel = c.last.maxTravel;
-    out.kernelError = c.last.errorFlags;
-    out.kernelErrorItem = c.last.errorItem;
-    if (c.last.firstFault != NO_FAULT) {
-        out.fault = true;
-        out.faultOwner = c.last.firstFault;
-        m_state.integrationScratch.flags.downloadAsync(&out.faultFlags, 1, st, c.last.firstFault);
+    r.last = outcomeOf(c.last);
+    if (r.last.fault) {
+        m_state.integrationScratch.flags.downloadAsync(&r.last.faultFlags, 1, st, c.last.firstFault);
         synchronize(st);
     }
     return r;
