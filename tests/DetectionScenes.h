@@ -1,6 +1,7 @@
 // Scenes for the contact-detection tests (CPU against brute force, GPU kernels against the CPU).
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <random>
 #include <set>
@@ -61,6 +62,31 @@ inline Scene randomScene(unsigned seed, size_t nClumps) {
     return sc;
 }
 
+// Random polydisperse spheres and clumps filling a 4 cm box periodic along `axes` (InstructBoxDomain
+// Periodicity bits), many of them reaching over the faces; with a floor plane if z is not periodic.
+inline Scene randomPeriodicScene(unsigned seed, size_t nClumps, unsigned int axes) {
+    Scene sc = randomScene(seed, nClumps);
+    sc.periodicAxes = axes;
+    std::mt19937 rng(seed + 100);
+    std::uniform_real_distribution<float> u(-0.0199f, 0.0199f);
+    std::vector<float3> pos(nClumps);
+    for (float3& p : pos) p = make_float3(u(rng), u(rng), u(rng));
+    auto batch = std::make_shared<DEMClumpBatch>(sc.batches[0]->GetTypes(), pos);
+    batch->SetOriQ(sc.batches[0]->GetOriQs());
+    const std::vector<family_t>& f = sc.batches[0]->GetFamilies();
+    batch->SetFamily(std::vector<unsigned int>(f.begin(), f.end()));
+    sc.batches[0] = batch;
+    // The walls: a floor (parallel to x and y) where z is bounded, none otherwise.
+    sc.externObjs.clear();
+    if (!(axes & 4u)) {
+        auto floor = std::make_shared<DEMExternObj>();
+        floor->AddPlane(make_float3(0, 0, -0.017f), make_float3(0, 0, 1), sc.materials[0]);
+        floor->SetFamily(1);
+        sc.externObjs.push_back(floor);
+    }
+    return sc;
+}
+
 // The scene as detection sees it: assembled with the default model, geometry positions computed.
 inline SimState detectionState(const Scene& scene, const char* call) {
     SimState s =
@@ -99,7 +125,12 @@ inline std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, dou
             const bodyID_t oa = s.spheres.owner[a], ob = s.spheres.owner[b];
             if (oa == ob || !mask[famOf(oa) * NUM_FAMILIES + famOf(ob)]) continue;
             const double reach = ((double)s.spheres.radius[a] + m(oa)) + ((double)s.spheres.radius[b] + m(ob));
-            const double3 d = p[a] - p[b];
+            double3 d = p[a] - p[b];
+            // Across periodic faces: the nearest image (an independent minimum-image rule).
+            const PeriodicBox& pb = s.frame.periodic;
+            if (pb.axes & 1u) d.x -= pb.length.x * std::round(d.x / pb.length.x);
+            if (pb.axes & 2u) d.y -= pb.length.y * std::round(d.y / pb.length.y);
+            if (pb.axes & 4u) d.z -= pb.length.z * std::round(d.z / pb.length.z);
             if (dot(d, d) < reach * reach) pairs.insert({(bodyID_t)a, (bodyID_t)b});
         }
         for (size_t k = 0; k < s.analytical.size(); k++) {

@@ -129,6 +129,7 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& grid, double margin,
                                 const float* extra, const uint8_t* dormant = nullptr,
                                 const uint8_t* movable = nullptr) {
     StateView v{};
+    v.frame = s.frame;  // periodic axes, if any
     v.owners.family = s.owners.family.data();
     v.spheres.owner = s.spheres.owner.data();
     v.spheres.radius = s.spheres.radius.data();
@@ -274,6 +275,37 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorExactly) {
     EXPECT_EQ(cases, 12);
 }
 
+// Periodic axes (physics/Periodic.h): the kernels wrap bins around the periodic faces and compare
+// geometries through their nearest images, spheres and the mesh floor that spans the whole period
+// alike, pair for pair as the CPU's detector.
+TEST(CudaDetectionKernels, MatchTheCpuDetectorWithPeriodicAxes) {
+    const DetectionRules dr;
+    int cases = 0;
+    for (unsigned int axes : {3u, 7u}) {
+        Scene scene = sceneWithMeshes(6, 1200);
+        scene.periodicAxes = axes;
+        SimState s = detectionState(scene, "CudaDetectionKernels");
+        for (double binSize : {0.0015, 0.0037}) {
+            const BinGrid grid = makeBinGrid(s, binSize);
+            SCOPED_TRACE(testing::Message() << "axes " << axes << ", bin " << binSize);
+            const EmulatedDetection gpu = emulateDetect(s, grid, 1e-4, dr.rules.contactMask(), dr.extra);
+            ContactDetector det;
+            DetectedContacts cpu;
+            double binning = 0.0, search = 0.0;
+            det.detect(s, grid, 1e-4, dr.rules.contactMask(), dr.extra, cpu, binning, search);
+            size_t sphereTriangle = 0;
+            for (uint8_t t : cpu.type) sphereTriangle += t == SPHERE_TRIANGLE;
+            EXPECT_GT(cpu.size(), 500u);
+            EXPECT_GT(sphereTriangle, 20u);
+            EXPECT_EQ(gpu.contacts.geomA, cpu.geomA);
+            EXPECT_EQ(gpu.contacts.geomB, cpu.geomB);
+            EXPECT_EQ(gpu.contacts.type, cpu.type);
+            cases++;
+        }
+    }
+    EXPECT_EQ(cases, 4);
+}
+
 // The active box: with a dormant family (fixed, no contacts among fixed families) the kernels build
 // the dormant registry (moving spheres listed, dormant ones by centre bin) and search the moving
 // spheres only, as DeviceDormantRegistry and CudaKinematics::detect run them. The registry and the
@@ -353,7 +385,7 @@ TEST(CudaDetectionKernels, DormantRegistryMatchesTheCpuCachedDetectorExactly) {
 // of bins below and above hold nothing. Every bin's start must still be the first entry at or after
 // it, and the last one the number of entries.
 TEST(CudaDetectionKernels, BinStartsOfAMostlyEmptyGrid) {
-    const BinGrid g{make_double3(0, 0, 0), 1.0, 4, 4, 50};
+    const BinGrid g{make_double3(0, 0, 0), 1.0, make_double3(1, 1, 1), 4, 4, 50, 0u};
     const size_t numBins = 4 * 4 * 50;
     // Three unit boxes at z in [20, 22): items 0 and 1 share bins.
     std::vector<int> lo = {0, 0, 20, 1, 1, 20, 3, 3, 21}, hi = {1, 1, 21, 2, 2, 21, 3, 3, 21};

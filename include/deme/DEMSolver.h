@@ -132,6 +132,12 @@ class DEMSolver {
     void InstructBoxDomainDimension(const std::pair<float, float>& x, const std::pair<float, float>& y,
                                     const std::pair<float, float>& z);
     // Walls on the domain's faces: "all", "top_open" (no +z wall) or "none".
+    // Periodic boundaries: along each axis named ("x", "y", "z", or several, as "xy"; "" for none) the
+    // domain's two faces are one. A grain leaving through one enters through the other with its
+    // velocity, spin and contacts; geometries interact through their nearest images. Walls on a
+    // periodic face, planes not parallel to a periodic axis and cylinders not along one are errors
+    // at Initialize, as is a period under six times the largest sphere radius (docs/periodic.md).
+    void InstructBoxDomainPeriodicity(const std::string& axes);
     void InstructBoxDomainBoundingBC(const std::string& type, const std::shared_ptr<DEMMaterial>& mat);
     std::shared_ptr<DEMExternObj> AddExternalObject();
     std::shared_ptr<DEMExternObj> AddBCPlane(const float3& pos, const float3& normal,

@@ -88,6 +88,19 @@ void DEMSolver::InstructBoxDomainDimension(const std::pair<float, float>& x, con
     m_scene->domainSize = make_float3(x.second - x.first, y.second - y.first, z.second - z.first);
 }
 
+void DEMSolver::InstructBoxDomainPeriodicity(const std::string& axes) {
+    const char* call = "InstructBoxDomainPeriodicity";
+    requireNotInitialized(call);
+    unsigned int bits = 0;
+    for (char c : axes) {
+        const int a = c == 'x' || c == 'X' ? 0 : c == 'y' || c == 'Y' ? 1 : c == 'z' || c == 'Z' ? 2 : -1;
+        if (a < 0) throwError(call, "\"" + axes + "\": axes are named by x, y and z (e.g. \"xy\"; \"\" for none)");
+        if (bits & (1u << a)) throwError(call, "\"" + axes + "\" names an axis twice");
+        bits |= 1u << a;
+    }
+    m_scene->periodicAxes = bits;
+}
+
 void DEMSolver::InstructBoxDomainBoundingBC(const std::string& type, const std::shared_ptr<DEMMaterial>& mat) {
     const char* call = "InstructBoxDomainBoundingBC";
     requireNotInitialized(call);

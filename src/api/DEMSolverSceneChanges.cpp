@@ -54,6 +54,7 @@ void DEMSolver::UpdateClumps() {
     part.hasDomain = true;
     part.domainLo = m_scene->domainLo;
     part.domainSize = m_scene->domainSize;
+    part.periodicAxes = m_scene->periodicAxes;
     part.batches = m_scene->pendingBatches;
     const SimState rows = assembleScene(part, m_sim->forceModel());
     m_sim->insertClumps(rows);

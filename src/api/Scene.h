@@ -45,6 +45,7 @@ class Scene {
     bool hasDomain = false;
     float3 domainSize = make_float3(0.f);
     float3 domainLo = make_float3(0.f);  // lower corner
+    unsigned int periodicAxes = 0;       // bit a: axis a is periodic (InstructBoxDomainPeriodicity)
 
     size_t numClumps() const {
         size_t n = 0;

@@ -22,9 +22,10 @@ std::string fmt3(const float3& v) {
     return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
 }
 
-DomainFrame makeFrame(const float3& lo, const float3& size) {
+DomainFrame makeFrame(const float3& lo, const float3& size, unsigned int periodicAxes) {
     DomainFrame f;
     f.origin = to_double3(lo);
+    f.periodic = PeriodicBox{to_double3(size), periodicAxes};
     const double maxL = std::max({(double)size.x, (double)size.y, (double)size.z});
     // The largest dimension spans all but one of the 2^21 voxels, so the far faces are representable.
     f.voxelSize = maxL / (double)((1 << VOXEL_BITS_PER_AXIS) - 1);
@@ -140,7 +141,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
         throwError(CALL, "the scene is empty: add clumps first");
 
     SimState s;
-    s.frame = makeFrame(scene.domainLo, scene.domainSize);
+    s.frame = makeFrame(scene.domainLo, scene.domainSize, scene.periodicAxes);
     s.domainSize = to_double3(scene.domainSize);
     s.numWildcards = (unsigned int)model.contactWildcards.size();
     buildMaterialTables(scene, model, s.materials);

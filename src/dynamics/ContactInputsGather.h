@@ -6,6 +6,7 @@
 
 #include "physics/ContactGeometry.h"
 #include "physics/ContactInputs.h"
+#include "physics/Periodic.h"
 #include "physics/RigidBody.h"
 
 namespace deme {
@@ -22,14 +23,22 @@ DEME_HD_INLINE bodyID_t contactOwnerB(const S& s, size_t c) {
     return geometryOwner(s, s.contacts.type[c], s.contacts.geomB[c]);
 }
 
+// Across a periodic face (physics/Periodic.h): the shift that takes triangle `tri` to its image
+// nearest to the point x (zero without periodic axes).
+template <class S>
+DEME_HD_INLINE double3 triangleImageShift(const S& s, size_t tri, const double3& x) {
+    return imageShift(s.frame.periodic, x - s.cache.triVert[3 * tri]);
+}
+
 // Sphere-triangle geometry: closest point on the triangle, its barycentric coordinates, and the
-// contact it makes with sphere a.
+// contact it makes with sphere a, in the sphere's frame (the triangle's image nearest to it).
 template <class S>
 DEME_HD_INLINE ContactPoint sphereTriangleGeometry(const S& s, bodyID_t a, size_t tri, double3& onTri,
                                                    double3& bary) {
     const double3* v = &s.cache.triVert[3 * tri];
     const double3 x = s.cache.spherePos[a];
-    onTri = closestPointOnTriangle(x, v[0], v[1], v[2], bary);
+    const double3 shift = triangleImageShift(s, tri, x);
+    onTri = closestPointOnTriangle(x, v[0] + shift, v[1] + shift, v[2] + shift, bary);
     const double3 nrm = cross(v[1] - v[0], v[2] - v[0]);
     return sphereTriangleContact(x, s.spheres.radius[a], onTri, nrm / length(nrm));
 }
@@ -56,8 +65,13 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type
     in.bodyAMatType = s.spheres.material[a];
     ContactPoint cp;
     float3 offB;  // geometry B's reference point minus its owner's centre
+    // Across a periodic face, B is taken in its image nearest to A: positions of B and its owner are
+    // shifted by this (zero without periodic axes, and for analytical boundaries, which periodic
+    // shifts leave as they are).
+    double3 shiftB = make_double3(0.0, 0.0, 0.0);
     if (type == SPHERE_SPHERE) {
-        in.bodyBPos = k.spherePos[b];
+        shiftB = imageShift(s.frame.periodic, in.bodyAPos - k.spherePos[b]);
+        in.bodyBPos = k.spherePos[b] + shiftB;
         in.BRadius = s.spheres.radius[b];
         in.bodyBMatType = s.spheres.material[b];
         offB = k.sphereArm[b];
@@ -65,10 +79,12 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type
     } else if (type == SPHERE_TRIANGLE) {
         const size_t t = b - s.triangleIdBase();
         const double3* v = &k.triVert[3 * t];
-        in.bodyBPos = (v[0] + v[1] + v[2]) / 3.0;
+        const double3 centroid = (v[0] + v[1] + v[2]) / 3.0;
+        shiftB = triangleImageShift(s, t, in.bodyAPos);
+        in.bodyBPos = centroid + shiftB;
         in.BRadius = FLAT_SURFACE_RADIUS;
         in.bodyBMatType = s.triangles.material[t];
-        offB = to_float3(in.bodyBPos - k.ownerPos[oB]);
+        offB = to_float3(centroid - k.ownerPos[oB]);
         double3 onTri, bary;
         cp = sphereTriangleGeometry(s, a, t, onTri, bary);
     } else {
@@ -90,7 +106,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type
     in.armA = to_float3(in.contactPnt - in.bodyAPos) + k.sphereArm[a];
     in.armB = to_float3(in.contactPnt - in.bodyBPos) + offB;
     in.AOwnerPos = k.ownerPos[oA];
-    in.BOwnerPos = k.ownerPos[oB];
+    in.BOwnerPos = k.ownerPos[oB] + shiftB;
     in.AOriQ = ow.oriQ[oA];
     in.BOriQ = ow.oriQ[oB];
     in.locCPA = rotateToLocal(in.AOriQ, in.armA);

@@ -55,8 +55,9 @@ DEME_HD_INLINE bool isLocalMinimum(const S& s, const double3& x, const MeshCandi
         const uint32_t* ov = &tr.vert[3 * other];
         if (vb != va && ov[0] != vb && ov[1] != vb && ov[2] != vb) continue;  // does not hold the edge
         const double3* w = &s.cache.triVert[3 * other];
+        const double3 shift = triangleImageShift(s, other, x);  // across a periodic face
         double3 otherBary;
-        const double3 p = closestPointOnTriangle(x, w[0], w[1], w[2], otherBary);
+        const double3 p = closestPointOnTriangle(x, w[0] + shift, w[1] + shift, w[2] + shift, otherBary);
         if (length(x - p) < c.dist - tolDist) return false;
     }
     return true;

@@ -110,8 +110,9 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     ow.angVel[o] = w;
     ow.oriQ[o] = q;
 
-    // A fixed owner has v = 0, so x is its cached position and re-encodes to the same code.
-    const double3 x = advancePosition(k.ownerPos[o], v, c.dt);
+    // A fixed owner has v = 0, so x is its cached position and re-encodes to the same code. Along a
+    // periodic axis an owner that left through one face enters through the other.
+    const double3 x = wrapIntoDomain(c.frame.periodic, advancePosition(k.ownerPos[o], v, c.dt), c.frame.origin);
     const bool encoded = encodePosition(x, c.frame, ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o]);
     k.ownerPos[o] = decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], c.frame);
     const bool notFinite = !finite3(v) || !finite3(w) || !finiteFloat(q.w);

@@ -8,24 +8,42 @@ namespace deme {
 
 struct BinGrid {
     double3 origin;
-    double size;
+    double size;  // the bin edge chosen (by the sizing rule or SetInitBinSize)
+    // The bins' edges along x, y, z: `size`, except along a periodic axis, where whole bins tile the
+    // period (a little more than `size`; bins wrap around there).
+    double3 edge;
     int nx, ny, nz;
+    unsigned int periodic;  // bit a: axis a is periodic
     DEME_HD uint64_t numBins() const { return (uint64_t)nx * (uint64_t)ny * (uint64_t)nz; }
 };
 
-// The bin coordinate of x along an axis of n bins, clamped to the grid: geometries beyond the domain
-// (a mesh that reaches out of it) register in the border bins.
-DEME_HD inline int binCoord(double x, double origin, double size, int n) {
-    const double f = floor((x - origin) / size);
+// The bin coordinate of x along `axis`. Along a bounded axis it is clamped to the grid: geometries
+// beyond the domain (a mesh that reaches out of it) register in the border bins. Along a periodic
+// axis it is not (a box reaching over a face starts at -1 or ends at n): binIndex wraps it into the
+// bins at the other face.
+DEME_HD inline int binCoord(const BinGrid& g, int axis, double x) {
+    const double origin = axis == 0 ? g.origin.x : axis == 1 ? g.origin.y : g.origin.z;
+    const double edge = axis == 0 ? g.edge.x : axis == 1 ? g.edge.y : g.edge.z;
+    const int n = axis == 0 ? g.nx : axis == 1 ? g.ny : g.nz;
+    const double f = floor((x - origin) / edge);
+    if ((g.periodic >> axis) & 1u) return f > (double)-n && f < 2.0 * n ? (int)f : 0;  // NaN: 0
     if (!(f > 0.0)) return 0;  // also maps NaN to 0; NaN positions are caught by the integrator
     if (f >= (double)(n - 1)) return n - 1;
     return (int)f;
 }
 
+// A periodic axis's bin coordinate in (-n, 2n) wrapped into [0, n).
+DEME_HD inline int wrapBin(int c, int n) { return c < 0 ? c + n : c >= n ? c - n : c; }
+
 // 64-bit on the host; 32-bit in GPU code, where 64-bit multiplies are several instructions in the
 // pair search's inner loops and exact anyway: the CUDA backend refuses grids of 2^32 bins or more
-// (its bin keys are 32-bit).
+// (its bin keys are 32-bit). Coordinates along periodic axes are wrapped first.
 DEME_HD inline uint64_t binIndex(const BinGrid& g, int x, int y, int z) {
+    if (g.periodic) {
+        x = (g.periodic & 1u) ? wrapBin(x, g.nx) : x;
+        y = (g.periodic & 2u) ? wrapBin(y, g.ny) : y;
+        z = (g.periodic & 4u) ? wrapBin(z, g.nz) : z;
+    }
 #if defined(__CUDACC_RTC__)
     return (uint32_t)x + (uint32_t)g.nx * ((uint32_t)y + (uint32_t)g.ny * (uint32_t)z);
 #else
@@ -41,14 +59,19 @@ struct BinBox {
     }
 };
 
+// Along a periodic axis a box is widened by a billionth of a bin: an item and the image of it that
+// a search compares are a whole number of periods apart only up to rounding, and a box that ends on
+// a bin boundary must be registered in every bin either side of the rounding sees it in.
 DEME_HD inline BinBox binBox(const BinGrid& g, const double3& lo, const double3& hi) {
+    const double sx = (g.periodic & 1u) ? 1e-9 * g.edge.x : 0.0, sy = (g.periodic & 2u) ? 1e-9 * g.edge.y : 0.0,
+                 sz = (g.periodic & 4u) ? 1e-9 * g.edge.z : 0.0;
     BinBox b;
-    b.lo[0] = binCoord(lo.x, g.origin.x, g.size, g.nx);
-    b.lo[1] = binCoord(lo.y, g.origin.y, g.size, g.ny);
-    b.lo[2] = binCoord(lo.z, g.origin.z, g.size, g.nz);
-    b.hi[0] = binCoord(hi.x, g.origin.x, g.size, g.nx);
-    b.hi[1] = binCoord(hi.y, g.origin.y, g.size, g.ny);
-    b.hi[2] = binCoord(hi.z, g.origin.z, g.size, g.nz);
+    b.lo[0] = binCoord(g, 0, lo.x - sx);
+    b.lo[1] = binCoord(g, 1, lo.y - sy);
+    b.lo[2] = binCoord(g, 2, lo.z - sz);
+    b.hi[0] = binCoord(g, 0, hi.x + sx);
+    b.hi[1] = binCoord(g, 1, hi.y + sy);
+    b.hi[2] = binCoord(g, 2, hi.z + sz);
     return b;
 }
 

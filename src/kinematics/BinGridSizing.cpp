@@ -65,7 +65,7 @@ double defaultBinSize(const std::vector<float>& radii) {
 }
 
 BinGrid makeBinGrid(const SimState& s, double requestedSize) {
-    BinGrid g;
+    BinGrid g{};
     g.origin = s.frame.origin;
     double size = requestedSize;
     if (size <= 0.0) {
@@ -77,9 +77,22 @@ BinGrid makeBinGrid(const SimState& s, double requestedSize) {
     // Never more bins along an axis than positions can distinguish.
     size = std::max(size, std::max({s.domainSize.x, s.domainSize.y, s.domainSize.z}) / 1e6);
     g.size = size;
-    g.nx = std::max(1, (int)std::ceil(s.domainSize.x / size));
-    g.ny = std::max(1, (int)std::ceil(s.domainSize.y / size));
-    g.nz = std::max(1, (int)std::ceil(s.domainSize.z / size));
+    g.periodic = s.frame.periodic.axes;
+    // A bounded axis: bins of `size`, the last one reaching beyond the face. A periodic axis: whole
+    // bins tile the period, each a little more than `size`, so that a box reaching over a face
+    // continues in the bins at the other face.
+    auto axis = [&](double length, int a, double& edge) {
+        if (!((g.periodic >> a) & 1u)) {
+            edge = size;
+            return std::max(1, (int)std::ceil(length / size));
+        }
+        const int n = std::max(1, (int)std::floor(length / size));
+        edge = length / n;
+        return n;
+    };
+    g.nx = axis(s.domainSize.x, 0, g.edge.x);
+    g.ny = axis(s.domainSize.y, 1, g.edge.y);
+    g.nz = axis(s.domainSize.z, 2, g.edge.z);
     return g;
 }
 

@@ -17,6 +17,7 @@
 
 #include "kinematics/BinGrid.h"
 #include "physics/ContactGeometry.h"
+#include "physics/Periodic.h"
 
 namespace deme {
 
@@ -64,9 +65,8 @@ DEME_HD_INLINE void triangleBox(const S& s, const DetectionArgs& a, size_t t, do
 
 // Whether bin (x, y, z) holds the lower corner of the intersection of boxes starting at loA and lo.
 DEME_HD_INLINE bool binOwnsPair(const BinGrid& g, const double3& loA, const double3& lo, int x, int y, int z) {
-    return binCoord(fmax(loA.x, lo.x), g.origin.x, g.size, g.nx) == x &&
-           binCoord(fmax(loA.y, lo.y), g.origin.y, g.size, g.ny) == y &&
-           binCoord(fmax(loA.z, lo.z), g.origin.z, g.size, g.nz) == z;
+    return binCoord(g, 0, fmax(loA.x, lo.x)) == x && binCoord(g, 1, fmax(loA.y, lo.y)) == y &&
+           binCoord(g, 2, fmax(loA.z, lo.z)) == z;
 }
 
 // Whether analytical component j is a partner of a sphere at pA with enlarged radius eA.
@@ -126,6 +126,7 @@ template <class S>
 DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, bodyID_t sa, bodyID_t* out,
                                            unsigned int capacity) {
     const BinGrid& g = a.grid;
+    const PeriodicBox& period = s.frame.periodic;
     const double3 pA = s.cache.spherePos[sa];
     const bodyID_t oA = s.spheres.owner[sa];
     const double eA = (double)s.spheres.radius[sa] + marginOf(s, a, oA);
@@ -144,7 +145,9 @@ DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, b
                     const bodyID_t b = a.sphereBins.items[e];
                     const bodyID_t oB = s.spheres.owner[b];
                     if (oB == oA || !maskRow[s.owners.family[oB]]) continue;
-                    const double3 pB = s.cache.spherePos[b];
+                    // Across a periodic face: b's image nearest to a, in a's frame (the bins the loop
+                    // visits are a's box's, unwrapped).
+                    const double3 pB = nearestImage(period, pA, s.cache.spherePos[b]);
                     const double eB = (double)s.spheres.radius[b] + marginOf(s, a, oB);
                     const double reach = eA + eB;
                     const double3 d = pA - pB;
@@ -167,14 +170,16 @@ DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, b
                         const uint32_t tri = a.triangleBins.items[e];
                         const bodyID_t oT = s.triangles.owner[tri];
                         if (!maskRow[s.owners.family[oT]]) continue;
-                        const double3 lo = a.triLo[tri], hi = a.triHi[tri];
+                        // The triangle's image nearest to a (across a periodic face), in a's frame.
+                        const double3* v0 = &s.cache.triVert[3 * (size_t)tri];
+                        const double3 shift = imageShift(period, pA - v0[0]);
+                        const double3 lo = a.triLo[tri] + shift, hi = a.triHi[tri] + shift;
                         if (lo.x > pA.x + eA || lo.y > pA.y + eA || lo.z > pA.z + eA || hi.x < loA.x || hi.y < loA.y ||
                             hi.z < loA.z)
                             continue;
                         if (!binOwnsPair(g, loA, lo, x, y, z)) continue;
-                        const double3* v = &s.cache.triVert[3 * (size_t)tri];
                         double3 bary;
-                        const double3 c = closestPointOnTriangle(pA, v[0], v[1], v[2], bary);
+                        const double3 c = closestPointOnTriangle(pA, v0[0] + shift, v0[1] + shift, v0[2] + shift, bary);
                         if (length(pA - c) >= eA + marginOf(s, a, oT)) continue;
                         if (nSph + nTri < capacity) out[nSph + nTri] = triBase + tri;
                         nTri++;

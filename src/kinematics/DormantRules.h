@@ -33,8 +33,7 @@ DEME_HD_INLINE bool sphereIsDormant(const S& s, const uint8_t* dormant, size_t i
 template <class S>
 DEME_HD_INLINE uint32_t dormantBinOf(const S& s, const BinGrid& g, size_t i) {
     const double3 p = s.cache.spherePos[i];
-    return (uint32_t)binIndex(g, binCoord(p.x, g.origin.x, g.size, g.nx), binCoord(p.y, g.origin.y, g.size, g.ny),
-                              binCoord(p.z, g.origin.z, g.size, g.nz));
+    return (uint32_t)binIndex(g, binCoord(g, 0, p.x), binCoord(g, 1, p.y), binCoord(g, 2, p.z));
 }
 
 // How far dormant sphere i reaches beyond its centre, the detection margin excluded.

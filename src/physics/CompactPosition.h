@@ -4,12 +4,15 @@
 
 #include <deme/VariableTypes.h>
 
+#include "physics/Periodic.h"
+
 namespace deme {
 
 struct DomainFrame {
     double3 origin;    // lower corner of the domain
     double voxelSize;  // edge of one voxel
     double subStep;    // voxelSize / 2^16: the position resolution
+    PeriodicBox periodic{};  // the domain's edges and which axes are periodic (physics/Periodic.h)
 };
 
 DEME_HD inline voxelID_t packVoxel(uint64_t vx, uint64_t vy, uint64_t vz) {

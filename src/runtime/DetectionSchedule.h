@@ -27,12 +27,13 @@ class DetectionSchedule {
 
     // The margin for a detection from the current state: the fastest geometry now (or the user's
     // bound), plus what gravity can add over the n_max steps the set may serve. A bound that proves
-    // too small costs an extra detection (the set expires), never a missed contact.
+    // too small costs an extra detection (the set expires), never a missed contact; so does the cap
+    // that periodic boundaries put on it (Settings::maxMargin).
     double marginFor(const Settings& s, float maxSpeed) const {
         const double n = (double)m_freq.nMax();
         const double vNow = std::max<double>(maxSpeed, s.maxVelocity);
         const double vBound = vNow + length(s.gravity) * n * s.dt;
-        return s.safetyMultiplier * vBound * s.dt * n + s.safetyAdder;
+        return std::min(s.maxMargin, s.safetyMultiplier * vBound * s.dt * n + s.safetyAdder);
     }
 
     // Whether the set in use may not serve step `step`: a host edit, a travel beyond its margin, or

@@ -92,6 +92,7 @@ SceneFingerprint sceneFingerprint(const SimState& s, const ModelLayout& model) {
     d.value(s.frame.origin);
     d.value(s.frame.voxelSize);
     d.value(s.domainSize);
+    if (s.frame.periodic.axes) d.value(s.frame.periodic.axes);  // (so non-periodic scenes hash as before)
     fp.domain = d.result();
 
     Hash f;

@@ -1,6 +1,7 @@
 // User-set run parameters, validated by DEMSolver and read by the simulation.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,9 @@ struct Settings {
     float maxVelocity = 0.f;        // user's expected largest speed (0: measured only)
     float safetyMultiplier = 1.1f;  // margin = multiplier * vmax * dt * n + adder
     float safetyAdder = 0.f;
+    // The largest margin a detection may use: periodic boundaries keep every interaction within half
+    // a period (runtime/PeriodicLimits.h); unbounded otherwise. Set by the simulation.
+    double maxMargin = std::numeric_limits<double>::infinity();
     unsigned int updateFreq = 20;      // initial (or fixed) n_max: steps one contact set may serve
     unsigned int maxUpdateFreq = 200;  // cap for the adaptive n_max
     bool adaptiveUpdateFreq = true;

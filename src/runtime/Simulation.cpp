@@ -13,6 +13,7 @@
 #include "dynamics/OwnerStep.h"
 #include "kinematics/BinGridSizing.h"
 #include "parallel/Parallel.h"
+#include "runtime/PeriodicLimits.h"
 
 namespace deme {
 
@@ -29,6 +30,7 @@ Simulation::Simulation() = default;
 Simulation::~Simulation() = default;
 
 void Simulation::start(SimState&& state, const ModelLayout& model) {
+    checkPeriodicScene(state, "Initialize");
     m_state = std::move(state);
     m_model = model;
     m_initialScene = sceneFingerprint(m_state, m_model);
@@ -85,6 +87,7 @@ void Simulation::uploadIfEdited() {
     // The order in flight was detected from the state being replaced: let it finish unseen, so the
     // kinematics side is idle while its geometry changes.
     m_contacts.dropOrderInFlight();
+    settings.maxMargin = periodicMarginCap(m_state, settings.familyExtraMargin);
     m_backends.dynamics->upload(m_state);  // (the GPU's makes dT's GPU current for what follows)
     m_backends.kinematics->setGeometry(m_state, m_grid, families, settings);
     m_contacts.invalidate();

@@ -1,6 +1,7 @@
 // Simulation: scenes that change between and during calls (runtime/SceneEdits.h for the edits
 // themselves, docs/scene-changes.md for the user's view).
 #include "runtime/Simulation.h"
+#include "runtime/PeriodicLimits.h"
 
 #include <algorithm>
 
@@ -12,6 +13,7 @@
 namespace deme {
 
 void Simulation::insertClumps(const SimState& part) {
+    checkPeriodicRadii(m_state.frame.periodic, part.spheres.radius, "UpdateClumps");
     SimState& s = editState();  // the device's state first, if it has moved on
     deme::insertClumps(s, part);
     refreshKinematicCache(s);

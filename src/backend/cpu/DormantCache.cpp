@@ -8,6 +8,8 @@ namespace deme {
 void DormantCache::setFamilies(const uint8_t* dormant, const uint8_t* prescribed, const SimState& live) {
     std::memcpy(m_dormant, dormant, NUM_FAMILIES);
     m_anyDormantFamily = std::any_of(m_dormant, m_dormant + NUM_FAMILIES, [](uint8_t d) { return d != 0; });
+    // The registry's searches know no periodic images: with periodic axes everything is searched.
+    if (live.frame.periodic.axes) m_anyDormantFamily = false;
     m_valid = false;
     m_movingWalls.clear();
     auto note = [&](bodyID_t o) {

@@ -66,6 +66,7 @@ struct CudaKinematics::Work {
     DeviceBuffer<float> radius, anaRadius, familyExtraMargin;
     DeviceBuffer<uint8_t> anaType, anaInside, familyMask;
     BinGrid grid{};
+    DomainFrame frame{};
     uint32_t numOwners = 0, numSpheres = 0, numAnalytical = 0, numTriangles = 0;
     // The snapshot and the contact list on this GPU, when staged.
     KinematicsInbox localIn;
@@ -96,6 +97,7 @@ void CudaKinematics::Work::upload(const Geometry& g) {
     uploadResized(familyExtraMargin, g.familyExtraMargin, stream);
     dormant.upload(g.dormant, stream);  // built afresh at the next detection
     grid = g.grid;
+    frame = g.frame;
     numOwners = g.numOwners;
     numSpheres = g.numSpheres;
     numAnalytical = g.numAnalytical;
@@ -135,6 +137,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     }
     // The state as the detection kernels read it: static geometry here, positions from the snapshot.
     StateView v{};
+    v.frame = frame;
     v.owners.family = src.ownerFamily.data();
     v.spheres.owner = sphereOwner.data();
     v.spheres.radius = radius.data();
@@ -300,6 +303,7 @@ void CudaKinematics::setGeometry(const SimState& s, const BinGrid& g, const Fami
                                      " bins, more than the GPU's 32-bit bin keys hold: choose larger bins "
                                      "(SetInitBinSize) or a smaller domain");
     k.grid = g;
+    k.frame = s.frame;
     k.dormant = DormantFamilies::of(s, families);
     k.numOwners = (uint32_t)s.owners.size();
     k.numSpheres = (uint32_t)s.spheres.size();

@@ -89,6 +89,7 @@ class CudaKinematics : public KinematicsBackend {
         std::vector<float> radius, anaRadius, familyExtraMargin;
         std::vector<uint8_t> anaType, anaInside, familyMask;
         BinGrid grid{};
+        DomainFrame frame{};  // its periodic box: detection compares geometries through their nearest images
         uint32_t numOwners = 0, numSpheres = 0, numAnalytical = 0, numTriangles = 0;
         DormantFamilies dormant;  // the active box's families (DeviceDormantRegistry)
     };

@@ -16,6 +16,8 @@ DormantFamilies DormantFamilies::of(const SimState& live, const FamilyRules& fam
     uint8_t prescribed[NUM_FAMILIES];
     families.prescribedFamilies(prescribed);
     for (uint8_t d : f.dormant) f.any = f.any || d != 0;
+    // The registry's searches know no periodic images: with periodic axes everything is searched.
+    if (live.frame.periodic.axes) f.any = false;
     f.movable.assign(live.owners.size(), 0);
     for (size_t k = 0; k < live.analytical.size(); k++) {
         const bodyID_t o = live.analytical.owner[k];
