@@ -215,6 +215,8 @@ class DEMSolver {
     std::shared_ptr<DEMTracker> Track(const std::shared_ptr<DEMExternObj>& obj);
     std::shared_ptr<DEMTracker> Track(const std::shared_ptr<DEMMeshConnected>& mesh);
     std::shared_ptr<DEMInspector> CreateInspector(const std::string& kind);
+    // An inspector over the box region [lo, hi]: "stress" (DEMInspector::GetStress).
+    std::shared_ptr<DEMInspector> CreateInspector(const std::string& kind, const float3& lo, const float3& hi);
 
     // ---- Time stepping ----
     void SetInitTimeStep(double dt);
@@ -307,11 +309,16 @@ class DEMSolver {
     void WriteSphereFile(const std::string& path) const;
     void WriteClumpFile(const std::string& path) const;
     void WriteContactFile(const std::string& path) const;
+    // The coarse-grained stress of the grains over the box [lo, hi] split into nx x ny x nz cells
+    // (include/deme/Stress.h, per cell): one row per cell with its centre, the stress tensor, its
+    // contact and kinetic parts, the pressure and the grain count; CSV or VTU as the sphere files.
+    void WriteStressField(const std::string& path, const float3& lo, const float3& hi, unsigned int nx,
+                          unsigned int ny, unsigned int nz) const;
     // Waits until every file handed to the writer thread is written; throws the failure of one that
     // could not be.
     void FlushOutput() const;
     // Files written from now on by WriteSphereFile ("spheres"), WriteClumpFile ("clumps"),
-    // WriteContactFile ("contacts") or WriteMeshFile ("meshes") are listed, with their simulated
+    // WriteContactFile ("contacts"), WriteMeshFile ("meshes") or WriteStressField ("stress") are listed, with their simulated
     // time, in the ParaView collection pvdPath, rewritten after each frame. VTU files only. An
     // empty path ends the series.
     void SetOutputSeries(const std::string& kind, const std::string& pvdPath);

@@ -28,6 +28,10 @@ void exportMessagesAndOutput(py::class_<S>& c) {
         .def("WriteSphereFile", &D::WriteSphereFile, py::arg("path"),
              "One row (CSV) or point (VTU) per sphere; written by the writer thread.")
         .def("WriteClumpFile", &D::WriteClumpFile, py::arg("path"), "One row or point per clump.")
+        .def("WriteStressField", &D::WriteStressField, py::arg("path"), py::arg("lo"), py::arg("hi"), py::arg("nx"),
+             py::arg("ny"), py::arg("nz"),
+             "The coarse-grained stress of the grains over the box [lo, hi] in nx x ny x nz cells: one row per "
+             "cell (CSV or VTU, as the sphere files).")
         .def("WriteContactFile", &D::WriteContactFile, py::arg("path"),
              "One row or point per geometry pair in contact.")
         .def("ShowTimingStats", &D::ShowTimingStats, "Prints the time per phase and the throughput.")

@@ -33,6 +33,9 @@ void exportDomainAndObjects(py::class_<S>& c) {
              py::overload_cast<const std::pair<float, float>&, const std::pair<float, float>&,
                                const std::pair<float, float>&>(&D::InstructBoxDomainDimension),
              py::arg("x"), py::arg("y"), py::arg("z"), "Box spanning (lo, hi) ranges along x, y and z.")
+        .def("InstructBoxDomainPeriodicity", &D::InstructBoxDomainPeriodicity, py::arg("axes"),
+             "Periodic boundaries along the axes named (\"x\", \"xy\", \"xyz\"...; \"\" for none): a grain leaving "
+             "through one face enters through the other (docs/periodic.md).")
         .def("InstructBoxDomainBoundingBC", &D::InstructBoxDomainBoundingBC, py::arg("type"), py::arg("mat"),
              "Walls on the domain's faces: \"all\", \"top_open\" or \"none\".")
         .def("AddExternalObject", &D::AddExternalObject, "A new external object (add planes and cylinders to it).")
@@ -91,8 +94,14 @@ void exportTrackersAndInspectors(py::class_<S>& c) {
              py::keep_alive<0, 1>(), "A tracker of an external object.")
         .def("Track", py::overload_cast<const std::shared_ptr<deme::DEMMeshConnected>&>(&D::Track),
              py::arg("mesh"), py::keep_alive<0, 1>(), "A tracker of a mesh.")
-        .def("CreateInspector", &D::CreateInspector, py::arg("kind"), py::keep_alive<0, 1>(),
-             "clump_max_z, clump_min_z, clump_max_absv, clump_kinetic_energy or num_contacts.");
+        .def("CreateInspector", py::overload_cast<const std::string&>(&D::CreateInspector), py::arg("kind"),
+             py::keep_alive<0, 1>(),
+             "clump_max_z, clump_min_z, clump_max_absv, clump_kinetic_energy, clump_mass or num_contacts.")
+        .def("CreateInspector",
+             py::overload_cast<const std::string&, const deme::float3&, const deme::float3&>(&D::CreateInspector),
+             py::arg("kind"), py::arg("lo"), py::arg("hi"), py::keep_alive<0, 1>(),
+             "An inspector over the box region [lo, hi]: \"stress\" (GetStress(), GetValue() the mean normal "
+             "stress, compression positive).");
 }
 
 }  // namespace

@@ -319,6 +319,20 @@ void DEMSolver::WriteClumpFile(const std::string& path) const {
     requireInitialized("WriteClumpFile");
     m_output->write(OutputKind::CLUMPS, *m_sim, path, "WriteClumpFile");
 }
+void DEMSolver::WriteStressField(const std::string& path, const float3& lo, const float3& hi, unsigned int nx,
+                                 unsigned int ny, unsigned int nz) const {
+    const char* call = "WriteStressField";
+    requireInitialized(call);
+    const float l[3] = {lo.x, lo.y, lo.z}, h[3] = {hi.x, hi.y, hi.z};
+    for (int a = 0; a < 3; a++)
+        if (!std::isfinite(l[a]) || !std::isfinite(h[a]) || !(h[a] > l[a]))
+            throwError(call, "the box needs finite bounds with hi > lo along each axis");
+    if (nx == 0 || ny == 0 || nz == 0) throwError(call, "each axis needs at least one cell");
+    if ((double)nx * ny * nz > 1e8) throwError(call, "more than 10^8 cells");
+    const unsigned int n[3] = {nx, ny, nz};
+    m_output->writeStressField(*m_sim, path, to_double3(lo), to_double3(hi), n, call);
+}
+
 void DEMSolver::WriteContactFile(const std::string& path) const {
     requireInitialized("WriteContactFile");
     m_output->write(OutputKind::CONTACTS, *m_sim, path, "WriteContactFile");

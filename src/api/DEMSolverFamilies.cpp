@@ -119,4 +119,8 @@ std::shared_ptr<DEMInspector> DEMSolver::CreateInspector(const std::string& kind
     return std::make_shared<DEMInspector>(m_sim, kind);
 }
 
+std::shared_ptr<DEMInspector> DEMSolver::CreateInspector(const std::string& kind, const float3& lo, const float3& hi) {
+    return std::make_shared<DEMInspector>(m_sim, kind, lo, hi);
+}
+
 }  // namespace deme

@@ -32,8 +32,9 @@ void DEMSolver::SetOutputSeries(const std::string& kind, const std::string& pvdP
                          : kind == "clumps"   ? OutputKind::CLUMPS
                          : kind == "contacts" ? OutputKind::CONTACTS
                          : kind == "meshes"   ? OutputKind::MESHES
+                         : kind == "stress"   ? OutputKind::STRESS
                                               : throw Error(std::string(call) + ": unknown kind \"" + kind +
-                                                            "\" (spheres, clumps, contacts, meshes)");
+                                                            "\" (spheres, clumps, contacts, meshes, stress)");
     m_output->setSeries(k, pvdPath, call);
 }
 

@@ -1,11 +1,13 @@
 #include <deme/Inspector.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include <deme/Error.h>
 
 #include "runtime/Simulation.h"
+#include "runtime/StressMeasure.h"
 
 namespace deme {
 
@@ -16,16 +18,39 @@ const char* KINDS[] = {"clump_max_z", "clump_min_z", "clump_max_absv", "clump_ki
 
 DEMInspector::DEMInspector(std::weak_ptr<Simulation> sim, std::string kind)
     : m_owner(std::move(sim)), m_sim(m_owner.lock().get()), m_kind(std::move(kind)) {
+    if (m_kind == "stress")
+        throwError("CreateInspector", "the \"stress\" inspector takes a region: CreateInspector(\"stress\", lo, hi)");
     if (std::find(std::begin(KINDS), std::end(KINDS), m_kind) == std::end(KINDS))
         throwError("CreateInspector", "unknown inspector \"" + m_kind +
                                           "\" (clump_max_z, clump_min_z, clump_max_absv, clump_kinetic_energy, "
-                                          "clump_mass, num_contacts)");
+                                          "clump_mass, num_contacts; stress over a region)");
+}
+
+DEMInspector::DEMInspector(std::weak_ptr<Simulation> sim, std::string kind, const float3& lo, const float3& hi)
+    : m_owner(std::move(sim)), m_sim(m_owner.lock().get()), m_kind(std::move(kind)), m_lo(lo), m_hi(hi) {
+    if (m_kind != "stress")
+        throwError("CreateInspector", "\"" + m_kind + "\" takes no region (only \"stress\" does)");
+    const float l[3] = {lo.x, lo.y, lo.z}, h[3] = {hi.x, hi.y, hi.z};
+    for (int a = 0; a < 3; a++)
+        if (!std::isfinite(l[a]) || !std::isfinite(h[a]) || !(h[a] > l[a]))
+            throwError("CreateInspector", "the stress region needs finite bounds with hi > lo along each axis");
+}
+
+const Simulation& DEMInspector::live(const char* call) const {
+    if (m_owner.expired()) throwError(call, "the solver this inspector belongs to has been destroyed");
+    if (!m_sim->initialized()) throwError(call, "the solver is not initialized yet");
+    return *m_sim;
+}
+
+StressTensor DEMInspector::GetStress() const {
+    const char* call = "DEMInspector::GetStress";
+    if (m_kind != "stress") throwError(call, "\"" + m_kind + "\" is not a stress inspector");
+    return measureStress(live(call).state(), to_double3(m_lo), to_double3(m_hi));
 }
 
 double DEMInspector::GetValue() const {
-    if (m_owner.expired())
-        throwError("DEMInspector::GetValue", "the solver this inspector belongs to has been destroyed");
-    if (!m_sim->initialized()) throwError("DEMInspector::GetValue", "the solver is not initialized yet");
+    live("DEMInspector::GetValue");
+    if (m_kind == "stress") return GetStress().Pressure();
     const SimState& s = m_sim->state();
     const size_t n = s.numClumps;
     if (m_kind == "num_contacts") return (double)m_sim->numRealContacts();

@@ -4,6 +4,7 @@
 
 #include "dynamics/ContactInputsGather.h"
 #include "runtime/Simulation.h"
+#include "runtime/StressMeasure.h"
 
 namespace deme {
 
@@ -219,6 +220,38 @@ OutputFrame stageMeshFrame(const Simulation& sim) {
     for (size_t t = 0; t < nT; t++) {
         for (int k = 0; k < 3; k++) putPoint(xyz, 3 * t + k, s.cache.triVert[3 * t + k]);
         owner.values<int32_t>()[t] = (int32_t)s.ownerInternalToUser[s.triangles.owner[t]];
+    }
+    return f;
+}
+
+OutputFrame stageStressFrame(const Simulation& sim, const double3& lo, const double3& hi, const unsigned int n[3],
+                             const char* call) {
+    const std::vector<StressTensor> cells = measureStressField(sim.state(), lo, hi, n);
+    OutputFrame f = newFrame(sim, call, cells.size());
+    FrameColumn& xyz = f.addColumn("points", {"X", "Y", "Z"}, ValueType::FLOAT64, f.rows);
+    f.pointsColumn = 0;
+    auto tensorNames = [](const std::string& p) {
+        std::vector<std::string> names;
+        for (const char* ij : {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"}) names.push_back(p + ij);
+        return names;
+    };
+    FrameColumn& total = f.addColumn("stress", tensorNames("s"), ValueType::FLOAT64, f.rows);
+    FrameColumn& contact = f.addColumn("contact_stress", tensorNames("c"), ValueType::FLOAT64, f.rows);
+    FrameColumn& kinetic = f.addColumn("kinetic_stress", tensorNames("k"), ValueType::FLOAT64, f.rows);
+    FrameColumn& pressure = f.addColumn("pressure", {"pressure"}, ValueType::FLOAT64, f.rows);
+    FrameColumn& grains = f.addColumn("grains", {"grains"}, ValueType::INT32, f.rows);
+    const double3 cell = make_double3((hi.x - lo.x) / n[0], (hi.y - lo.y) / n[1], (hi.z - lo.z) / n[2]);
+    for (size_t c = 0; c < cells.size(); c++) {
+        const size_t i = c % n[0], j = (c / n[0]) % n[1], k = c / ((size_t)n[0] * n[1]);
+        putPoint(xyz, c,
+                 make_double3(lo.x + (i + 0.5) * cell.x, lo.y + (j + 0.5) * cell.y, lo.z + (k + 0.5) * cell.z));
+        for (int q = 0; q < 9; q++) {
+            total.values<double>()[9 * c + q] = cells[c].total[q];
+            contact.values<double>()[9 * c + q] = cells[c].contact[q];
+            kinetic.values<double>()[9 * c + q] = cells[c].kinetic[q];
+        }
+        pressure.values<double>()[c] = cells[c].Pressure();
+        grains.values<int32_t>()[c] = (int32_t)cells[c].grains;
     }
     return f;
 }

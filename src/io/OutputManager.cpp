@@ -14,7 +14,7 @@ namespace deme {
 namespace {
 
 const char* kindName(OutputKind k) {
-    static const char* names[] = {"spheres", "clumps", "contacts", "meshes"};
+    static const char* names[] = {"spheres", "clumps", "contacts", "meshes", "stress"};
     return names[(int)k];
 }
 
@@ -41,6 +41,24 @@ void writeFrameLegacyVtk(const OutputFrame& f, const std::string& path) {
 void OutputManager::write(OutputKind kind, const Simulation& sim, const std::string& path, const char* call) {
     m_queue.wait(call);
     if (path.empty()) throwError(call, "empty file name");
+    // Staged here, between steps; from here on the writer thread needs nothing of the simulation.
+    submit(kind,
+           std::make_shared<OutputFrame>(kind == OutputKind::SPHERES    ? stageSphereFrame(sim)
+                                         : kind == OutputKind::CLUMPS   ? stageClumpFrame(sim)
+                                         : kind == OutputKind::CONTACTS ? stageContactFrame(sim)
+                                                                        : stageMeshFrame(sim)),
+           path, call);
+}
+
+void OutputManager::writeStressField(const Simulation& sim, const std::string& path, const double3& lo,
+                                     const double3& hi, const unsigned int n[3], const char* call) {
+    m_queue.wait(call);
+    if (path.empty()) throwError(call, "empty file name");
+    submit(OutputKind::STRESS, std::make_shared<OutputFrame>(stageStressFrame(sim, lo, hi, n, call)), path, call);
+}
+
+void OutputManager::submit(OutputKind kind, std::shared_ptr<OutputFrame> frame, const std::string& path,
+                           const char* call) {
     PvdSeries* series = m_series[(int)kind].get();
     const bool vtu = isVtu(kind);
     if (series && !vtu)
@@ -48,11 +66,6 @@ void OutputManager::write(OutputKind kind, const Simulation& sim, const std::str
                              (kind == OutputKind::MESHES ? "VTK: call SetMeshOutputFormat(\"VTU\")"
                                                          : "CSV: call SetOutputFormat(\"VTU\")") +
                              " (or end the series with SetOutputSeries(\"" + kindName(kind) + "\", \"\"))");
-    // Staged here, between steps; from here on the writer thread needs nothing of the simulation.
-    auto frame = std::make_shared<OutputFrame>(kind == OutputKind::SPHERES    ? stageSphereFrame(sim)
-                                               : kind == OutputKind::CLUMPS   ? stageClumpFrame(sim)
-                                               : kind == OutputKind::CONTACTS ? stageContactFrame(sim)
-                                                                              : stageMeshFrame(sim));
     const VtuOptions vo = options.vtuOptions;
     const bool mesh = kind == OutputKind::MESHES;
     m_queue.submit([frame, path, vtu, vo, mesh, series]() {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <deme/VectorTypes.h>
 #include <memory>
 #include <string>
 
@@ -18,7 +19,7 @@ namespace deme {
 
 class Simulation;
 
-enum class OutputKind { SPHERES = 0, CLUMPS = 1, CONTACTS = 2, MESHES = 3 };
+enum class OutputKind { SPHERES = 0, CLUMPS = 1, CONTACTS = 2, MESHES = 3, STRESS = 4 };
 
 struct OutputOptions {
     bool vtu = false;      // SetOutputFormat: "VTU" or "CSV" (default)
@@ -31,6 +32,10 @@ class OutputManager {
     OutputOptions options;
 
     void write(OutputKind kind, const Simulation& sim, const std::string& path, const char* call);
+    // The coarse-grained stress of the grains over a box split into n[0] x n[1] x n[2] cells
+    // (WriteStressField; the sphere files' format, CSV or VTU).
+    void writeStressField(const Simulation& sim, const std::string& path, const double3& lo, const double3& hi,
+                          const unsigned int n[3], const char* call);
     void writeSnapshot(const Simulation& sim, const std::string& path, const SnapshotOptions& o, const char* call);
     // Frames of `kind` written from now on are listed in `pvdPath` (empty: no series).
     void setSeries(OutputKind kind, const std::string& pvdPath, const char* call);
@@ -39,8 +44,10 @@ class OutputManager {
 
   private:
     bool isVtu(OutputKind kind) const { return kind == OutputKind::MESHES ? options.meshVtu : options.vtu; }
+    // Hands a staged frame of `kind` to the writer thread (and its series, if one is set).
+    void submit(OutputKind kind, std::shared_ptr<OutputFrame> frame, const std::string& path, const char* call);
     // Declared before the queue, whose destructor waits for the job that may still add to a series.
-    std::array<std::unique_ptr<PvdSeries>, 4> m_series;
+    std::array<std::unique_ptr<PvdSeries>, 5> m_series;
     OutputQueue m_queue;
 };
 
