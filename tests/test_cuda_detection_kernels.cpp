@@ -240,10 +240,25 @@ Scene sceneWithMeshes(unsigned seed, size_t nClumps) {
 
 }  // namespace
 
+// The emulated kernels' contact list against the CPU detector's, pair for pair, on a scene with
+// many sphere-triangle pairs.
+static void expectTheCpuDetectorsPairs(SimState& s, const BinGrid& grid, double margin, const DetectionRules& dr) {
+    const EmulatedDetection gpu = emulateDetect(s, grid, margin, dr.rules.contactMask(), dr.extra);
+    ContactDetector det;
+    DetectedContacts cpu;
+    double binning = 0.0, search = 0.0;
+    det.detect(s, grid, margin, dr.rules.contactMask(), dr.extra, cpu, binning, search);
+    size_t sphereTriangle = 0;
+    for (uint8_t t : cpu.type) sphereTriangle += t == SPHERE_TRIANGLE;
+    EXPECT_GT(cpu.size(), 500u);
+    EXPECT_GT(sphereTriangle, 20u);
+    EXPECT_EQ(gpu.contacts.geomA, cpu.geomA);
+    EXPECT_EQ(gpu.contacts.geomB, cpu.geomB);
+    EXPECT_EQ(gpu.contacts.type, cpu.type);
+}
+
 TEST(CudaDetectionKernels, MatchTheCpuDetectorExactly) {
     const DetectionRules dr;
-    const FamilyRules& rules = dr.rules;
-    const float* extra = dr.extra;
     int cases = 0;
     for (unsigned seed : {4u, 5u}) {
         const Scene scene = sceneWithMeshes(seed, 1200);
@@ -253,21 +268,11 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorExactly) {
             const BinGrid grid = makeBinGrid(s, binSize);
             for (double margin : {0.0, 1e-4}) {
                 SCOPED_TRACE(testing::Message() << "seed " << seed << ", bin " << binSize << ", margin " << margin);
-                const EmulatedDetection gpu = emulateDetect(s, grid, margin, rules.contactMask(), extra);
-                const BinRegistry cpuBins = cpuSphereBins(s, grid, margin, extra);
+                const EmulatedDetection gpu = emulateDetect(s, grid, margin, dr.rules.contactMask(), dr.extra);
+                const BinRegistry cpuBins = cpuSphereBins(s, grid, margin, dr.extra);
                 EXPECT_EQ(gpu.spheres.start, cpuBins.start);
                 EXPECT_EQ(gpu.spheres.sortedItems, cpuBins.entries);
-                ContactDetector det;
-                DetectedContacts cpu;
-                double binning = 0.0, search = 0.0;
-                det.detect(s, grid, margin, rules.contactMask(), extra, cpu, binning, search);
-                size_t sphereTriangle = 0;
-                for (uint8_t t : cpu.type) sphereTriangle += t == SPHERE_TRIANGLE;
-                EXPECT_GT(cpu.size(), 500u);
-                EXPECT_GT(sphereTriangle, 20u);
-                EXPECT_EQ(gpu.contacts.geomA, cpu.geomA);
-                EXPECT_EQ(gpu.contacts.geomB, cpu.geomB);
-                EXPECT_EQ(gpu.contacts.type, cpu.type);
+                expectTheCpuDetectorsPairs(s, grid, margin, dr);
                 cases++;
             }
         }
@@ -286,20 +291,8 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorWithPeriodicAxes) {
         scene.periodicAxes = axes;
         SimState s = detectionState(scene, "CudaDetectionKernels");
         for (double binSize : {0.0015, 0.0037}) {
-            const BinGrid grid = makeBinGrid(s, binSize);
             SCOPED_TRACE(testing::Message() << "axes " << axes << ", bin " << binSize);
-            const EmulatedDetection gpu = emulateDetect(s, grid, 1e-4, dr.rules.contactMask(), dr.extra);
-            ContactDetector det;
-            DetectedContacts cpu;
-            double binning = 0.0, search = 0.0;
-            det.detect(s, grid, 1e-4, dr.rules.contactMask(), dr.extra, cpu, binning, search);
-            size_t sphereTriangle = 0;
-            for (uint8_t t : cpu.type) sphereTriangle += t == SPHERE_TRIANGLE;
-            EXPECT_GT(cpu.size(), 500u);
-            EXPECT_GT(sphereTriangle, 20u);
-            EXPECT_EQ(gpu.contacts.geomA, cpu.geomA);
-            EXPECT_EQ(gpu.contacts.geomB, cpu.geomB);
-            EXPECT_EQ(gpu.contacts.type, cpu.type);
+            expectTheCpuDetectorsPairs(s, makeBinGrid(s, binSize), 1e-4, dr);
             cases++;
         }
     }
