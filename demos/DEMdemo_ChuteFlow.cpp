@@ -59,14 +59,16 @@ int main(int argc, char** argv) {
     sim.InstructBoxDomainPeriodicity("xy");
     sim.AddBCPlane(make_float3(0, 0, 0), make_float3(0, 0, 1), mat);
     auto grain = sim.LoadSphereType((float)(2500 * 4.0 / 3.0 * PI * r * r * r), (float)r, mat);
-    // The rough base: a square layer of fixed grains touching the floor, jittered a little.
+    // The rough base: a disordered layer of fixed grains, a square lattice of spacing d with each
+    // grain moved by up to a quarter diameter sideways and up to half a diameter up (a flat or
+    // regular base lets the flow slide over it as a plug).
     std::mt19937 rng(7);
-    std::uniform_real_distribution<float> jitter(-0.05f * (float)d, 0.05f * (float)d);
+    std::uniform_real_distribution<float> side(-0.25f * (float)d, 0.25f * (float)d), up(0.f, 0.5f * (float)d);
     std::vector<float3> base;
     for (int i = 0; i < 20; i++)
         for (int j = 0; j < 10; j++)
-            base.push_back(make_float3((float)((i + 0.5) * d) + jitter(rng), (float)((j + 0.5) * d) + jitter(rng),
-                                       (float)r));
+            base.push_back(make_float3((float)((i + 0.5) * d) + side(rng), (float)((j + 0.5) * d) + side(rng),
+                                       (float)r + up(rng)));
     auto baseGrains = sim.AddClumps(grain, base);
     baseGrains->SetFamily(1);
     sim.SetFamilyFixed(1);
