@@ -21,6 +21,21 @@ namespace {
 
 bool same(const float3& a, const float3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
+// The message of Initialize's deme::Error for a box of `size` periodic along `axes`, holding one
+// sphere of radius r at its centre, after `addMore(solver, material)` added walls.
+template <class AddMore>
+std::string initializeError(const float3& size, const std::string& axes, float r, AddMore addMore) {
+    DEMSolver w;
+    w.SetVerbosity("QUIET");
+    auto m = w.LoadMaterial(material(1e7, 0.3, 0.5, 0.5));
+    w.InstructBoxDomainDimension(size.x, size.y, size.z);
+    w.InstructBoxDomainPeriodicity(axes);
+    addMore(w, m);
+    w.AddClumps(w.LoadSphereType(1e-3f, r, m), {make_float3(0, 0, 0)});
+    w.SetInitTimeStep(1e-5);
+    return demeErrorMessage([&] { w.Initialize(); });
+}
+
 }  // namespace
 
 TEST(Periodicity, BadInputIsAnErrorNamingTheCall) {
@@ -35,43 +50,24 @@ TEST(Periodicity, BadInputIsAnErrorNamingTheCall) {
 
     // Walls on periodic faces.
     {
-        DEMSolver w;
-        w.SetVerbosity("QUIET");
-        auto m = w.LoadMaterial(material(1e7, 0.3, 0.5, 0.5));
-        w.InstructBoxDomainDimension(0.1f, 0.1f, 0.1f);
-        w.InstructBoxDomainPeriodicity("x");
-        w.InstructBoxDomainBoundingBC("all", m);
-        w.AddClumps(w.LoadSphereType(1e-3f, 0.005f, m), {make_float3(0, 0, 0)});
-        w.SetInitTimeStep(1e-5);
-        const std::string msg = demeErrorMessage([&] { w.Initialize(); });
+        const std::string msg = initializeError({0.1f, 0.1f, 0.1f}, "x", 0.005f, [](DEMSolver& w, auto m) {
+            w.InstructBoxDomainBoundingBC("all", m);
+        });
         EXPECT_NE(msg.find("Initialize"), std::string::npos) << msg;
         EXPECT_NE(msg.find("periodic x axis"), std::string::npos) << msg;
         EXPECT_NE(msg.find("periodic face"), std::string::npos) << msg;
     }
     // A cylinder across the periodic axis.
     {
-        DEMSolver w;
-        w.SetVerbosity("QUIET");
-        auto m = w.LoadMaterial(material(1e7, 0.3, 0.5, 0.5));
-        w.InstructBoxDomainDimension(0.1f, 0.1f, 0.1f);
-        w.InstructBoxDomainPeriodicity("y");
-        w.AddExternalObject()->AddCylinder(make_float3(0), make_float3(1, 0, 0), 0.04f, m, 0);
-        w.AddClumps(w.LoadSphereType(1e-3f, 0.005f, m), {make_float3(0, 0, 0)});
-        w.SetInitTimeStep(1e-5);
-        const std::string msg = demeErrorMessage([&] { w.Initialize(); });
+        const std::string msg = initializeError({0.1f, 0.1f, 0.1f}, "y", 0.005f, [](DEMSolver& w, auto m) {
+            w.AddExternalObject()->AddCylinder(make_float3(0), make_float3(1, 0, 0), 0.04f, m, 0);
+        });
         EXPECT_NE(msg.find("cylinder"), std::string::npos) << msg;
         EXPECT_NE(msg.find("periodic y axis"), std::string::npos) << msg;
     }
     // A period too short for the grains.
     {
-        DEMSolver w;
-        w.SetVerbosity("QUIET");
-        auto m = w.LoadMaterial(material(1e7, 0.3, 0.5, 0.5));
-        w.InstructBoxDomainDimension(0.05f, 0.2f, 0.2f);
-        w.InstructBoxDomainPeriodicity("x");
-        w.AddClumps(w.LoadSphereType(1e-3f, 0.01f, m), {make_float3(0, 0, 0)});
-        w.SetInitTimeStep(1e-5);
-        const std::string msg = demeErrorMessage([&] { w.Initialize(); });
+        const std::string msg = initializeError({0.05f, 0.2f, 0.2f}, "x", 0.01f, [](DEMSolver&, auto) {});
         EXPECT_NE(msg.find("six times the largest sphere radius"), std::string::npos) << msg;
     }
     // After Initialize.

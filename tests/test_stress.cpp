@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <random>
 #include <vector>
@@ -161,7 +162,7 @@ DEME_BACKEND_TEST(Stress, SettledPeriodicBedCarriesItsWeight) {
 
 // The stress field (WriteStressField): one row per cell, x fastest, each cell's centre; the cells'
 // contact stresses, weighted by their volumes, add up to the whole box's (to 1e-9), and every grain
-// is in one cell; the file is written as CSV or VTU like the sphere files.
+// is in one cell; the file is written as CSV or VTU like the sphere files, and joins a series.
 DEME_BACKEND_TEST(Stress, FieldCellsAddUpToTheWholeBox) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
@@ -209,9 +210,14 @@ DEME_BACKEND_TEST(Stress, FieldCellsAddUpToTheWholeBox) {
     EXPECT_EQ((size_t)grains, whole.grains);
     EXPECT_GT(whole.contact[8], 0.0);
     sim.SetOutputFormat("VTU");
+    const std::string pvd = (scratchDir() / "stress.pvd").string();
+    sim.SetOutputSeries("stress", pvd);
     sim.WriteStressField((scratchDir() / "stress.vtu").string(), lo, hi, 2, 3, 4);
     sim.FlushOutput();
     EXPECT_TRUE(std::filesystem::exists((scratchDir() / "stress.vtu").string()));
+    std::ifstream series(pvd);
+    const std::string listing((std::istreambuf_iterator<char>(series)), std::istreambuf_iterator<char>());
+    EXPECT_NE(listing.find("stress.vtu"), std::string::npos) << listing;
     EXPECT_NE(demeErrorMessage([&] { sim.WriteStressField(csv, lo, hi, 0, 1, 1); }).find("WriteStressField"),
               std::string::npos);
 }

@@ -323,10 +323,7 @@ void DEMSolver::WriteStressField(const std::string& path, const float3& lo, cons
                                  unsigned int ny, unsigned int nz) const {
     const char* call = "WriteStressField";
     requireInitialized(call);
-    const float l[3] = {lo.x, lo.y, lo.z}, h[3] = {hi.x, hi.y, hi.z};
-    for (int a = 0; a < 3; a++)
-        if (!std::isfinite(l[a]) || !std::isfinite(h[a]) || !(h[a] > l[a]))
-            throwError(call, "the box needs finite bounds with hi > lo along each axis");
+    requireBox(call, "the box", lo, hi);
     if (nx == 0 || ny == 0 || nz == 0) throwError(call, "each axis needs at least one cell");
     if ((double)nx * ny * nz > 1e8) throwError(call, "more than 10^8 cells");
     const unsigned int n[3] = {nx, ny, nz};

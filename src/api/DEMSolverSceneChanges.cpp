@@ -9,16 +9,9 @@
 #include "api/SceneAssembly.h"
 #include "api/Validate.h"
 #include "runtime/Simulation.h"
+#include "runtime/TextFormat.h"
 
 namespace deme {
-
-namespace {
-
-std::string fmt3(const float3& v) {
-    return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
-}
-
-}  // namespace
 
 // A batch added after Initialize: checked now (the domain and the materials are known), inserted by
 // UpdateClumps. Its user ids are fixed now: after every id issued so far and the batches waiting.
@@ -28,8 +21,8 @@ void DEMSolver::addClumpsDuringRun(const std::shared_ptr<DEMClumpBatch>& batch, 
     for (size_t i = 0; i < batch->GetNumClumps(); i++) {
         const float3 p = batch->GetPositions()[i];
         if (!(p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z))
-            throwError(call, "clump " + std::to_string(i) + " of the batch at " + fmt3(p) +
-                                 " is outside the simulation domain (from " + fmt3(lo) + " to " + fmt3(hi) + ")");
+            throwError(call, "clump " + std::to_string(i) + " of the batch at " + formatVector(p) +
+                                 " is outside the simulation domain (from " + formatVector(lo) + " to " + formatVector(hi) + ")");
         for (const auto& m : batch->GetTypes()[i]->materials) {
             const unsigned int k = m ? m->GetLoadOrder() : 0;
             if (!m || k >= sc.materials.size() || sc.materials[k] != m)

@@ -6,6 +6,7 @@
 
 #include <deme/Error.h>
 
+#include "api/Validate.h"
 #include "runtime/Simulation.h"
 #include "runtime/StressMeasure.h"
 
@@ -30,10 +31,7 @@ DEMInspector::DEMInspector(std::weak_ptr<Simulation> sim, std::string kind, cons
     : m_owner(std::move(sim)), m_sim(m_owner.lock().get()), m_kind(std::move(kind)), m_lo(lo), m_hi(hi) {
     if (m_kind != "stress")
         throwError("CreateInspector", "\"" + m_kind + "\" takes no region (only \"stress\" does)");
-    const float l[3] = {lo.x, lo.y, lo.z}, h[3] = {hi.x, hi.y, hi.z};
-    for (int a = 0; a < 3; a++)
-        if (!std::isfinite(l[a]) || !std::isfinite(h[a]) || !(h[a] > l[a]))
-            throwError("CreateInspector", "the stress region needs finite bounds with hi > lo along each axis");
+    requireBox("CreateInspector", "the stress region", lo, hi);
 }
 
 const Simulation& DEMInspector::live(const char* call) const {

@@ -11,16 +11,13 @@
 
 #include "physics/ContactGeometry.h"
 #include "physics/RigidBody.h"
+#include "runtime/TextFormat.h"
 
 namespace deme {
 
 namespace {
 
 const char* CALL = "Initialize";
-
-std::string fmt3(const float3& v) {
-    return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
-}
 
 DomainFrame makeFrame(const float3& lo, const float3& size, unsigned int periodicAxes) {
     DomainFrame f;
@@ -167,9 +164,9 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
         for (size_t i = 0; i < b->GetNumClumps(); i++) {
             const float3 p = b->GetPositions()[i];
             if (!insideDomain(to_double3(p), scene.domainLo, scene.domainSize))
-                throwError(CALL, "clump " + std::to_string(user.size()) + " at " + fmt3(p) +
-                                     " is outside the simulation domain (from " + fmt3(scene.domainLo) + " to " +
-                                     fmt3(scene.domainLo + scene.domainSize) + ")");
+                throwError(CALL, "clump " + std::to_string(user.size()) + " at " + formatVector(p) +
+                                     " is outside the simulation domain (from " + formatVector(scene.domainLo) + " to " +
+                                     formatVector(scene.domainLo + scene.domainSize) + ")");
             user.push_back({b.get(), i});
         }
     const std::vector<size_t> order =

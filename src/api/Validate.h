@@ -31,6 +31,13 @@ inline float3 requireUnitDirection(const char* call, const char* what, const flo
     if (!(l > 0.f)) throwError(call, std::string(what) + " must not be the zero vector");
     return v / l;
 }
+// A box region [lo, hi]: finite, with hi > lo along every axis.
+inline void requireBox(const char* call, const char* what, const float3& lo, const float3& hi) {
+    const float l[3] = {lo.x, lo.y, lo.z}, h[3] = {hi.x, hi.y, hi.z};
+    for (int a = 0; a < 3; a++)
+        if (!std::isfinite(l[a]) || !std::isfinite(h[a]) || !(h[a] > l[a]))
+            throwError(call, std::string(what) + " needs finite bounds with hi > lo along each axis");
+}
 inline family_t requireFamily(const char* call, unsigned int family) {
     if (family >= NUM_FAMILIES)
         throwError(call,

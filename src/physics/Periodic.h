@@ -29,14 +29,17 @@ DEME_HD_INLINE double imageShiftAxis(double d, double length, bool periodic) {
 // For an offset d = a - b between two points: the shift s such that b + s is the image of b nearest
 // to a (zero without periodic axes).
 DEME_HD_INLINE double3 imageShift(const PeriodicBox& p, const double3& d) {
+    if (!p.axes) return make_double3(0.0, 0.0, 0.0);
     return make_double3(imageShiftAxis(d.x, p.length.x, periodicAlong(p, 0)),
                         imageShiftAxis(d.y, p.length.y, periodicAlong(p, 1)),
                         imageShiftAxis(d.z, p.length.z, periodicAlong(p, 2)));
 }
 
-// The image of point b nearest to point a (b itself without periodic axes: b + 0 is exact).
+// The image of point b nearest to point a. Without periodic axes, b itself at the cost of one test:
+// detection and the force pass call this for every candidate pair, and the scene-wide flag is the
+// same for every thread.
 DEME_HD_INLINE double3 nearestImage(const PeriodicBox& p, const double3& a, const double3& b) {
-    return b + imageShift(p, a - b);
+    return p.axes ? b + imageShift(p, a - b) : b;
 }
 
 // x wrapped into [lo, lo + length) along periodic axes (a grain that left through one face enters

@@ -8,6 +8,7 @@
 #include <deme/Error.h>
 
 #include "physics/Quaternion.h"
+#include "runtime/TextFormat.h"
 
 namespace deme {
 
@@ -17,10 +18,6 @@ const char* const AXIS_NAMES[3] = {"x", "y", "z"};
 
 double axisComponent(const float3& v, int a) { return a == 0 ? v.x : a == 1 ? v.y : v.z; }
 double axisLength(const double3& l, int a) { return a == 0 ? l.x : a == 1 ? l.y : l.z; }
-
-std::string fmt3(const float3& v) {
-    return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
-}
 
 double largestRadius(const std::vector<float>& radii) {
     double r = 0.0;
@@ -54,13 +51,13 @@ void checkPeriodicScene(const SimState& s, const char* call) {
             if (!periodicAlong(p, a)) continue;
             const double along = std::fabs(axisComponent(dir, a)) / std::max(1e-30, (double)length(dir));
             if (plane && along > 1e-6)
-                throwError(call, "analytical component " + std::to_string(k) + " is a plane with normal " + fmt3(dir) +
+                throwError(call, "analytical component " + std::to_string(k) + " is a plane with normal " + formatVector(dir) +
                                      ", not parallel to the periodic " + AXIS_NAMES[a] +
                                      " axis (InstructBoxDomainPeriodicity): a wall on a periodic face, or "
                                      "across a period, would cut it; take out walls on the periodic faces "
                                      "(InstructBoxDomainBoundingBC \"none\" or a plane per bounded face)");
             if (!plane && std::fabs(along - 1.0) > 1e-6)
-                throwError(call, "analytical component " + std::to_string(k) + " is a cylinder with axis " + fmt3(dir) +
+                throwError(call, "analytical component " + std::to_string(k) + " is a cylinder with axis " + formatVector(dir) +
                                      ", not along the periodic " + AXIS_NAMES[a] +
                                      " axis (InstructBoxDomainPeriodicity): it would not be the same in every period");
         }

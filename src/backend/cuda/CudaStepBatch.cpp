@@ -19,7 +19,6 @@ namespace deme::cuda {
 namespace {
 
 constexpr unsigned int THREADS = 256;
-constexpr const char* CALL = "DoDynamics";
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
