@@ -2,6 +2,7 @@
 // with the whole bed active, then with only its top layers (default 5 %) active and the rest
 // dormant (docs/active-box.md): a fixed family whose contacts among itself are off.
 //   active_box [cpu|cuda|auto] [grains] [active fraction] [timed steps (whole bed)] [timed steps (box)]
+//              [auto|sync|async]
 // The bed is a simple cubic lattice of touching spheres (r = 1 mm) on a floor, so it needs no
 // settling: it is at rest from the first step, like a bed that settled. Prints one JSON line per
 // case (steps/s over the timed steps, after 5 warm-up steps that include the first detection and
@@ -24,8 +25,8 @@ struct CaseResult {
     double stepsPerSecond = 0.0;
 };
 
-CaseResult runCase(const std::string& backend, size_t grains, double activeFraction, unsigned long steps,
-                   bool box) {
+CaseResult runCase(const std::string& backend, const std::string& mode, size_t grains, double activeFraction,
+                   unsigned long steps, bool box) {
     const double r = 0.001, density = 2600.0, dt = 5e-6;
     const int side = (int)std::lround(std::cbrt((double)grains));
     const int layers = (int)((grains + (size_t)side * side - 1) / ((size_t)side * side));
@@ -53,6 +54,7 @@ CaseResult runCase(const std::string& backend, size_t grains, double activeFract
     sim.DisableContactBetweenFamilies(1, 1);
     sim.SetInitTimeStep(dt);
     sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    if (mode != "auto") sim.SetSynchronousContactDetection(mode == "sync");
     const double t0 = deme_bench::seconds();
     sim.Initialize();
     const double initSeconds = deme_bench::seconds() - t0;
@@ -80,7 +82,10 @@ CaseResult runCase(const std::string& backend, size_t grains, double activeFract
     deme_bench::addRunSummary(j, sim.GetRunSummary());
     std::printf("%s\n", j.str().c_str());
     std::fflush(stdout);
-    if (std::getenv("DEME_BENCH_TIMING")) sim.ShowTimingStats();
+    if (std::getenv("DEME_BENCH_TIMING")) {
+        sim.ShowTimingStats();
+        sim.ShowThreadCollaborationStats();
+    }
     return CaseResult{(double)steps / wall};
 }
 
@@ -92,12 +97,15 @@ int main(int argc, char** argv) {
     const double fraction = argc > 3 ? std::atof(argv[3]) : 0.05;
     const unsigned long wholeSteps = argc > 4 ? std::strtoul(argv[4], nullptr, 10) : 80;
     const unsigned long boxSteps = argc > 5 ? std::strtoul(argv[5], nullptr, 10) : 400;
-    if (backend != "cpu" && backend != "cuda" && backend != "auto") {
-        std::fprintf(stderr, "usage: %s [cpu|cuda|auto] [grains] [active fraction] [steps] [box steps]\n", argv[0]);
+    const std::string mode = argc > 6 ? argv[6] : "auto";
+    if ((backend != "cpu" && backend != "cuda" && backend != "auto") ||
+        (mode != "auto" && mode != "sync" && mode != "async")) {
+        std::fprintf(stderr, "usage: %s [cpu|cuda|auto] [grains] [active fraction] [steps] [box steps] [auto|sync|async]\n",
+                     argv[0]);
         return 2;
     }
-    const CaseResult whole = runCase(backend, grains, fraction, wholeSteps, false);
-    const CaseResult box = runCase(backend, grains, fraction, boxSteps, true);
+    const CaseResult whole = runCase(backend, mode, grains, fraction, wholeSteps, false);
+    const CaseResult box = runCase(backend, mode, grains, fraction, boxSteps, true);
     deme_bench::JsonLine j;
     j.add("case", "ACTIVE-BOX ratio").add("backend", backend).add("speedup", box.stepsPerSecond / whole.stepsPerSecond);
     std::printf("%s\n", j.str().c_str());

@@ -147,7 +147,7 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& grid, double margin,
     v.numAnalytical = (uint32_t)s.analytical.size();
     v.numTriangles = (uint32_t)s.triangles.size();
     const unsigned int nS = v.numSpheres, nT = v.numTriangles;
-    DetectionArgs args{grid, margin, extra, mask, {}, {}, nullptr, nullptr};
+    DetectionArgs args{grid, margin, extra, mask, {}, {}, nullptr, nullptr, sharedExtraMarginOf(extra)};
 
     EmulatedDetection r;
     DormantBinsView dormantBins{nullptr, nullptr, 0.0};
@@ -198,10 +198,14 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& grid, double margin,
     if (r.usedRegistry) {  // DeviceDormantRegistry::sortPairs
         std::vector<unsigned long long> keys(total), sortedKeys;
         std::vector<unsigned int> idx(total), sortedIdx;
-        runThreads(total, [&] { deme_pair_keys(c.geomA.data(), c.geomB.data(), total, keys.data(), idx.data()); });
+        // As DeviceDormantRegistry::sortPairs: B's bits cover every geometry id.
+        int bBits = 1;
+        while ((1ull << bBits) <= (unsigned long long)v.triangleIdBase() + v.numTriangles) bBits++;
+        runThreads(total,
+                   [&] { deme_pair_keys(c.geomA.data(), c.geomB.data(), total, bBits, keys.data(), idx.data()); });
         stableSortPairs(keys, idx, sortedKeys, sortedIdx);
         runThreads(total, [&] {
-            deme_pairs_from_keys(v, sortedKeys.data(), total, c.geomA.data(), c.geomB.data(), c.type.data());
+            deme_pairs_from_keys(v, sortedKeys.data(), total, bBits, c.geomA.data(), c.geomB.data(), c.type.data());
         });
     }
     return r;

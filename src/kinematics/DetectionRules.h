@@ -36,7 +36,20 @@ struct DetectionArgs {
     const uint8_t* familyMask;          // NUM_FAMILIES x NUM_FAMILIES, nonzero where contacts are resolved
     BinsView sphereBins, triangleBins;  // triangleBins.start is null where there are no triangles
     const double3 *triLo, *triHi;       // triangles' enlarged boxes
+    // The extra margin of every family where all are equal (the usual case), else negative: then a
+    // candidate's enlarged radius needs no lookup of its owner and family, which the pair search
+    // does only for the candidates that pass the geometric tests.
+    double sharedExtraMargin;
 };
+
+#if !defined(__CUDACC_RTC__)
+// DetectionArgs::sharedExtraMargin of the NUM_FAMILIES extra margins `extra`.
+inline double sharedExtraMarginOf(const float* extra) {
+    for (unsigned int f = 1; f < NUM_FAMILIES; f++)
+        if (extra[f] != extra[0]) return -1.0;
+    return (double)extra[0];
+}
+#endif
 
 template <class S>
 DEME_HD_INLINE double marginOf(const S& s, const DetectionArgs& a, bodyID_t owner) {
@@ -142,18 +155,24 @@ DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, b
                 const uint64_t bin = binIndex(g, x, y, z);
                 const uint32_t e1 = a.sphereBins.start[bin + 1];
                 for (uint32_t e = firstEntryAbove(a.sphereBins, a.sphereBins.start[bin], e1, sa); e < e1; e++) {
+                    // The geometric tests first: most entries fail them (spheres out of reach, or
+                    // pairs another bin reports), and they need only b's position and radius, read
+                    // side by side; b's owner and family are looked up for the rest.
                     const bodyID_t b = a.sphereBins.items[e];
-                    const bodyID_t oB = s.spheres.owner[b];
-                    if (oB == oA || !maskRow[s.owners.family[oB]]) continue;
                     // Across a periodic face: b's image nearest to a, in a's frame (the bins the loop
                     // visits are a's box's, unwrapped).
                     const double3 pB = nearestImage(period, pA, s.cache.spherePos[b]);
-                    const double eB = (double)s.spheres.radius[b] + marginOf(s, a, oB);
+                    const double rB = (double)s.spheres.radius[b];
+                    const bool shared = a.sharedExtraMargin >= 0.0;
+                    const bodyID_t oB0 = shared ? 0 : s.spheres.owner[b];
+                    const double eB = rB + (shared ? a.margin + a.sharedExtraMargin : marginOf(s, a, oB0));
                     const double reach = eA + eB;
                     const double3 d = pA - pB;
                     if (fabs(d.x) > reach || fabs(d.y) > reach || fabs(d.z) > reach) continue;
                     if (!binOwnsPair(g, loA, make_double3(pB.x - eB, pB.y - eB, pB.z - eB), x, y, z)) continue;
                     if (dot(d, d) >= reach * reach) continue;
+                    const bodyID_t oB = shared ? s.spheres.owner[b] : oB0;
+                    if (oB == oA || !maskRow[s.owners.family[oB]]) continue;
                     if (nSph < capacity) out[nSph] = b;
                     nSph++;
                 }

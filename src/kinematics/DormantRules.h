@@ -73,21 +73,31 @@ DEME_HD_INLINE unsigned int dormantPartners(const S& s, const DetectionArgs& a, 
     const BinBox box =
         binBox(g, make_double3(pA.x - R, pA.y - R, pA.z - R), make_double3(pA.x + R, pA.y + R, pA.z + R));
     const uint8_t* maskRow = a.familyMask + (size_t)s.owners.family[oA] * NUM_FAMILIES;
+    // A row of bins along x holds its entries one after the other (bins are numbered x fastest and
+    // each dormant sphere is in one bin), so a row is one range of entries: its two ends are read
+    // once instead of each bin's. Along a periodic x the row would wrap: bin by bin there.
+    const bool rows = !(g.periodic & 1u);
+    const bool shared = a.sharedExtraMargin >= 0.0;
     unsigned int n = 0;
     for (int z = box.lo[2]; z <= box.hi[2]; z++)
         for (int y = box.lo[1]; y <= box.hi[1]; y++)
             for (int x = box.lo[0]; x <= box.hi[0]; x++) {
                 const uint64_t bin = binIndex(g, x, y, z);
-                for (uint32_t e = d.start[bin]; e < d.start[bin + 1]; e++) {
+                const uint64_t last = rows ? binIndex(g, box.hi[0], y, z) : bin;
+                for (uint32_t e = d.start[bin]; e < d.start[last + 1]; e++) {
+                    // Distance first (b's position and radius only); owner and family for the rest.
                     const bodyID_t b = d.items[e];
-                    const bodyID_t oB = s.spheres.owner[b];
-                    if (!maskRow[s.owners.family[oB]]) continue;
-                    const double reach = eA + (double)s.spheres.radius[b] + marginOf(s, a, oB);
                     const double3 dd = pA - s.cache.spherePos[b];
+                    const double rB = (double)s.spheres.radius[b];
+                    const bodyID_t oB0 = shared ? 0 : s.spheres.owner[b];
+                    const double reach = eA + rB + (shared ? a.margin + a.sharedExtraMargin : marginOf(s, a, oB0));
                     if (dot(dd, dd) >= reach * reach) continue;
+                    const bodyID_t oB = shared ? s.spheres.owner[b] : oB0;
+                    if (!maskRow[s.owners.family[oB]]) continue;
                     if (n < capacity) out[n] = b;
                     n++;
                 }
+                if (rows) break;  // the row's entries are done
             }
     return n;
 }

@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|profile-small|activebox|timing|gpus|settled|profile|compile|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|profile-small|activebox|profile-box|timing|gpus|settled|profile|compile|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -124,7 +124,28 @@ for step in "${steps[@]}"; do
     activebox)
         # ACTIVE-BOX on the GPU: 10^6 packed grains, whole bed active (2,000 steps) against 5 % active
         # (10,000 steps), then the ratio.
-        timeout 200 ./build-gpu/bench/active_box cuda 1000000 0.05 2000 10000 2>&1 | tee -a "$OUT/activebox.jsonl" | tail -n 3
+        # ACTIVEBOX_RUNS runs (default 3, for a median), then, with ACTIVEBOX_TIMING=1, one run per
+        # detection mode with the phase timings and the threads' collaboration counts.
+        for i in $(seq "${ACTIVEBOX_RUNS:-3}"); do
+            timeout 200 ./build-gpu/bench/active_box cuda 1000000 0.05 2000 10000 2>&1 | tee -a "$OUT/activebox.jsonl" | tail -n 1
+        done
+        if [ "${ACTIVEBOX_TIMING:-0}" = 1 ]; then
+            for mode in sync async; do
+                DEME_BENCH_TIMING=1 timeout 200 ./build-gpu/bench/active_box cuda 1000000 0.05 2000 10000 $mode \
+                    >>"$OUT/activebox-timing.log" 2>&1
+                echo "activebox timing $mode: rc $?"
+            done
+        fi
+        ;;
+    profile-box)
+        # Nsight Compute: every kernel of some active-box steps (one whole-bed step first, so that the
+        # capture starts in the box case; launched one by one, synchronous detection). PROFILE_LAUNCHES
+        # kernels (default 120; about 1,000 take in a detection).
+        DEME_CUDA_GRAPHS=0 DEME_CUDA_PROFILE_FROM_STEP=300 timeout 300 ncu --profile-from-start off --clock-control none \
+            --launch-count "${PROFILE_LAUNCHES:-120}" --csv \
+            --metrics gpu__time_duration.sum,dram__bytes_read.sum,dram__bytes_write.sum,launch__grid_size,launch__block_size,launch__registers_per_thread \
+            ./build-gpu/bench/active_box cuda 1000000 0.05 1 600 sync >"$OUT/ncu-box.csv" 2>"$OUT/ncu-box.err"
+        echo "profile-box: rc $? ($(wc -l <"$OUT/ncu-box.csv") lines)"
         ;;
     small)
         # SMALL-SYSTEMS on the GPU: the drum and the impact (default warm-up and timed steps), with

@@ -42,7 +42,8 @@ void ContactDetector::detect(const SimState& s, const BinGrid& grid, double marg
     const auto t0 = std::chrono::steady_clock::now();
     const size_t nS = s.spheres.size();
     const size_t nT = s.triangles.size();
-    DetectionArgs args{grid, margin, familyExtraMargin, familyMask, {}, {}, nullptr, nullptr};
+    DetectionArgs args{grid, margin, familyExtraMargin, familyMask, {}, {}, nullptr, nullptr,
+                       sharedExtraMarginOf(familyExtraMargin)};
     // The active box: with dormant spheres cached, only the moving ones are binned and searched.
     const bool dormant = m_dormant.prepare(s, grid, familyMask, familyExtraMargin);
     const bodyID_t* searched = dormant ? m_dormant.moving().data() : nullptr;  // null: every sphere

@@ -61,9 +61,9 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     refreshView();
     // The set's snapshot is the order's: travel is measured from there.
     std::swap(m_baseline, m_orderBaseline);
-    // Rebuilt with each set (a few O(owners) kernels per detection). Only uploads and family changes
-    // (which flag it themselves) change which owners are at rest; a rebuild here is belt and braces.
-    m_subsetStale = true;
+    // The owners whose loads a step clears follow the set's contacts. Which owners are stepped does
+    // not change with a set (only uploads and family changes, which flag m_subsetStale themselves).
+    m_loadOwnersStale = true;
     synchronize(m_stream);
     timing.seconds[(int)Phase::HISTORY_MAPPING] += now() - t0;
 }

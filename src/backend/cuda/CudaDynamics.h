@@ -80,13 +80,14 @@ class CudaDynamics : public DynamicsBackend {
     void recordStep(LaunchList& list, const Settings& settings, bool storeContactForces);
     // The owners and spheres a step integrates and places (CudaStepSubset.cpp).
     void updateStepSubset();
+    void updateLoadOwners(bool flagStepped);
 
     int m_device = 0;
     std::string m_name;
     Stream m_stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
     CudaModule m_dynamicsModule, m_exchangeModule;
     CudaKernel kBeginBatch, kCopyDoubles, kResolveMesh, kIntegrate, kPlaceAndFinish, kMaxTravelSince, kSteppedFlags,
-        kSteppedScatter, kMarkContactOwners, kScatterFlagged;
+        kSteppedScatter, kMarkContactOwners, kScatterFlagged, kFlagListed;
     // The batch's control block (dynamics/StepBatch.h) on the device, and its pinned host copy.
     DeviceBuffer<StepBatchControl> m_control;
     StepBatchControl* m_controlHost = nullptr;
@@ -127,6 +128,7 @@ class CudaDynamics : public DynamicsBackend {
     // rebuilt at the first step after an upload, a detection's install, a family change or the
     // start of a call, the only times families, velocities of fixed owners and the set change.
     bool m_subsetStale = true, m_subsetAll = true;
+    bool m_loadOwnersStale = true;  // the set changed: the owners whose loads a step clears follow
     DeviceBuffer<unsigned int> m_ownerStepped, m_ownerStepOffset, m_sphereStepped, m_sphereStepOffset;
     DeviceBuffer<bodyID_t> m_steppedOwners, m_steppedSpheres, m_loadOwners;
     unsigned int m_numSteppedOwners = 0, m_numSteppedSpheres = 0, m_numLoadOwners = 0;

@@ -47,6 +47,7 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     kSteppedScatter = m_dynamicsModule.kernel("deme_stepped_scatter");
     kMarkContactOwners = m_dynamicsModule.kernel("deme_mark_contact_owners");
     kScatterFlagged = m_dynamicsModule.kernel("deme_scatter_flagged");
+    kFlagListed = m_dynamicsModule.kernel("deme_flag_listed");
     kMaxTravelSince = m_exchangeModule.kernel("deme_max_travel_since");
     m_model.load("Initialize (contact force model)", layout, m_dynamicsModule, opt);
     m_history.load("Initialize", opt);

@@ -64,6 +64,7 @@ struct CudaKinematics::Work {
     // Static geometry (a copy of Geometry).
     DeviceBuffer<bodyID_t> sphereOwner, anaOwner, triOwner;
     DeviceBuffer<float> radius, anaRadius, familyExtraMargin;
+    double sharedExtraMargin = -1.0;  // DetectionArgs::sharedExtraMargin of familyExtraMargin
     DeviceBuffer<uint8_t> anaType, anaInside, familyMask;
     BinGrid grid{};
     DomainFrame frame{};
@@ -95,6 +96,7 @@ void CudaKinematics::Work::upload(const Geometry& g) {
     uploadResized(triOwner, g.triOwner, stream);
     uploadResized(familyMask, g.familyMask, stream);
     uploadResized(familyExtraMargin, g.familyExtraMargin, stream);
+    sharedExtraMargin = sharedExtraMarginOf(g.familyExtraMargin.data());
     dormant.upload(g.dormant, stream);  // built afresh at the next detection
     grid = g.grid;
     frame = g.frame;
@@ -156,7 +158,8 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     v.numTriangles = numTriangles;
     const unsigned int nS = numSpheres, nT = numTriangles;
     const uint64_t numBins = grid.numBins();
-    DetectionArgs args{grid, o.margin, familyExtraMargin.data(), familyMask.data(), {}, {}, nullptr, nullptr};
+    DetectionArgs args{grid,    o.margin, familyExtraMargin.data(), familyMask.data(), {}, {}, nullptr, nullptr,
+                       sharedExtraMargin};
     // The active box: with dormant spheres registered, only the moving ones (`ids`) are binned and
     // searched, and find their dormant partners in the registry.
     const bool useDormant =
@@ -244,7 +247,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
                dst.type.data());
     // Pairs found from the moving side with a dormant sphere of lower id: into (A, B) order.
     if (useDormant)
-        dormant.sortPairs(v, dst.geomA.data(), dst.geomB.data(), dst.type.data(), total, bitsFor(nS), prim, stream);
+        dormant.sortPairs(v, dst.geomA.data(), dst.geomB.data(), dst.type.data(), total, prim, stream);
     if (staged) {
         out.geomA.copyFromAsync(localOut.geomA, total, stream);
         out.geomB.copyFromAsync(localOut.geomB, total, stream);

@@ -74,6 +74,8 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
         launch(kFamilyMotion, 1, NUM_FAMILIES, 0, st, ctl, m_motion.data(), (float3*)nullptr, (float3*)nullptr,
                (const bodyID_t*)nullptr, 0u);
         updateStepSubset();
+    } else if (m_loadOwnersStale) {
+        updateLoadOwners(true);
     }
     recordStep(m_plainStep, settings, false);
     if (batch.storeContactForcesAtEnd) recordStep(m_storingStep, settings, true);

@@ -3,8 +3,9 @@
 // IntegrationSubset (backend/cpu/Integration.h) with the same rule (dynamics/OwnerStep.h,
 // ownerAtRest) run by kernels/Dynamics.cu. A left-out owner's step would be itself, so the stepped
 // owners' results do not change. With such a subset, the owners whose loads a step clears are also a
-// subset: the stepped ones and those of some contact of the set (others get no load); all loads are
-// cleared once here, so that an owner that drops out of the list reads zero.
+// subset: the stepped ones and those of some contact of the set (others get no load), listed again
+// with each installed set; all loads are cleared once then, so that an owner that drops out of the
+// list reads zero.
 #include "backend/cuda/CudaDynamics.h"
 
 namespace deme::cuda {
@@ -30,7 +31,10 @@ void CudaDynamics::updateStepSubset() {
     m_sphereStepOffset.downloadAsync(&spheres, 1, st, nS);
     synchronize(st);
     m_subsetAll = owners == nO;
-    if (m_subsetAll) return;
+    if (m_subsetAll) {
+        m_loadOwnersStale = false;
+        return;
+    }
     m_numSteppedOwners = owners;
     m_numSteppedSpheres = spheres;
     m_steppedOwners.resizeDiscarding(owners);
@@ -38,8 +42,23 @@ void CudaDynamics::updateStepSubset() {
     launch(kSteppedScatter, blocksFor(n, 256), 256, 0, st, m_view, (const unsigned int*)m_ownerStepped.data(),
            (const unsigned int*)m_ownerStepOffset.data(), (const unsigned int*)m_sphereStepped.data(),
            (const unsigned int*)m_sphereStepOffset.data(), m_steppedOwners.data(), m_steppedSpheres.data());
-    // The owners whose loads a step clears: the stepped ones (their flags, reused) and those of the
-    // contacts.
+    updateLoadOwners(false);
+}
+
+// The owners whose loads a step clears: the stepped ones and those of the set's contacts. After
+// updateStepSubset the stepped owners' flags are at hand; after an install of a detected set only (the
+// stepped owners are the same), they are set again from the list.
+void CudaDynamics::updateLoadOwners(bool flagStepped) {
+    const Stream st = m_stream;
+    const unsigned int nO = m_view.numOwners;
+    m_loadOwnersStale = false;
+    if (m_subsetAll) return;  // every owner's loads are cleared
+    if (flagStepped) {
+        m_ownerStepped.zeroAsync(st);
+        if (m_numSteppedOwners)
+            launch(kFlagListed, blocksFor(m_numSteppedOwners, 256), 256, 0, st,
+                   (const bodyID_t*)m_steppedOwners.data(), m_numSteppedOwners, m_ownerStepped.data());
+    }
     if (m_numContacts)
         launch(kMarkContactOwners, blocksFor(m_numContacts, 256), 256, 0, st, m_view, m_ownerStepped.data());
     m_prim.exclusiveSum(m_ownerStepped.data(), m_ownerStepOffset.data(), nO + 1, st);

@@ -124,18 +124,21 @@ void DeviceDormantRegistry::rebuild(const StateView& v, const BinGrid& grid, con
 }
 
 void DeviceDormantRegistry::sortPairs(const StateView& v, bodyID_t* geomA, bodyID_t* geomB, uint8_t* type,
-                                      unsigned int n, int aBits, DevicePrimitives& prim, Stream stream) {
+                                      unsigned int n, DevicePrimitives& prim, Stream stream) {
     if (n == 0) return;
+    // A is a sphere; B any geometry (unified ids).
+    const int aBits = bitsFor(v.numSpheres);
+    const int bBits = bitsFor((unsigned long long)v.triangleIdBase() + v.numTriangles);
     m_pairKeys.resizeDiscarding(n);
     m_pairKeysSorted.resizeDiscarding(n);
     m_pairIdx.resizeDiscarding(n);
     m_pairIdxSorted.resizeDiscarding(n);
     launch(m_kPairKeys, blocksFor(n, THREADS), THREADS, 0, stream, (const bodyID_t*)geomA, (const bodyID_t*)geomB, n,
-           (unsigned long long*)m_pairKeys.data(), m_pairIdx.data());
+           bBits, (unsigned long long*)m_pairKeys.data(), m_pairIdx.data());
     prim.sortPairs(m_pairKeys.data(), m_pairKeysSorted.data(), m_pairIdx.data(), m_pairIdxSorted.data(), n, stream, 0,
-                   32 + aBits);
+                   aBits + bBits);
     launch(m_kPairsFromKeys, blocksFor(n, THREADS), THREADS, 0, stream, v,
-           (const unsigned long long*)m_pairKeysSorted.data(), n, geomA, geomB, type);
+           (const unsigned long long*)m_pairKeysSorted.data(), n, bBits, geomA, geomB, type);
 }
 
 }  // namespace deme::cuda

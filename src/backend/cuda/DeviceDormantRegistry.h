@@ -46,8 +46,8 @@ class DeviceDormantRegistry {
     DormantBinsView view() const { return DormantBinsView{m_start.data(), m_sortedItems.data(), m_maxReach}; }
     size_t rebuilds() const { return m_rebuilds; }
 
-    // Pairs (geomA, geomB)[0, n) into (A, B) order, the type from B; A < 2^aBits.
-    void sortPairs(const StateView& v, bodyID_t* geomA, bodyID_t* geomB, uint8_t* type, unsigned int n, int aBits,
+    // Pairs (geomA, geomB)[0, n) into (A, B) order (A a sphere of v, B any geometry), the type from B.
+    void sortPairs(const StateView& v, bodyID_t* geomA, bodyID_t* geomB, uint8_t* type, unsigned int n,
                    DevicePrimitives& prim, Stream stream);
 
   private:

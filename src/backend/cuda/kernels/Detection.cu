@@ -140,22 +140,24 @@ extern "C" __global__ void deme_dormant_scatter(StateView s, BinGrid g, const ui
 
 // --- Pairs found from both sides (moving and dormant partners) into (A, B) order.
 
-// keys[i] = (A << 32) | B, idx[i] = i (the sort's values).
-extern "C" __global__ void deme_pair_keys(const bodyID_t* geomA, const bodyID_t* geomB, unsigned int n,
+// keys[i] = (A << bBits) | B, idx[i] = i (the sort's values). B takes bBits bits (any geometry id),
+// A the sphere ids' bits above them: the sort runs over those bits only (fewer radix passes than
+// over two whole 32-bit halves).
+extern "C" __global__ void deme_pair_keys(const bodyID_t* geomA, const bodyID_t* geomB, unsigned int n, int bBits,
                                           unsigned long long* keys, unsigned int* idx) {
     const size_t i = globalIndex();
     if (i >= n) return;
-    keys[i] = ((unsigned long long)geomA[i] << 32) | (unsigned long long)geomB[i];
+    keys[i] = ((unsigned long long)geomA[i] << bBits) | (unsigned long long)geomB[i];
     idx[i] = (unsigned int)i;
 }
 
 // The sorted keys back into pairs; the type follows from B.
-extern "C" __global__ void deme_pairs_from_keys(StateView s, const unsigned long long* keys, unsigned int n,
+extern "C" __global__ void deme_pairs_from_keys(StateView s, const unsigned long long* keys, unsigned int n, int bBits,
                                                 bodyID_t* geomA, bodyID_t* geomB, uint8_t* type) {
     const size_t i = globalIndex();
     if (i >= n) return;
-    geomA[i] = (bodyID_t)(keys[i] >> 32);
-    geomB[i] = (bodyID_t)(keys[i] & 0xFFFFFFFFull);
+    geomA[i] = (bodyID_t)(keys[i] >> bBits);
+    geomB[i] = (bodyID_t)(keys[i] & ((1ull << bBits) - 1ull));
     type[i] = contactTypeOf(s, geomB[i]);
 }
 

@@ -226,6 +226,12 @@ extern "C" __global__ void deme_scatter_flagged(const unsigned int* flags, const
     if (i < n && flags[i]) ids[offset[i]] = (bodyID_t)i;
 }
 
+// flags[ids[k]] = 1 for k < n.
+extern "C" __global__ void deme_flag_listed(const bodyID_t* ids, unsigned int n, unsigned int* flags) {
+    const size_t k = globalIndex();
+    if (k < n) flags[ids[k]] = 1u;
+}
+
 // The stepped owners and spheres at their offsets (the flags' exclusive sums), ascending.
 extern "C" __global__ void deme_stepped_scatter(StateView s, const unsigned int* ownerStepped,
                                                 const unsigned int* ownerOffset, const unsigned int* sphereStepped,
