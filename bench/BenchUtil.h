@@ -9,6 +9,7 @@
 
 #include <sys/resource.h>
 
+#include <deme/MemoryStats.h>
 #include <deme/RunSummary.h>
 
 namespace deme_bench {
@@ -64,6 +65,20 @@ inline void addRunSummary(JsonLine& j, const deme::RunSummary& r) {
     if (!j.has("contacts_per_sphere")) j.add("contacts_per_sphere", r.contactsPerSphere);
     j.add("peak_host_rss_mib", (double)r.peakHostBytes / (1 << 20));
     j.add("device_bytes", (double)r.deviceBytes).add("device_peak_bytes", (double)r.deviceBytesPeak);
+}
+
+// The solver's memory by group (DEMSolver::GetMemoryStats): totals and bytes per sphere, device
+// and host, and each group's bytes per sphere ("mem_<device|host>_<group>_per_sphere").
+inline void addMemoryStats(JsonLine& j, const deme::MemoryStats& m) {
+    const double n = m.spheres ? (double)m.spheres : 1.0;
+    j.add("mem_device_bytes", (double)m.deviceTotal()).add("mem_host_bytes", (double)m.hostTotal());
+    for (int g = 0; g < deme::NUM_MEMORY_GROUPS; g++) {
+        std::string key = deme::memoryGroupName((deme::MemoryGroup)g);
+        for (char& c : key)
+            if (c == ' ') c = '_';
+        j.add("mem_device_" + key + "_per_sphere", (double)m.deviceBytes[g] / n);
+        j.add("mem_host_" + key + "_per_sphere", (double)m.hostBytes[g] / n);
+    }
 }
 
 }  // namespace deme_bench

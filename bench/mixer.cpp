@@ -117,10 +117,12 @@ int main(int argc, char** argv) {
         .add("peak_host_mem_mib", deme_bench::peakMemoryMiB())
         .add("initialize_s", initSeconds);
     deme_bench::addRunSummary(j, sim.GetRunSummary());
+    deme_bench::addMemoryStats(j, sim.GetMemoryStats());
     std::printf("%s\n", j.str().c_str());
     // The phases (binning and pair search are kT's, history mapping and the force pass dT's) and the
     // collaboration counters, for a case whose wait share needs explaining.
     if (std::getenv("DEME_BENCH_TIMING")) {
+        sim.ShowMemoryStats();
         sim.ShowTimingStats();
         sim.ShowThreadCollaborationStats();
     }

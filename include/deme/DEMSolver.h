@@ -17,6 +17,7 @@
 #include "ForceModel.h"
 #include "Inspector.h"
 #include "Materials.h"
+#include "MemoryStats.h"
 #include "Mesh.h"
 #include "RunProgress.h"
 #include "RunSummary.h"
@@ -330,6 +331,11 @@ class DEMSolver {
     // Bytes of GPU memory the engine holds now (0 on the CPU backend), and a report of it.
     size_t GetDeviceMemUsage() const;
     void ShowMemStats() const;
+    // Memory by array group (owner state, geometry, contacts and history, wildcards, detection
+    // scratch, output staging, step scratch): GPU bytes held now and host bytes of this solver's
+    // arrays, and per sphere (docs/memory.md). After Initialize.
+    MemoryStats GetMemoryStats() const;
+    void ShowMemoryStats() const;
     // How the kinematics and dynamics sides worked together: waits, contact-set updates, n_max,
     // false-positive share of the contact set.
     void ShowThreadCollaborationStats() const;

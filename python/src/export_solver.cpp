@@ -37,6 +37,30 @@ void exportMessagesAndOutput(py::class_<S>& c) {
         .def("ShowTimingStats", &D::ShowTimingStats, "Prints the time per phase and the throughput.")
         .def("GetDeviceMemUsage", &D::GetDeviceMemUsage, "Bytes of GPU memory the engine holds (0 on the CPU).")
         .def("ShowMemStats", &D::ShowMemStats, "Prints the memory report.")
+        .def(
+            "GetMemoryStats",
+            [](const S& d) {
+                const deme::MemoryStats m = d.GetMemoryStats();
+                py::dict device, host;
+                for (int g = 0; g < deme::NUM_MEMORY_GROUPS; g++) {
+                    std::string key = deme::memoryGroupName((deme::MemoryGroup)g);
+                    for (char& c : key)
+                        if (c == ' ') c = '_';
+                    device[py::str(key)] = m.deviceBytes[g];
+                    host[py::str(key)] = m.hostBytes[g];
+                }
+                py::dict r;
+                r["spheres"] = m.spheres;
+                r["device"] = device;
+                r["host"] = host;
+                r["device_total"] = m.deviceTotal();
+                r["host_total"] = m.hostTotal();
+                return r;
+            },
+            "Memory by array group: {'spheres', 'device': {group: bytes}, 'host': {group: bytes}, 'device_total', "
+            "'host_total'}; groups owner_state, geometry, contacts_and_history, wildcards, detection_scratch, "
+            "output_staging, step_scratch.")
+        .def("ShowMemoryStats", &D::ShowMemoryStats, "Prints memory by array group, in MiB and bytes per sphere.")
         .def("ClearThreadCollaborationStats", &D::ClearThreadCollaborationStats,
              "Starts the collaboration counters and GetDynamicsWaitShare afresh (after a settling phase).")
         .def("ShowThreadCollaborationStats", &D::ShowThreadCollaborationStats,

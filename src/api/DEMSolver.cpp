@@ -366,6 +366,20 @@ void DEMSolver::ShowMemStats() const {
     std::cout << std::endl;
 }
 
+MemoryStats DEMSolver::GetMemoryStats() const {
+    requireInitialized("GetMemoryStats");
+    MemoryStats m = m_sim->hostMemory();
+    m.hostBytes[(int)MemoryGroup::OUTPUT] += m_output->stagedBytes();
+    if (m_sim->settings.onGpu)
+        for (int g = 0; g < NUM_MEMORY_GROUPS; g++) m.deviceBytes[g] = cuda::deviceBytesInGroup((MemoryGroup)g);
+    return m;
+}
+
+void DEMSolver::ShowMemoryStats() const {
+    requireInitialized("ShowMemoryStats");
+    std::cout << memoryReport(GetMemoryStats()) << std::endl;
+}
+
 void DEMSolver::ShowThreadCollaborationStats() const { std::cout << collaborationReport(*m_sim) << std::endl; }
 
 void DEMSolver::ClearThreadCollaborationStats() { m_sim->clearCollaborationStats(); }

@@ -13,6 +13,13 @@ namespace deme {
 
 namespace {
 
+// Takes a job's staged bytes off the count when the job ends (written or failed).
+struct StagedBytesRelease {
+    std::atomic<size_t>& staged;
+    size_t bytes;
+    ~StagedBytesRelease() { staged -= bytes; }
+};
+
 const char* kindName(OutputKind k) {
     static const char* names[] = {"spheres", "clumps", "contacts", "meshes", "stress"};
     return names[(int)k];
@@ -68,7 +75,13 @@ void OutputManager::submit(OutputKind kind, std::shared_ptr<OutputFrame> frame, 
                              " (or end the series with SetOutputSeries(\"" + kindName(kind) + "\", \"\"))");
     const VtuOptions vo = options.vtuOptions;
     const bool mesh = kind == OutputKind::MESHES;
-    m_queue.submit([frame, path, vtu, vo, mesh, series]() {
+    size_t bytes = 0;
+    for (const FrameColumn& c : frame->columns) bytes += c.bytes();
+    for (const FrameColumn& c : frame->cellColumns) bytes += c.bytes();
+    m_stagedBytes += bytes;
+    std::atomic<size_t>* staged = &m_stagedBytes;
+    m_queue.submit([frame, path, vtu, vo, mesh, series, bytes, staged]() {
+        const StagedBytesRelease release{*staged, bytes};
         if (mesh && !vtu) {
             writeFrameLegacyVtk(*frame, path);
         } else {
@@ -92,7 +105,11 @@ void OutputManager::writeSnapshot(const Simulation& sim, const std::string& path
     // Rendered here (with the OpenMP threads, between steps); encoded and written in the background.
     auto img = std::make_shared<RgbImage>(renderSnapshot(stageSnapshotScene(sim, o, call), o));
     const std::string c = call;
-    m_queue.submit([img, path, c]() {
+    const size_t bytes = img->rgb.size();
+    m_stagedBytes += bytes;
+    std::atomic<size_t>* staged = &m_stagedBytes;
+    m_queue.submit([img, path, c, bytes, staged]() {
+        const StagedBytesRelease release{*staged, bytes};
         const std::vector<uint8_t> png = encodePng(img->width, img->height, img->rgb.data());
         AtomicFile file(path, c);
         file.write(png.data(), png.size());

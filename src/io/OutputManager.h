@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <deme/VectorTypes.h>
 #include <memory>
 #include <string>
@@ -41,6 +42,8 @@ class OutputManager {
     void setSeries(OutputKind kind, const std::string& pvdPath, const char* call);
     // Waits for the file being written; throws its failure.
     void flush(const char* call) { m_queue.wait(call); }
+    // Bytes of the staged frame or image the writer thread holds now (MemoryGroup::OUTPUT).
+    size_t stagedBytes() const { return m_stagedBytes.load(); }
 
   private:
     bool isVtu(OutputKind kind) const { return kind == OutputKind::MESHES ? options.meshVtu : options.vtu; }
@@ -48,6 +51,7 @@ class OutputManager {
     void submit(OutputKind kind, std::shared_ptr<OutputFrame> frame, const std::string& path, const char* call);
     // Declared before the queue, whose destructor waits for the job that may still add to a series.
     std::array<std::unique_ptr<PvdSeries>, 5> m_series;
+    std::atomic<size_t> m_stagedBytes{0};
     OutputQueue m_queue;
 };
 

@@ -9,6 +9,7 @@
 // the installation of a detected contact set (history mapping).
 #pragma once
 
+#include <deme/MemoryStats.h>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -114,6 +115,8 @@ class KinematicsBackend {
     virtual void detectNow(const DetectionOrder& order, DetectionReport& report) = 0;
     // Whether detection takes its time from the dynamics side's device (n_max then weighs its cost).
     virtual bool sharesDynamicsDevice() const = 0;
+    // Adds the host memory this backend holds of its own (MemoryStats::hostBytes).
+    virtual void countHostMemory(MemoryStats& /*m*/) const {}
 };
 
 class DynamicsBackend {
@@ -163,6 +166,8 @@ class DynamicsBackend {
     // How the steps were launched, for the timing report ("" where there is nothing to say).
     virtual std::string launchReport() const { return ""; }
     virtual bool onGpu() const = 0;
+    // Adds the host memory this backend holds of its own (MemoryStats::hostBytes).
+    virtual void countHostMemory(MemoryStats& /*m*/) const {}
 };
 
 // A backend's two sides, made together (each side knows its partner).

@@ -69,6 +69,8 @@ class Simulation {
     // "CPU, 2 threads" or "GPU 0 (NVIDIA H200)".
     std::string backendDescription() const { return m_backends.dynamics ? m_backends.dynamics->description() : ""; }
     std::string launchReport() const { return m_backends.dynamics ? m_backends.dynamics->launchReport() : ""; }
+    // Host memory by group: the state's arrays and the backends' own (runtime/MemoryAccounting.cpp).
+    MemoryStats hostMemory() const;
 
     // Host-side changes to the state (tracker setters, family changes) call this so that the next
     // step re-detects contacts instead of trusting the old margin.

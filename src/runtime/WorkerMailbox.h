@@ -27,7 +27,7 @@ class WorkerMailbox {
 
     // ---- dT's side
     // True when no order is queued or running and no result is waiting.
-    bool idle() {
+    bool idle() const {
         std::lock_guard<std::mutex> lock(m_mutex);
         return !m_queued && !m_running && !m_ready;
     }
@@ -101,7 +101,7 @@ class WorkerMailbox {
 
   private:
     const std::string m_worker;
-    std::mutex m_mutex;
+    mutable std::mutex m_mutex;
     std::condition_variable m_wake;  // kT waits for orders, dT for results
     bool m_stop = false, m_queued = false, m_running = false, m_ready = false;
     std::exception_ptr m_failure;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "backend/cpu/DormantCache.h"
+#include "runtime/MemoryAccounting.h"
 #include "kinematics/DetectionRules.h"
 #include "state/SimState.h"
 
@@ -16,6 +17,7 @@ struct DetectedContacts {
     std::vector<bodyID_t> geomA, geomB;
     std::vector<uint8_t> type;
     size_t size() const { return geomA.size(); }
+    size_t bytes() const { return vectorBytes(geomA) + vectorBytes(geomB) + vectorBytes(type); }
 };
 
 // Items registered in the bins their boxes touch (counting sort by bin).
@@ -31,6 +33,7 @@ struct BinRegistry {
     // The same for the items ids[0, n) only (their lo/hi at their own ids).
     void build(const BinGrid& grid, const bodyID_t* ids, size_t n);
     BinsView view() const { return BinsView{lo.data(), hi.data(), start.data(), entries.data()}; }
+    size_t bytes() const { return vectorBytes(lo) + vectorBytes(hi) + vectorBytes(start) + vectorBytes(entries); }
 };
 
 class ContactDetector {
@@ -47,6 +50,13 @@ class ContactDetector {
         m_dormant.setFamilies(dormant, prescribed, live);
     }
     const DormantCache& dormantCache() const { return m_dormant; }
+    // The scratch it keeps between detections (MemoryGroup::DETECTION).
+    size_t bytes() const {
+        size_t b = m_dormant.bytes() + vectorBytes(m_keys) + m_spheres.bytes() + m_triangles.bytes() +
+                   vectorBytes(m_triLo) + vectorBytes(m_triHi) + vectorBytes(m_threadOut);
+        for (const DetectedContacts& t : m_threadOut) b += t.bytes();
+        return b;
+    }
 
   private:
     // Sorts the pairs by (A, B) (with dormant partners, found from the moving side).

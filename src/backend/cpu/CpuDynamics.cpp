@@ -103,4 +103,10 @@ bool CpuDynamics::resumeContactSet(const SimState& s, const std::vector<double>&
 
 std::string CpuDynamics::description() const { return "CPU, " + std::to_string(cpuThreadCount()) + " threads"; }
 
+void CpuDynamics::countHostMemory(MemoryStats& m) const {
+    addHost(m, MemoryGroup::OWNER_STATE, vectorBytes(m_baseline) + vectorBytes(m_orderBaseline));
+    addHost(m, MemoryGroup::STEP_SCRATCH,
+            vectorBytes(m_subset.owners) + vectorBytes(m_subset.spheres) + vectorBytes(m_subset.reduced));
+}
+
 }  // namespace deme

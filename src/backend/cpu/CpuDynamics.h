@@ -37,6 +37,7 @@ class CpuDynamics : public DynamicsBackend {
     bool resumeContactSet(const SimState& s, const std::vector<double>& travel) override;
     std::string description() const override;
     bool onGpu() const override { return false; }
+    void countHostMemory(MemoryStats& m) const override;
 
     const CpuForceModel& model() const { return m_model; }
 

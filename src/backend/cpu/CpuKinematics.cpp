@@ -100,4 +100,17 @@ void CpuKinematics::run() {
     }
 }
 
+void CpuKinematics::countHostMemory(MemoryStats& m) const {
+    size_t b = m_detector.bytes() + m_taken.bytes() + vectorBytes(m_order.spherePos) + vectorBytes(m_order.analPos) +
+               vectorBytes(m_order.analDir) + vectorBytes(m_order.triVert) + vectorBytes(m_order.ownerFamily) +
+               m_result.pairs.bytes();
+    // The worker's memory only while it works on nothing (it resizes its arrays as it goes).
+    if (m_mailbox.idle()) {
+        MemoryStats work;
+        countStateMemory(m_work, work);
+        b += work.hostTotal() + m_workDetector.bytes();
+    }
+    addHost(m, MemoryGroup::DETECTION, b);
+}
+
 }  // namespace deme

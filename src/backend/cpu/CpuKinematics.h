@@ -36,6 +36,7 @@ class CpuKinematics : public KinematicsBackend {
 
     // The pairs of the result taken last (sorted by key), for installation.
     DetectedContacts& takenPairs() { return m_taken; }
+    void countHostMemory(MemoryStats& m) const override;
 
   private:
     // An order: the snapshot of the geometry that moves, and the parameters.

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "runtime/MemoryAccounting.h"
 #include "kinematics/DormantRules.h"
 #include "state/SimState.h"
 
@@ -31,6 +32,10 @@ class DormantCache {
     const std::vector<bodyID_t>& moving() const { return m_moving; }  // ascending sphere ids
     DormantBinsView view() const { return DormantBinsView{m_start.data(), m_items.data(), m_maxReach}; }
     size_t rebuilds() const { return m_rebuilds; }
+    size_t bytes() const {
+        return vectorBytes(m_movingWalls) + vectorBytes(m_builtFor) + vectorBytes(m_moving) + vectorBytes(m_start) +
+               vectorBytes(m_items);
+    }
 
   private:
     void rebuild(const SimState& s, const BinGrid& grid, const float* familyExtraMargin);

@@ -54,6 +54,7 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     std::swap(fresh.geomB, out.geomB);
     std::swap(fresh.type, out.type);
     // Persistent pairs the detection missed stay in the set; every pair takes its history over.
+    const MemoryGroupScope group(MemoryGroup::CONTACTS);  // history mapping's scratch
     const unsigned int total =
         m_history.install(fresh, (unsigned int)r.numPairs, old, m_numContacts, m_W, m_view, m_prim, m_stream);
     m_current = 1 - m_current;

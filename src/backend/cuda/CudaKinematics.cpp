@@ -263,6 +263,15 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
 
 CudaKinematics::CudaKinematics(int kTDevice, int dTDevice, const DeviceState& source, Stream dtStream)
     : m_kTDevice(kTDevice), m_dTDevice(dTDevice), m_source(source), m_dtStream(dtStream) {
+    // The outbox's pairs become a contact set when dT takes them (their buffers are swapped).
+    m_outbox.geomA.setGroup(MemoryGroup::CONTACTS);
+    m_outbox.geomB.setGroup(MemoryGroup::CONTACTS);
+    m_outbox.type.setGroup(MemoryGroup::CONTACTS);
+    m_inbox.spherePos.setGroup(MemoryGroup::DETECTION);
+    m_inbox.triVert.setGroup(MemoryGroup::DETECTION);
+    m_inbox.analPos.setGroup(MemoryGroup::DETECTION);
+    m_inbox.analDir.setGroup(MemoryGroup::DETECTION);
+    m_inbox.ownerFamily.setGroup(MemoryGroup::DETECTION);
     // dT's GPU is current here: the event and the exchange buffers belong to it.
     cudaEvent_t event = nullptr;
     DEME_CUDA_CHECK("Initialize", cudaEventCreateWithFlags(&event, cudaEventDisableTiming));
@@ -355,6 +364,8 @@ void CudaKinematics::run() {
         }
         m_startWake.notify_all();
     };
+    // Everything kT allocates for itself is detection's (the outbox was given its group above).
+    const MemoryGroupScope group(MemoryGroup::DETECTION);
     try {
         // Every CUDA call of this thread is for kT's GPU unless it says otherwise.
         const DeviceInfo& info = useDevice("Initialize", m_kTDevice);

@@ -54,7 +54,11 @@ CudaCompileResult compileCudaSource(const std::string& call, const std::string&,
 size_t deviceBytesAllocated() { return 0; }
 size_t deviceBytesAllocatedPeak() { return 0; }
 size_t deviceBytesAllocatedOn(int) { return 0; }
+size_t deviceBytesInGroup(MemoryGroup) { return 0; }
+MemoryGroupScope::MemoryGroupScope(MemoryGroup) : previous_(MemoryGroup::STEP_SCRATCH) {}
+MemoryGroupScope::~MemoryGroupScope() = default;
 RawDeviceBuffer::~RawDeviceBuffer() = default;
+void RawDeviceBuffer::setGroup(MemoryGroup g) { group_ = g; }
 RawDeviceBuffer::RawDeviceBuffer(RawDeviceBuffer&&) noexcept {}
 RawDeviceBuffer& RawDeviceBuffer::operator=(RawDeviceBuffer&&) noexcept { return *this; }
 void RawDeviceBuffer::reserve(size_t bytes, size_t, Stream) {

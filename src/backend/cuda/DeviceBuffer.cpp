@@ -19,18 +19,22 @@ std::atomic<size_t> peakBytes{0};
 // Per GPU ordinal; a node has far fewer GPUs than this.
 constexpr int MAX_COUNTED_DEVICES = 64;
 std::atomic<size_t> allocatedOn[MAX_COUNTED_DEVICES] = {};
+std::atomic<size_t> allocatedInGroup[NUM_MEMORY_GROUPS] = {};
+thread_local MemoryGroup currentGroup = MemoryGroup::STEP_SCRATCH;
 
-void countAllocation(int device, size_t bytes) {
+void countAllocation(int device, MemoryGroup group, size_t bytes) {
     const size_t now = allocatedBytes.fetch_add(bytes) + bytes;
     if (device >= 0 && device < MAX_COUNTED_DEVICES) allocatedOn[device] += bytes;
+    allocatedInGroup[(int)group] += bytes;
     size_t peak = peakBytes.load();
     while (now > peak && !peakBytes.compare_exchange_weak(peak, now)) {
     }
 }
 
-void countFree(int device, size_t bytes) {
+void countFree(int device, MemoryGroup group, size_t bytes) {
     allocatedBytes -= bytes;
     if (device >= 0 && device < MAX_COUNTED_DEVICES) allocatedOn[device] -= bytes;
+    allocatedInGroup[(int)group] -= bytes;
 }
 
 cudaStream_t toCuda(Stream s) { return static_cast<cudaStream_t>(s); }
@@ -65,7 +69,7 @@ int currentDevice() {
 
 // A fresh allocation of `bytes` on the current GPU holding the first `keepBytes` of `old`; the old
 // one is freed.
-void* reallocate(void* old, size_t oldCapacity, size_t bytes, size_t keepBytes, Stream stream) {
+void* reallocate(void* old, size_t oldCapacity, size_t bytes, size_t keepBytes, MemoryGroup group, Stream stream) {
     const char* call = "DeviceBuffer";
     void* fresh = nullptr;
     const cudaError_t error = cudaMalloc(&fresh, bytes);
@@ -79,21 +83,21 @@ void* reallocate(void* old, size_t oldCapacity, size_t bytes, size_t keepBytes, 
     }
     DEME_CUDA_CHECK(call, error);
     const int device = currentDevice();
-    countAllocation(device, bytes);
+    countAllocation(device, group, bytes);
     const size_t keep = std::min({keepBytes, oldCapacity, bytes});
     if (old && keep > 0) {
         try {
             DEME_CUDA_CHECK(call, cudaMemcpyAsync(fresh, old, keep, cudaMemcpyDeviceToDevice, toCuda(stream)));
         } catch (...) {
             cudaFree(fresh);
-            countFree(device, bytes);
+            countFree(device, group, bytes);
             throw;
         }
     }
     if (old) {
         // cudaFree waits for the device, so the copy above has read `old` before it goes.
         DEME_CUDA_CHECK(call, cudaFree(old));
-        countFree(device, oldCapacity);
+        countFree(device, group, oldCapacity);
     }
     return fresh;
 }
@@ -106,10 +110,19 @@ size_t deviceBytesAllocatedOn(int device) {
     return device >= 0 && device < MAX_COUNTED_DEVICES ? allocatedOn[device].load() : 0;
 }
 
+size_t deviceBytesInGroup(MemoryGroup g) { return allocatedInGroup[(int)g].load(); }
+
+MemoryGroupScope::MemoryGroupScope(MemoryGroup g) : previous_(currentGroup) { currentGroup = g; }
+MemoryGroupScope::~MemoryGroupScope() { currentGroup = previous_; }
+
 RawDeviceBuffer::~RawDeviceBuffer() { release(); }
 
 RawDeviceBuffer::RawDeviceBuffer(RawDeviceBuffer&& other) noexcept
-    : data_(other.data_), capacity_(other.capacity_), device_(other.device_) {
+    : data_(other.data_),
+      capacity_(other.capacity_),
+      device_(other.device_),
+      group_(other.group_),
+      groupFixed_(other.groupFixed_) {
     other.data_ = nullptr;
     other.capacity_ = 0;
     other.device_ = -1;
@@ -121,6 +134,8 @@ RawDeviceBuffer& RawDeviceBuffer::operator=(RawDeviceBuffer&& other) noexcept {
         data_ = other.data_;
         capacity_ = other.capacity_;
         device_ = other.device_;
+        group_ = other.group_;
+        groupFixed_ = other.groupFixed_;
         other.data_ = nullptr;
         other.capacity_ = 0;
         other.device_ = -1;
@@ -132,7 +147,8 @@ void RawDeviceBuffer::reserve(size_t bytes, size_t keepBytes, Stream stream) {
     if (bytes <= capacity_) return;
     const size_t grown = std::max(bytes, capacity_ + capacity_ / 2);
     DeviceScope scope(device_);
-    data_ = reallocate(data_, capacity_, grown, keepBytes, stream);
+    if (!data_ && !groupFixed_) group_ = currentGroup;
+    data_ = reallocate(data_, capacity_, grown, keepBytes, group_, stream);
     capacity_ = grown;
     device_ = currentDevice();
 }
@@ -144,9 +160,17 @@ void RawDeviceBuffer::reallocateExactly(size_t bytes, size_t keepBytes, Stream s
         return;
     }
     DeviceScope scope(device_);
-    data_ = reallocate(data_, capacity_, bytes, keepBytes, stream);
+    if (!data_ && !groupFixed_) group_ = currentGroup;
+    data_ = reallocate(data_, capacity_, bytes, keepBytes, group_, stream);
     capacity_ = bytes;
     device_ = currentDevice();
+}
+
+void RawDeviceBuffer::setGroup(MemoryGroup g) {
+    allocatedInGroup[(int)group_] -= capacity_;
+    allocatedInGroup[(int)g] += capacity_;
+    group_ = g;
+    groupFixed_ = true;
 }
 
 void RawDeviceBuffer::release() {
@@ -159,7 +183,7 @@ void RawDeviceBuffer::release() {
         if (other && cudaSetDevice(device_) != cudaSuccess) cudaGetLastError();
         if (cudaFree(data_) != cudaSuccess) cudaGetLastError();
         if (other && cudaSetDevice(previous) != cudaSuccess) cudaGetLastError();
-        countFree(device_, capacity_);
+        countFree(device_, group_, capacity_);
     }
     data_ = nullptr;
     capacity_ = 0;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <deme/Error.h>
+#include <deme/MemoryStats.h>
 
 #include <cstddef>
 #include <string>
@@ -24,6 +25,22 @@ namespace deme::cuda {
 size_t deviceBytesAllocated();
 size_t deviceBytesAllocatedPeak();
 size_t deviceBytesAllocatedOn(int device);
+
+// Bytes held now by the buffers of one group (MemoryGroup), all GPUs and solvers of this process.
+size_t deviceBytesInGroup(MemoryGroup g);
+
+// The group a buffer's memory counts to is the one current for the thread that allocates it first
+// (STEP_SCRATCH outside any scope); it stays with the buffer (also when moved or swapped).
+class MemoryGroupScope {
+  public:
+    explicit MemoryGroupScope(MemoryGroup g);
+    ~MemoryGroupScope();
+    MemoryGroupScope(const MemoryGroupScope&) = delete;
+    MemoryGroupScope& operator=(const MemoryGroupScope&) = delete;
+
+  private:
+    MemoryGroup previous_;
+};
 
 // Untyped storage behind DeviceBuffer<T>.
 class RawDeviceBuffer {
@@ -48,6 +65,9 @@ class RawDeviceBuffer {
     void reserve(size_t bytes, size_t keepBytes, Stream stream);
     // Frees everything.
     void release();
+    // Counts this buffer's memory, now and later, to group g.
+    void setGroup(MemoryGroup g);
+    MemoryGroup group() const { return group_; }
     // Exactly `bytes` of capacity, keeping the first min(bytes, keepBytes) bytes.
     void reallocateExactly(size_t bytes, size_t keepBytes, Stream stream);
 
@@ -63,6 +83,8 @@ class RawDeviceBuffer {
     void* data_ = nullptr;
     size_t capacity_ = 0;
     int device_ = -1;
+    MemoryGroup group_ = MemoryGroup::STEP_SCRATCH;  // set at the first allocation (MemoryGroupScope)
+    bool groupFixed_ = false;                        // set by setGroup: scopes no longer change it
 };
 
 // Waits until everything queued on `stream` has finished; throws deme::Error if any of it failed.
@@ -101,6 +123,8 @@ class DeviceBuffer {
     }
     // Room for `count` elements without changing the size.
     void reserve(size_t count, Stream stream = nullptr) { raw_.reserve(count * sizeof(T), bytes(), stream); }
+    void setGroup(MemoryGroup g) { raw_.setGroup(g); }
+    MemoryGroup group() const { return raw_.group(); }
     // Gives back the memory beyond the size (the only way a buffer shrinks).
     void shrinkToFit(Stream stream = nullptr) { raw_.reallocateExactly(bytes(), bytes(), stream); }
     // Size 0 and no memory.

@@ -75,6 +75,8 @@ void DeviceForceModel::upload(const SimState& s) {
     const std::vector<float> geometry = flatten(s.wildcards.geometry, nGeometries, "geometry wildcard");
     put(m_props, props);
     put(m_pairProps, pairProps);
+    m_ownerWildcards.setGroup(MemoryGroup::WILDCARDS);
+    m_geometryWildcards.setGroup(MemoryGroup::WILDCARDS);
     put(m_ownerWildcards, owner);
     put(m_geometryWildcards, geometry);
     synchronize(nullptr);

@@ -48,13 +48,18 @@ struct Point {
 
 void DeviceState::upload(const SimState& s, Stream stream) {
     const Upload up{stream, s.owners.size()};
-    forEachOwnerField(owners, s.owners, up);
-    forEachMassField(massProps, s.massProps, up);
+    {
+        const MemoryGroupScope group(MemoryGroup::OWNER_STATE);
+        forEachOwnerField(owners, s.owners, up);
+        forEachMassField(massProps, s.massProps, up);
+        forEachScratchField(integrationScratch, s.integrationScratch, up);
+    }
+    // The cache's placed positions are geometry (its two owner arrays, small beside them, too).
+    const MemoryGroupScope group(MemoryGroup::GEOMETRY);
     forEachSphereField(spheres, s.spheres, up);
     forEachAnalyticalField(analytical, s.analytical, up);
     forEachTriangleField(triangles, s.triangles, up);
     forEachCacheField(cache, s.cache, up);
-    forEachScratchField(integrationScratch, s.integrationScratch, up);
 }
 
 void DeviceState::download(SimState& s, Stream stream) const {

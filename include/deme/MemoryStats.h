@@ -1,0 +1,42 @@
+// Where a solver's memory goes, by array group (DEMSolver::GetMemoryStats, ShowMemoryStats): the
+// table every change to the state's size is measured against (docs/memory.md).
+#pragma once
+
+#include <cstddef>
+
+namespace deme {
+
+enum class MemoryGroup : unsigned char {
+    OWNER_STATE,   // owners' position, orientation, velocities, loads, family, mass properties
+    GEOMETRY,      // spheres, analytical components, triangles, and their placed positions
+    CONTACTS,      // the contact sets: pairs, types, per-contact history (the force model's contact
+                   // wildcards, e.g. Hertz-Mindlin's tangential displacement), persistence, forces
+    WILDCARDS,     // per-owner and per-geometry wildcard values of custom models
+    DETECTION,     // contact detection's scratch: bins, sorted keys, pair counts, snapshots
+    OUTPUT,        // output staging (frames waiting for the writer thread)
+    STEP_SCRATCH,  // everything else the steps use: reductions, step subsets, control blocks
+};
+constexpr int NUM_MEMORY_GROUPS = 7;
+
+// The group's name as ShowMemoryStats prints it.
+const char* memoryGroupName(MemoryGroup g);
+
+struct MemoryStats {
+    size_t deviceBytes[NUM_MEMORY_GROUPS] = {};  // GPU memory held now (all of this process's solvers)
+    size_t hostBytes[NUM_MEMORY_GROUPS] = {};    // host arrays of this solver (their capacities)
+    size_t spheres = 0;
+    size_t device(MemoryGroup g) const { return deviceBytes[(int)g]; }
+    size_t host(MemoryGroup g) const { return hostBytes[(int)g]; }
+    size_t deviceTotal() const {
+        size_t t = 0;
+        for (size_t b : deviceBytes) t += b;
+        return t;
+    }
+    size_t hostTotal() const {
+        size_t t = 0;
+        for (size_t b : hostBytes) t += b;
+        return t;
+    }
+};
+
+}  // namespace deme

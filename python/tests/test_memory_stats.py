@@ -1,0 +1,47 @@
+# Memory by array group from Python (GetMemoryStats, ShowMemoryStats; docs/memory.md): the groups
+# add up to the totals, the state's groups hold at least their arrays, and a call before
+# Initialize is a deme.Error naming it.
+import pytest
+
+import deme
+from conftest import material, quiet_solver, sphere_mass
+
+GROUPS = ["owner_state", "geometry", "contacts_and_history", "wildcards", "detection_scratch", "output_staging",
+          "step_scratch"]
+
+
+def settled_block():
+    r = 0.0025
+    sim = quiet_solver()
+    mat = material(sim, E=1e7, CoR=0.3, mu=0.5)
+    sim.InstructBoxDomainDimension(0.1, 0.1, 0.1)
+    sim.InstructBoxDomainBoundingBC("top_open", mat)
+    pts = deme.HCPSampler(2.05 * r).SampleBox([0, 0, -0.0385], [0.02, 0.02, 0.008])
+    sim.AddClumps(sim.LoadSphereType(sphere_mass(r, 2600), r, mat), pts)
+    sim.SetInitTimeStep(2e-5)
+    sim.SetGravitationalAcceleration([0, 0, -9.81])
+    with pytest.raises(deme.Error, match="GetMemoryStats"):
+        sim.GetMemoryStats()
+    sim.Initialize()
+    sim.DoDynamics(0.02)
+    return sim, len(pts)
+
+
+def test_groups_add_up_and_hold_the_state(capfd):
+    sim, n = settled_block()
+    m = sim.GetMemoryStats()
+    assert m["spheres"] == n
+    assert sorted(m["host"]) == sorted(GROUPS) and sorted(m["device"]) == sorted(GROUPS)
+    assert m["host_total"] == sum(m["host"].values())
+    assert m["device_total"] == sum(m["device"].values())
+    # Every sphere is an owner here: at least its position, velocities and loads (over 60 bytes).
+    assert m["host"]["owner_state"] >= 60 * n
+    assert m["host"]["geometry"] >= 24 * n  # at least the placed centres (3 doubles)
+    assert m["host"]["contacts_and_history"] > 0
+    if sim.GetBackend() == "cuda":
+        assert m["device_total"] == sim.GetDeviceMemUsage()
+    else:
+        assert m["device_total"] == 0
+    sim.ShowMemoryStats()
+    out = capfd.readouterr().out
+    assert "contacts and history" in out and "total" in out

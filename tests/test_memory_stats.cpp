@@ -1,0 +1,119 @@
+// Memory by array group (DEMSolver::GetMemoryStats, ShowMemoryStats; docs/memory.md): each group
+// holds at least the arrays the state's field lists give it (state/StateFields.h, one value per item
+// and field), the groups add up to the totals, and on the GPU to the bytes the device buffers hold.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "BackendFixture.h"
+#include "TestHelpers.h"
+#include "state/StateFields.h"
+
+using namespace deme;
+using namespace deme_test;
+
+DEME_BACKEND_TEST_SUITE(MemoryStatsGroups);
+
+namespace {
+
+// The bytes one item takes in a field group: the sizes of its fields' types.
+template <class T>
+struct FieldBytes {
+    size_t bytes = sizeof(T);
+};
+struct SumBytes {
+    size_t& sum;
+    template <class F>
+    void operator()(const F& f, const F&, FieldRole role) const {
+        if (role != FieldRole::HOST) sum += f.bytes;
+    }
+};
+size_t ownerBytes() {
+    size_t sum = 0;
+    OwnerFields<FieldBytes> f;
+    forEachOwnerField(f, f, SumBytes{sum});
+    return sum;
+}
+size_t sphereBytes() {
+    size_t sum = 0;
+    SphereFields<FieldBytes> f;
+    forEachSphereField(f, f, SumBytes{sum});
+    return sum + sizeof(double3) + sizeof(float3);  // the cache's placed centre and arm
+}
+
+}  // namespace
+
+// 1,000 spheres settling in a box: every group the run uses holds at least its arrays' bytes per
+// item, the totals are the groups' sums, and on the GPU the groups' sum is what the device buffers
+// hold (GetDeviceMemUsage).
+DEME_BACKEND_TEST(MemoryStatsGroups, GroupsHoldTheirArraysAndAddUp) {
+    DEMSolver sim;
+    sim.SetVerbosity("QUIET");
+    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.4));
+    sim.InstructBoxDomainDimension({0.f, 0.1f}, {0.f, 0.1f}, {0.f, 0.2f});
+    sim.InstructBoxDomainBoundingBC("all", mat);
+    const float r = 0.004f;
+    auto type = sim.LoadSphereType((float)sphereMass(r, 2500), r, mat);
+    std::vector<float3> xyz;
+    for (int k = 0; k < 10; k++)
+        for (int j = 0; j < 10; j++)
+            for (int i = 0; i < 10; i++) xyz.push_back(make_float3(0.007f + 0.0095f * i, 0.007f + 0.0095f * j, 0.006f + 0.0085f * k));
+    sim.AddClumps(type, xyz);
+    sim.SetInitTimeStep(2e-5);
+    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    EXPECT_NE(demeErrorMessage([&] { sim.GetMemoryStats(); }).find("GetMemoryStats"), std::string::npos);
+    sim.Initialize();
+    sim.DoDynamics(0.3);
+    const size_t n = xyz.size(), contacts = sim.GetNumContacts();
+    ASSERT_GT(contacts, n / 2);  // settled into a bed
+    const MemoryStats m = sim.GetMemoryStats();
+    EXPECT_EQ(m.spheres, n);
+
+    // The host state (both backends keep it): owners, spheres, contact pairs; detection's scratch.
+    EXPECT_GE(m.host(MemoryGroup::OWNER_STATE), n * ownerBytes());
+    EXPECT_GE(m.host(MemoryGroup::GEOMETRY), n * sphereBytes());
+    EXPECT_EQ(m.host(MemoryGroup::WILDCARDS), 0u);  // the default model has no owner or geometry wildcards
+    size_t hostSum = 0;
+    for (size_t b : m.hostBytes) hostSum += b;
+    EXPECT_EQ(m.hostTotal(), hostSum);
+
+    size_t deviceSum = 0;
+    for (size_t b : m.deviceBytes) deviceSum += b;
+    EXPECT_EQ(m.deviceTotal(), deviceSum);
+    if (!onGpu()) {
+        // The CPU steps on the host arrays: the contact set and the detector's bins are there.
+        // Pairs, type and Hertz-Mindlin's tangential history (3 floats) per contact.
+        EXPECT_GE(m.host(MemoryGroup::CONTACTS), contacts * (2 * sizeof(bodyID_t) + 1 + 3 * sizeof(float)));
+        EXPECT_GT(m.host(MemoryGroup::DETECTION), n * sizeof(uint32_t));
+        EXPECT_EQ(m.deviceTotal(), 0u);
+        return;
+    }
+    // The GPU: the device copy of the state, two contact sets, kT's bins and snapshot.
+    EXPECT_EQ(m.deviceTotal(), sim.GetDeviceMemUsage());  // this test's solver is the only one
+    EXPECT_GE(m.device(MemoryGroup::OWNER_STATE), n * ownerBytes());
+    EXPECT_GE(m.device(MemoryGroup::GEOMETRY), n * sphereBytes());
+    EXPECT_GE(m.device(MemoryGroup::CONTACTS), contacts * (2 * sizeof(bodyID_t) + 1 + 3 * sizeof(float)));
+    EXPECT_GT(m.device(MemoryGroup::DETECTION), n * sizeof(uint32_t));
+    EXPECT_EQ(m.device(MemoryGroup::WILDCARDS), 0u);
+}
+
+// The printed table names every group and the total, with bytes per sphere.
+TEST(MemoryStatsReport, ShowMemoryStatsPrintsEveryGroup) {
+    DEMSolver sim;
+    sim.SetVerbosity("QUIET");
+    sim.SetBackend("cpu");
+    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.4));
+    sim.InstructBoxDomainDimension(0.1f, 0.1f, 0.1f);
+    auto type = sim.LoadSphereType((float)sphereMass(0.005, 2500), 0.005f, mat);
+    sim.AddClumps(type, {make_float3(0, 0, 0), make_float3(0.02f, 0, 0)});
+    sim.SetInitTimeStep(1e-5);
+    sim.Initialize();
+    testing::internal::CaptureStdout();
+    sim.ShowMemoryStats();
+    const std::string out = testing::internal::GetCapturedStdout();
+    for (int g = 0; g < NUM_MEMORY_GROUPS; g++)
+        EXPECT_NE(out.find(memoryGroupName((MemoryGroup)g)), std::string::npos) << memoryGroupName((MemoryGroup)g);
+    EXPECT_NE(out.find("total"), std::string::npos);
+    EXPECT_NE(out.find("2 spheres"), std::string::npos);
+}
