@@ -128,17 +128,47 @@ TEST(CudaDeviceBuffer, CopiesBetweenBuffersAndStaysOnItsGpu) {
     EXPECT_EQ(deviceBytesAllocatedOn(first), onFirst - 500 * sizeof(int));  // a held exactly 500 before it grew
 }
 
+// Each buffer counts to the group of the scope that allocates it first (or the one setGroup gives),
+// and moves keep the group: the groups' sum is what all buffers hold.
+TEST(CudaDeviceBuffer, BuffersCountToTheirGroup) {
+    SKIP_WITHOUT_GPU();
+    const size_t geometry = deviceBytesInGroup(MemoryGroup::GEOMETRY), scratch = deviceBytesInGroup(MemoryGroup::STEP_SCRATCH);
+    DeviceBuffer<double> a;
+    {
+        const MemoryGroupScope group(MemoryGroup::GEOMETRY);
+        a.resize(1000);
+    }
+    a.resize(5000);  // grows outside the scope: still geometry
+    EXPECT_EQ(deviceBytesInGroup(MemoryGroup::GEOMETRY), geometry + a.capacity() * sizeof(double));
+    DeviceBuffer<double> b(100);  // no scope: step scratch
+    EXPECT_EQ(deviceBytesInGroup(MemoryGroup::STEP_SCRATCH), scratch + 100 * sizeof(double));
+    b.setGroup(MemoryGroup::GEOMETRY);
+    EXPECT_EQ(deviceBytesInGroup(MemoryGroup::STEP_SCRATCH), scratch);
+    DeviceBuffer<double> c(std::move(a));
+    a = std::move(b);
+    EXPECT_EQ(deviceBytesInGroup(MemoryGroup::GEOMETRY), geometry + (c.capacity() + a.capacity()) * sizeof(double));
+    c.release();
+    a.release();
+    EXPECT_EQ(deviceBytesInGroup(MemoryGroup::GEOMETRY), geometry);
+}
+
 TEST(CudaDeviceBuffer, OutOfMemoryIsAnError) {
     SKIP_WITHOUT_GPU();
     const size_t tooMuch = usableDevices().front().totalMemoryBytes * 4;
-    const size_t before = deviceBytesAllocated();
+    const size_t before = deviceBytesAllocated(), contactsBefore = deviceBytesInGroup(MemoryGroup::CONTACTS);
     try {
+        // The message names the size asked and the group the buffer counts to.
+        const MemoryGroupScope group(MemoryGroup::CONTACTS);
         DeviceBuffer<char> huge(tooMuch);
         ADD_FAILURE() << "allocated " << tooMuch << " bytes";
     } catch (const deme::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("out of GPU memory"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("out of GPU memory allocating " + std::to_string(tooMuch) +
+                                             " bytes for contacts and history"),
+                  std::string::npos)
+            << e.what();
     }
     EXPECT_EQ(deviceBytesAllocated(), before);
+    EXPECT_EQ(deviceBytesInGroup(MemoryGroup::CONTACTS), contactsBefore);
     DeviceBuffer<char> fine(16);  // the failure left the runtime usable
     EXPECT_EQ(fine.size(), 16u);
 }

@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|profile-small|activebox|profile-box|timing|gpus|settled|profile|compile|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|profile-small|activebox|profile-box|memory|timing|gpus|settled|profile|compile|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -136,6 +136,16 @@ for step in "${steps[@]}"; do
                 echo "activebox timing $mode: rc $?"
             done
         fi
+        ;;
+    memory)
+        # Memory by array group (docs/memory.md) of MIXER-BENCH early spheres: MEMORY_R lists the radii
+        # (default 0.004 and 0.001, 0.70 M and 45.8 M spheres), 20 steps each after Initialize, with
+        # the table ShowMemoryStats prints.
+        for r in ${MEMORY_R:-0.004 0.001}; do
+            DEME_BENCH_TIMING=1 timeout 500 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj "$r" spheres 0 20 5e-7 1 \
+                >>"$OUT/memory.log" 2>&1
+            echo "memory r = $r: rc $?"
+        done
         ;;
     profile-box)
         # Nsight Compute: every kernel of some active-box steps (one whole-bed step first, so that the

@@ -77,9 +77,10 @@ void* reallocate(void* old, size_t oldCapacity, size_t bytes, size_t keepBytes, 
         cudaGetLastError();
         size_t freeBytes = 0, totalBytes = 0;
         cudaMemGetInfo(&freeBytes, &totalBytes);
-        throwError(call, "out of GPU memory allocating " + std::to_string(bytes) + " bytes (" +
-                             std::to_string(freeBytes) + " of " + std::to_string(totalBytes) +
-                             " free; this process's buffers hold " + std::to_string(deviceBytesAllocated()) + ")");
+        throwError(call, "out of GPU memory allocating " + std::to_string(bytes) + " bytes for " +
+                             memoryGroupName(group) + " (" + std::to_string(freeBytes) + " of " +
+                             std::to_string(totalBytes) + " free; this process's buffers hold " +
+                             std::to_string(deviceBytesAllocated()) + ", ShowMemoryStats() says where)");
     }
     DEME_CUDA_CHECK(call, error);
     const int device = currentDevice();
