@@ -57,6 +57,11 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     const MemoryGroupScope group(MemoryGroup::CONTACTS);  // history mapping's scratch
     const unsigned int total =
         m_history.install(fresh, (unsigned int)r.numPairs, old, m_numContacts, m_W, m_view, m_prim, m_stream);
+    // Per-contact forces are written by a storing step of the set in use only (nothing carries them
+    // from one set to the next): one buffer, handed to the set that serves now.
+    std::swap(fresh.force, old.force);
+    old.force.release();
+    fresh.force.resizeDiscarding(total);
     m_current = 1 - m_current;
     m_numContacts = total;
     refreshView();

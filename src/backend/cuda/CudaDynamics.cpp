@@ -24,6 +24,7 @@ void CudaDynamics::upload(const SimState& s) {
     m_current = 0;
     m_numContacts = (uint32_t)s.contacts.size();
     uploadContacts(s.contacts, m_W, m_contacts[0], st);
+    m_contacts[1].force.release();  // only the set in use holds per-contact forces (install)
     m_motion.resizeDiscarding(NUM_FAMILIES);
     m_reduction.resizeDiscarding(1);
     m_maxTravelBits.resizeDiscarding(1);

@@ -114,8 +114,8 @@ void viewContacts(DeviceContacts& d, uint32_t n, StateView& v) {
 void resizeContactState(DeviceContacts& d, size_t n, unsigned int W) {
     d.meshState.resizeDiscarding(n);
     d.wildcards.resizeDiscarding(n * W);
-    d.force.resizeDiscarding(n);
     d.persistent.resizeDiscarding(n);
+    // Not the per-contact forces: only the set in use holds them (CudaDynamics::install).
 }
 
 }  // namespace deme::cuda
