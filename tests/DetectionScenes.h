@@ -126,11 +126,19 @@ inline std::set<std::pair<bodyID_t, bodyID_t>> bruteForce(const SimState& s, dou
             if (oa == ob || !mask[famOf(oa) * NUM_FAMILIES + famOf(ob)]) continue;
             const double reach = ((double)s.spheres.radius[a] + m(oa)) + ((double)s.spheres.radius[b] + m(ob));
             double3 d = p[a] - p[b];
-            // Across periodic faces: the nearest image (an independent minimum-image rule).
+            // Across periodic faces: the nearest image (an independent minimum-image rule). In a
+            // sheared cell the image k cells above is displaced along x by k times the offset.
             const PeriodicBox& pb = s.frame.periodic;
+            if (pb.axes & 4u) {
+                const double k = std::round(d.z / pb.length.z);
+                d.z -= pb.length.z * k;
+                if (pb.shear) {
+                    const double u = pb.shearVelocity * pb.shearTime;
+                    d.x -= k * (u - pb.length.x * std::round(u / pb.length.x));
+                }
+            }
             if (pb.axes & 1u) d.x -= pb.length.x * std::round(d.x / pb.length.x);
             if (pb.axes & 2u) d.y -= pb.length.y * std::round(d.y / pb.length.y);
-            if (pb.axes & 4u) d.z -= pb.length.z * std::round(d.z / pb.length.z);
             if (dot(d, d) < reach * reach) pairs.insert({(bodyID_t)a, (bodyID_t)b});
         }
         for (size_t k = 0; k < s.analytical.size(); k++) {

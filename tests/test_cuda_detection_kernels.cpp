@@ -125,9 +125,11 @@ struct EmulatedDetection {
 
 // CudaKinematics::detect; with `dormant` (1 per dormant family) and `movable` (1 per owner that
 // can move) as DeviceDormantRegistry::prepare, without them a full search.
-EmulatedDetection emulateDetect(SimState& s, const BinGrid& grid, double margin, const uint8_t* mask,
+EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double margin, const uint8_t* mask,
                                 const float* extra, const uint8_t* dormant = nullptr,
                                 const uint8_t* movable = nullptr) {
+    // A sheared cell's image layers displaced by the state's offset, as CudaKinematics::detect.
+    const BinGrid grid = withShearOffset(sceneGrid, s.frame.periodic);
     StateView v{};
     v.frame = s.frame;  // periodic axes, if any
     v.owners.family = s.owners.family.data();
@@ -308,6 +310,29 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorWithPeriodicAxes) {
         }
     }
     EXPECT_EQ(cases, 4);
+}
+
+// A sheared cell (Lees–Edwards, SetPeriodicShear): the image layers beyond the z faces are displaced
+// along x by the offset; the kernels register and search them as the CPU's detector does, pair for
+// pair, at offsets of a fraction of a bin, of several bins, and of nearly half the period.
+TEST(CudaDetectionKernels, MatchTheCpuDetectorInAShearedCell) {
+    const DetectionRules dr;
+    int cases = 0;
+    Scene scene = sceneWithMeshes(6, 1200);
+    scene.periodicAxes = 7u;
+    scene.sheared = true;
+    scene.shearRate = 1.0;
+    SimState s = detectionState(scene, "CudaDetectionKernels");
+    ASSERT_EQ(s.frame.periodic.shear, 1u);
+    for (double time : {0.0013, 0.37, -0.4999}) {
+        s.frame.periodic.shearTime = time / s.frame.periodic.shearVelocity * s.frame.periodic.length.x;
+        for (double binSize : {0.0015, 0.0037}) {
+            SCOPED_TRACE(testing::Message() << "offset " << time << " Lx, bin " << binSize);
+            expectTheCpuDetectorsPairs(s, makeBinGrid(s, binSize), 1e-4, dr);
+            cases++;
+        }
+    }
+    EXPECT_EQ(cases, 6);
 }
 
 // The active box: with a dormant family (fixed, no contacts among fixed families) the kernels build

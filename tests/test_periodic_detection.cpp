@@ -58,6 +58,45 @@ TEST(PeriodicDetection, MatchesTheMinimumImageBruteForceExactly) {
     EXPECT_EQ(cases, 24);
 }
 
+// A sheared cell (Lees–Edwards): the images across the z faces are displaced along x by the offset;
+// detection finds exactly the pairs of a brute-force search through those images, at offsets of a
+// fraction of a bin, of several bins and of nearly half the period, and the pairs across the z faces
+// at such an offset are many.
+TEST(PeriodicDetection, ShearedCellMatchesTheBruteForceThroughDisplacedImages) {
+    const DetectionRules dr;
+    int cases = 0;
+    for (unsigned int axes : {5u, 7u}) {
+        Scene scene = randomPeriodicScene(11 + axes, 1500, axes);
+        scene.sheared = true;
+        scene.shearRate = 2.0;
+        SimState s = detectionState(scene, "PeriodicDetection");
+        ASSERT_EQ(s.frame.periodic.shear, 1u);
+        ASSERT_DOUBLE_EQ(s.frame.periodic.shearVelocity, 2.0 * s.frame.periodic.length.z);
+        for (double fraction : {0.013, 0.31, -0.4999}) {
+            // The offset rate * Lz * t is this fraction of the period.
+            s.frame.periodic.shearTime = fraction * s.frame.periodic.length.x / s.frame.periodic.shearVelocity;
+            for (double binSize : {0.0015, 0.0037, 0.0}) {
+                const BinGrid grid = makeBinGrid(s, binSize);
+                EXPECT_EQ(grid.shear, 1u);
+                ContactDetector det;
+                DetectedContacts found;
+                double binning = 0.0, search = 0.0;
+                det.detect(s, grid, 2e-4, dr.rules.contactMask(), dr.extra, found, binning, search);
+                const auto expected = bruteForce(s, 2e-4, dr.rules.contactMask(), dr.extra);
+                size_t acrossZ = 0;
+                for (const auto& [a, b] : expected)
+                    acrossZ += b < s.spheres.size() &&
+                               std::fabs(s.cache.spherePos[a].z - s.cache.spherePos[b].z) > 0.02;
+                EXPECT_GT(acrossZ, 30u);
+                EXPECT_EQ(pairsOf(found), expected)
+                    << "axes " << axes << ", offset " << fraction << " Lx, bin " << binSize;
+                cases++;
+            }
+        }
+    }
+    EXPECT_EQ(cases, 18);
+}
+
 // A periodic axis gets whole bins over its period, each at least the size asked for.
 TEST(PeriodicDetection, BinsTileThePeriod) {
     const Scene scene = randomPeriodicScene(3, 200, 5u);

@@ -139,6 +139,12 @@ class DEMSolver {
     // periodic face, planes not parallel to a periodic axis and cylinders not along one are errors
     // at Initialize, as is a period under six times the largest sphere radius (docs/periodic.md).
     void InstructBoxDomainPeriodicity(const std::string& axes);
+    // A sheared periodic cell (Lees–Edwards): simple shear at `rate` (1/s) along x with its gradient
+    // along z, with no walls. The images across the z faces move at +-rate * Lz along x and are
+    // displaced by rate * Lz * t (less whole periods), so a grain leaving through the top enters
+    // through the bottom displaced and slower by rate * Lz. Needs periodic x and z; before
+    // Initialize (docs/periodic.md).
+    void SetPeriodicShear(double rate);
     void InstructBoxDomainBoundingBC(const std::string& type, const std::shared_ptr<DEMMaterial>& mat);
     std::shared_ptr<DEMExternObj> AddExternalObject();
     std::shared_ptr<DEMExternObj> AddBCPlane(const float3& pos, const float3& normal,

@@ -36,6 +36,9 @@ void exportDomainAndObjects(py::class_<S>& c) {
         .def("InstructBoxDomainPeriodicity", &D::InstructBoxDomainPeriodicity, py::arg("axes"),
              "Periodic boundaries along the axes named (\"x\", \"xy\", \"xyz\"...; \"\" for none): a grain leaving "
              "through one face enters through the other (docs/periodic.md).")
+        .def("SetPeriodicShear", &D::SetPeriodicShear, py::arg("rate"),
+             "A sheared periodic cell (Lees-Edwards): simple shear at rate (1/s) along x, gradient along z; "
+             "needs periodic x and z.")
         .def("InstructBoxDomainBoundingBC", &D::InstructBoxDomainBoundingBC, py::arg("type"), py::arg("mat"),
              "Walls on the domain's faces: \"all\", \"top_open\" or \"none\".")
         .def("AddExternalObject", &D::AddExternalObject, "A new external object (add planes and cylinders to it).")

@@ -101,6 +101,14 @@ void DEMSolver::InstructBoxDomainPeriodicity(const std::string& axes) {
     m_scene->periodicAxes = bits;
 }
 
+void DEMSolver::SetPeriodicShear(double rate) {
+    const char* call = "SetPeriodicShear";
+    requireNotInitialized(call);
+    if (!std::isfinite(rate)) throwError(call, "the shear rate must be finite, got " + std::to_string(rate));
+    m_scene->sheared = true;
+    m_scene->shearRate = rate;
+}
+
 void DEMSolver::InstructBoxDomainBoundingBC(const std::string& type, const std::shared_ptr<DEMMaterial>& mat) {
     const char* call = "InstructBoxDomainBoundingBC";
     requireNotInitialized(call);

@@ -46,6 +46,8 @@ class Scene {
     float3 domainSize = make_float3(0.f);
     float3 domainLo = make_float3(0.f);  // lower corner
     unsigned int periodicAxes = 0;       // bit a: axis a is periodic (InstructBoxDomainPeriodicity)
+    bool sheared = false;                // SetPeriodicShear: a Lees–Edwards cell
+    double shearRate = 0.0;              // its shear rate dvx/dz, 1/s
 
     size_t numClumps() const {
         size_t n = 0;

@@ -19,10 +19,13 @@ namespace {
 
 const char* CALL = "Initialize";
 
-DomainFrame makeFrame(const float3& lo, const float3& size, unsigned int periodicAxes) {
+DomainFrame makeFrame(const float3& lo, const float3& size, unsigned int periodicAxes, bool sheared, double rate) {
     DomainFrame f;
     f.origin = to_double3(lo);
     f.periodic = PeriodicBox{to_double3(size), periodicAxes};
+    // Lees–Edwards: the image above slides at rate * Lz (physics/Periodic.h).
+    f.periodic.shear = sheared ? 1u : 0u;
+    f.periodic.shearVelocity = sheared ? rate * (double)size.z : 0.0;
     const double maxL = std::max({(double)size.x, (double)size.y, (double)size.z});
     // The largest dimension spans all but one of the 2^21 voxels, so the far faces are representable.
     f.voxelSize = maxL / (double)((1 << VOXEL_BITS_PER_AXIS) - 1);
@@ -138,7 +141,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
         throwError(CALL, "the scene is empty: add clumps first");
 
     SimState s;
-    s.frame = makeFrame(scene.domainLo, scene.domainSize, scene.periodicAxes);
+    s.frame = makeFrame(scene.domainLo, scene.domainSize, scene.periodicAxes, scene.sheared, scene.shearRate);
     s.domainSize = to_double3(scene.domainSize);
     s.numWildcards = (unsigned int)model.contactWildcards.size();
     buildMaterialTables(scene, model, s.materials);

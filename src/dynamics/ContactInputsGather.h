@@ -67,7 +67,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type
     float3 offB;  // geometry B's reference point minus its owner's centre
     // Across a periodic face, B is taken in its image nearest to A: positions of B and its owner are
     // shifted by this (zero without periodic axes, and for analytical boundaries, which periodic
-    // shifts leave as they are).
+    // shifts leave as they are), and in a sheared cell its velocity by imageVelocity.
     double3 shiftB = make_double3(0.0, 0.0, 0.0);
     if (type == SPHERE_SPHERE) {
         shiftB = imageShift(s.frame.periodic, in.bodyAPos - k.spherePos[b]);
@@ -120,7 +120,8 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type
     in.AOwnerFamily = ow.family[oA];
     in.BOwnerFamily = ow.family[oB];
     in.ALinVel = ow.vel[oA];
-    in.BLinVel = ow.vel[oB];
+    // An image across a sheared cell's z face also moves at the shear velocity (Lees–Edwards).
+    in.BLinVel = ow.vel[oB] + imageVelocity(s.frame.periodic, shiftB);
     in.ARotVel = ow.angVel[oA];
     in.BRotVel = ow.angVel[oB];
     in.AOwner = oA;

@@ -106,13 +106,18 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     const float4 qStep = orientationStepSeries(q0, wMid, c.h, h2);
     const float4 q = (w2 > 0.f && !large) ? qStep : q0;
     s.integrationScratch.midAngVel[o] = wMid;
-    ow.vel[o] = v;
     ow.angVel[o] = w;
     ow.oriQ[o] = q;
 
     // A fixed owner has v = 0, so x is its cached position and re-encodes to the same code. Along a
-    // periodic axis an owner that left through one face enters through the other.
-    const double3 x = wrapIntoDomain(c.frame.periodic, advancePosition(k.ownerPos[o], v, c.dt), c.frame.origin);
+    // periodic axis an owner that left through one face enters through the other; in a sheared cell
+    // (Lees–Edwards) one that left through a z face also changes its x velocity by the shear
+    // velocity, and is displaced by the offset at the step's end.
+    float dvx;
+    const double3 x = wrapIntoShearedDomain(c.frame.periodic, advancePosition(k.ownerPos[o], v, c.dt), c.frame.origin,
+                                            shearTimeNow(c.frame.periodic) + c.dt, dvx);
+    v.x += dvx;
+    ow.vel[o] = v;
     const bool encoded = encodePosition(x, c.frame, ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o]);
     k.ownerPos[o] = decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], c.frame);
     const bool notFinite = !finite3(v) || !finite3(w) || !finiteFloat(q.w);

@@ -14,6 +14,10 @@ struct BinGrid {
     double3 edge;
     int nx, ny, nz;
     unsigned int periodic;  // bit a: axis a is periodic
+    // Lees–Edwards (physics/Periodic.h): the layers of bins beyond a z face are images displaced
+    // along x by shearOffset (the offset of the image above, at the detection's snapshot).
+    unsigned int shear;
+    double shearOffset;
     DEME_HD uint64_t numBins() const { return (uint64_t)nx * (uint64_t)ny * (uint64_t)nz; }
 };
 
@@ -73,6 +77,42 @@ DEME_HD inline BinBox binBox(const BinGrid& g, const double3& lo, const double3&
     b.hi[1] = binCoord(g, 1, hi.y + sy);
     b.hi[2] = binCoord(g, 2, hi.z + sz);
     return b;
+}
+
+// Which image a layer z of bins is in (z unwrapped, as the boxes store it): -1 below the bottom
+// face, 1 above the top one, 0 inside.
+DEME_HD inline int layerImage(const BinGrid& g, int z) { return z < 0 ? -1 : z >= g.nz ? 1 : 0; }
+
+// The x bins [xa, xb] that layer z of a box with x bins [x0, x1] covers. In a sheared cell a layer
+// beyond a z face is the image layer at the other face, where the box lies displaced along x by minus
+// the offset times the layer's image: there it covers the bins of [x0, x1] shifted by the offset's
+// whole bins and one bin more (whatever the fraction, the shifted box lies within), brought into
+// [0, 2 nx) for binIndex. Registration and search take the same ranges, and binOwnsPair picks one
+// bin of them per pair, so a pair is still found once.
+DEME_HD inline void layerXBins(const BinGrid& g, int z, int x0, int x1, int& xa, int& xb) {
+    const int k = g.shear ? layerImage(g, z) : 0;
+    if (k == 0) {
+        xa = x0;
+        xb = x1;
+        return;
+    }
+    const int d = (int)floor(-(double)k * g.shearOffset / g.edge.x);
+    xa = x0 + d;
+    xb = x1 + d + 1;
+    while (xa < 0) xa += g.nx, xb += g.nx;
+    while (xa >= g.nx) xa -= g.nx, xb -= g.nx;
+}
+
+// Bin registrations of box b: the product of its bins per axis, layer by layer in a sheared cell.
+DEME_HD inline unsigned int binBoxEntries(const BinGrid& g, const BinBox& b) {
+    if (!g.shear) return b.count();
+    unsigned int n = 0;
+    for (int z = b.lo[2]; z <= b.hi[2]; z++) {
+        int xa, xb;
+        layerXBins(g, z, b.lo[0], b.hi[0], xa, xb);
+        n += (unsigned int)((xb - xa + 1) * (b.hi[1] - b.lo[1] + 1));
+    }
+    return n;
 }
 
 // Stores box b of item i as three lows and three highs (the layout both backends' bins use).

@@ -78,6 +78,7 @@ BinGrid makeBinGrid(const SimState& s, double requestedSize) {
     size = std::max(size, std::max({s.domainSize.x, s.domainSize.y, s.domainSize.z}) / 1e6);
     g.size = size;
     g.periodic = s.frame.periodic.axes;
+    g.shear = s.frame.periodic.shear;  // its offset is each detection's (ContactDetector, CudaKinematics)
     // A bounded axis: bins of `size`, the last one reaching beyond the face. A periodic axis: whole
     // bins tile the period, each a little more than `size`, so that a box reaching over a face
     // continues in the bins at the other face.

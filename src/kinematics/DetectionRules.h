@@ -42,6 +42,13 @@ struct DetectionArgs {
     double sharedExtraMargin;
 };
 
+// The grid of a detection from a state whose periodic box is p: in a sheared cell its image layers
+// are displaced by the offset at the state's time.
+DEME_HD_INLINE BinGrid withShearOffset(BinGrid g, const PeriodicBox& p) {
+    g.shearOffset = p.shear ? shearOffsetNow(p) : 0.0;
+    return g;
+}
+
 #if !defined(__CUDACC_RTC__)
 // DetectionArgs::sharedExtraMargin of the NUM_FAMILIES extra margins `extra`.
 inline double sharedExtraMarginOf(const float* extra) {
@@ -77,9 +84,14 @@ DEME_HD_INLINE void triangleBox(const S& s, const DetectionArgs& a, size_t t, do
 }
 
 // Whether bin (x, y, z) holds the lower corner of the intersection of boxes starting at loA and lo.
+// In a sheared cell, x of a layer beyond a z face is a bin of the image layer (layerXBins), where the
+// corner lies displaced by minus the offset times the layer's image; x is compared modulo the period.
 DEME_HD_INLINE bool binOwnsPair(const BinGrid& g, const double3& loA, const double3& lo, int x, int y, int z) {
-    return binCoord(g, 0, fmax(loA.x, lo.x)) == x && binCoord(g, 1, fmax(loA.y, lo.y)) == y &&
-           binCoord(g, 2, fmax(loA.z, lo.z)) == z;
+    const double cx = fmax(loA.x, lo.x);
+    if (binCoord(g, 1, fmax(loA.y, lo.y)) != y || binCoord(g, 2, fmax(loA.z, lo.z)) != z) return false;
+    if (!g.shear) return binCoord(g, 0, cx) == x;
+    const int cxBin = binCoord(g, 0, cx - (double)layerImage(g, z) * g.shearOffset);
+    return wrapBin(cxBin, g.nx) == wrapBin(x, g.nx);
 }
 
 // Whether analytical component j is a partner of a sphere at pA with enlarged radius eA.
@@ -149,9 +161,11 @@ DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, b
     const int* bHi = a.sphereBins.hi + 3 * (size_t)sa;
     // 1. Sphere partners: spheres b > a of another owner (each pair once, from its lower sphere).
     unsigned int nSph = 0;
+    int xa, xb;  // a layer's x bins (shifted in a sheared cell's image layers: layerXBins)
     for (int z = bLo[2]; z <= bHi[2]; z++)
         for (int y = bLo[1]; y <= bHi[1]; y++)
-            for (int x = bLo[0]; x <= bHi[0]; x++) {
+            for (layerXBins(g, z, bLo[0], bHi[0], xa, xb); xa <= xb; xa++) {
+                const int x = xa;
                 const uint64_t bin = binIndex(g, x, y, z);
                 const uint32_t e1 = a.sphereBins.start[bin + 1];
                 for (uint32_t e = firstEntryAbove(a.sphereBins, a.sphereBins.start[bin], e1, sa); e < e1; e++) {
@@ -183,7 +197,8 @@ DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, b
     if (a.triangleBins.start != nullptr) {  // null without triangles
         for (int z = bLo[2]; z <= bHi[2]; z++)
             for (int y = bLo[1]; y <= bHi[1]; y++)
-                for (int x = bLo[0]; x <= bHi[0]; x++) {
+                for (layerXBins(g, z, bLo[0], bHi[0], xa, xb); xa <= xb; xa++) {
+                    const int x = xa;
                     const uint64_t bin = binIndex(g, x, y, z);
                     for (uint32_t e = a.triangleBins.start[bin]; e < a.triangleBins.start[bin + 1]; e++) {
                         const uint32_t tri = a.triangleBins.items[e];

@@ -17,9 +17,27 @@ namespace deme {
 struct PeriodicBox {
     double3 length;     // the domain's edges (the periods along periodic axes)
     unsigned int axes;  // bit a set: axis a (x = 0, y = 1, z = 2) is periodic
+    // Lees–Edwards (SetPeriodicShear; periodic x and z): the images across the z faces slide along
+    // x. The image of the cell above (z + Lz) moves at +shearVelocity (= rate * Lz) and is displaced
+    // by shearOffsetAt(t) = shearVelocity * t, less whole periods Lx. The offset is read at time
+    // shearTime, or, where shearClock is not null (a GPU's steps), at *shearClock, the step's clock in
+    // device memory (replayed step graphs keep one view for every step).
+    unsigned int shear;
+    double shearVelocity;
+    double shearTime;
+    const double* shearClock;
 };
 
 DEME_HD_INLINE bool periodicAlong(const PeriodicBox& p, int axis) { return (p.axes >> axis) & 1u; }
+
+// The x offset of the image above at time t, in [-Lx/2, Lx/2].
+DEME_HD_INLINE double shearOffsetAt(const PeriodicBox& p, double t) {
+    const double d = p.shearVelocity * t;
+    return d - p.length.x * rint(d / p.length.x);
+}
+// The time the offset is read at now (the start of the step the steps are in).
+DEME_HD_INLINE double shearTimeNow(const PeriodicBox& p) { return p.shearClock ? *p.shearClock : p.shearTime; }
+DEME_HD_INLINE double shearOffsetNow(const PeriodicBox& p) { return shearOffsetAt(p, shearTimeNow(p)); }
 
 // The multiple of the period nearest to an offset d along one axis (0 along a non-periodic axis).
 DEME_HD_INLINE double imageShiftAxis(double d, double length, bool periodic) {
@@ -27,12 +45,20 @@ DEME_HD_INLINE double imageShiftAxis(double d, double length, bool periodic) {
 }
 
 // For an offset d = a - b between two points: the shift s such that b + s is the image of b nearest
-// to a (zero without periodic axes).
+// to a (zero without periodic axes). In a sheared cell an image k cells above (k = s.z / Lz) is also
+// displaced by k times the offset along x.
 DEME_HD_INLINE double3 imageShift(const PeriodicBox& p, const double3& d) {
     if (!p.axes) return make_double3(0.0, 0.0, 0.0);
-    return make_double3(imageShiftAxis(d.x, p.length.x, periodicAlong(p, 0)),
-                        imageShiftAxis(d.y, p.length.y, periodicAlong(p, 1)),
-                        imageShiftAxis(d.z, p.length.z, periodicAlong(p, 2)));
+    const double sz = imageShiftAxis(d.z, p.length.z, periodicAlong(p, 2));
+    const double ox = p.shear ? rint(sz / p.length.z) * shearOffsetNow(p) : 0.0;
+    return make_double3(ox + imageShiftAxis(d.x - ox, p.length.x, periodicAlong(p, 0)),
+                        imageShiftAxis(d.y, p.length.y, periodicAlong(p, 1)), sz);
+}
+
+// The velocity an image taken by `shift` (imageShift) has beyond its original's: k times the shear
+// velocity along x for an image k cells above; zero without shear.
+DEME_HD_INLINE float3 imageVelocity(const PeriodicBox& p, const double3& shift) {
+    return make_float3(p.shear ? (float)(rint(shift.z / p.length.z) * p.shearVelocity) : 0.f, 0.f, 0.f);
 }
 
 // The image of point b nearest to point a. Without periodic axes, b itself at the cost of one test:
@@ -54,6 +80,19 @@ DEME_HD_INLINE double3 wrapIntoDomain(const PeriodicBox& p, const double3& x, co
     return make_double3(wrapAxis(x.x, lo.x, p.length.x, periodicAlong(p, 0)),
                         wrapAxis(x.y, lo.y, p.length.y, periodicAlong(p, 1)),
                         wrapAxis(x.z, lo.z, p.length.z, periodicAlong(p, 2)));
+}
+
+// An owner at x after a step that ends at time t, wrapped into the domain; in a sheared cell one that
+// left through a z face enters through the other displaced along x by the offset at t and with the
+// shear velocity taken off (through the top) or added (through the bottom), returned in dvx.
+DEME_HD_INLINE double3 wrapIntoShearedDomain(const PeriodicBox& p, const double3& x, const double3& lo, double t,
+                                             float& dvx) {
+    // Selects, not branches: the CPU's owner sweep vectorises through this.
+    const double above = x.z < lo.z ? -1.0 : x.z >= lo.z + p.length.z ? 1.0 : 0.0;  // cells above it is in
+    const double k = p.shear ? above : 0.0;
+    const double offset = k != 0.0 ? shearOffsetAt(p, t) : 0.0;
+    dvx = (float)(-k * p.shearVelocity);
+    return wrapIntoDomain(p, make_double3(x.x - k * offset, x.y, x.z), lo);
 }
 
 }  // namespace deme

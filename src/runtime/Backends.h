@@ -32,7 +32,14 @@ struct ModelLayout;
 struct DetectionOrder {
     unsigned long long step = 0;
     unsigned long long generation = 0;  // host edits counted by the scheduler; older results are stale
-    double margin = 0.0;
+    double margin = 0.0;  // each owner may travel this far before the set expires
+    // A sheared periodic cell (Lees–Edwards): the snapshot's time (its image offset), and how far
+    // images across the z faces move towards each other while the set serves (n_max steps at the
+    // shear velocity), which travel does not count: detection enlarges geometries by margin plus half
+    // of it (DetectionOrder::detectionMargin).
+    double shearTime = 0.0;
+    double imageDrift = 0.0;
+    double detectionMargin() const { return margin + 0.5 * imageDrift; }
 };
 
 // What one detection found; the pairs themselves stay with the backend until installed.

@@ -1,6 +1,11 @@
 #include "runtime/ContactSetManager.h"
 
+#include <deme/Error.h>
+
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <string>
 
 namespace deme {
 
@@ -20,7 +25,21 @@ void ContactSetManager::start(const Settings& settings, DynamicsBackend& dynamic
 }
 
 DetectionOrder ContactSetManager::orderFor(const Settings& settings, unsigned long long step, float maxSpeed) const {
-    return DetectionOrder{step, m_schedule.generation(), m_schedule.marginFor(settings, maxSpeed)};
+    DetectionOrder o{step, m_schedule.generation(), m_schedule.marginFor(settings, maxSpeed)};
+    if (period && period->shear) {
+        // Images across the z faces close in at up to the shear velocity, which no owner's travel
+        // counts: detection reaches that much further, within the periodic cap.
+        o.shearTime = period->shearTime;
+        o.imageDrift = std::fabs(period->shearVelocity) * (double)m_schedule.nMax() * settings.dt;
+        if (o.imageDrift >= settings.maxMargin)
+            throwError("DoDynamics", "the sheared cell's images move " + std::to_string(o.imageDrift) +
+                                         " m in n_max = " + std::to_string(m_schedule.nMax()) +
+                                         " steps, more than the periods allow detection to reach (" +
+                                         std::to_string(settings.maxMargin) +
+                                         " m): lower the shear rate, the time step or SetCDMaxUpdateFreq");
+        o.margin = std::min(o.margin, settings.maxMargin - 0.5 * o.imageDrift);
+    }
+    return o;
 }
 
 // Every detection's time counts, installed or not.

@@ -11,6 +11,7 @@
 
 #include <functional>
 
+#include "physics/Periodic.h"
 #include "runtime/Backends.h"
 #include "runtime/CollaborationStats.h"
 #include "runtime/DetectionSchedule.h"
@@ -46,6 +47,9 @@ class ContactSetManager {
     // Called just before each detection takes its snapshot of the state (synchronous or ordered):
     // the simulation checks the family conditions there (ChangeFamilyWhen). Empty: nothing.
     std::function<void()> beforeDetection;
+    // The host state's periodic box, for a sheared cell's orders (its shearTime is the time of the
+    // state the orders are taken from).
+    const PeriodicBox* period = nullptr;
 
     unsigned int nMax() const { return m_schedule.nMax(); }
     double margin() const { return m_schedule.margin(); }

@@ -41,6 +41,9 @@ void checkPeriodicRadii(const PeriodicBox& p, const std::vector<float>& radii, c
 
 void checkPeriodicScene(const SimState& s, const char* call) {
     const PeriodicBox& p = s.frame.periodic;
+    if (p.shear && !(periodicAlong(p, 0) && periodicAlong(p, 2)))
+        throwError(call, "SetPeriodicShear shears along x with its gradient along z: the domain must be periodic "
+                         "along x and z (InstructBoxDomainPeriodicity(\"xz\") or \"xyz\")");
     if (!p.axes) return;
     checkPeriodicRadii(p, s.spheres.radius, call);
     for (size_t k = 0; k < s.analytical.size(); k++) {
@@ -62,6 +65,15 @@ void checkPeriodicScene(const SimState& s, const char* call) {
                                      " axis (InstructBoxDomainPeriodicity): it would not be the same in every period");
         }
     }
+}
+
+void checkShearedGrid(const PeriodicBox& p, const BinGrid& g, const char* call) {
+    // A sheared layer's x bins are a box's shifted by the offset and one bin wider (layerXBins); in
+    // fewer than 6 bins along x they could wrap onto themselves.
+    if (p.shear && g.nx < 6)
+        throwError(call, "the sheared cell's period along x holds " + std::to_string(g.nx) +
+                             " contact-detection bins, under the 6 SetPeriodicShear needs: a longer period, or a "
+                             "smaller SetInitBinSize");
 }
 
 double periodicMarginCap(const SimState& s, const float* familyExtraMargin) {

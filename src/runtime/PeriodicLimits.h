@@ -4,6 +4,7 @@
 // (a plane parallel to each periodic axis, a cylinder along the periodic axis).
 #pragma once
 
+#include "kinematics/BinGrid.h"
 #include "state/SimState.h"
 
 namespace deme {
@@ -14,6 +15,9 @@ namespace deme {
 void checkPeriodicScene(const SimState& s, const char* call);
 // The part of that check for spheres of `radii` (clumps inserted during a run).
 void checkPeriodicRadii(const PeriodicBox& p, const std::vector<float>& radii, const char* call);
+
+// A sheared cell (SetPeriodicShear) needs 6 bins or more along x.
+void checkShearedGrid(const PeriodicBox& p, const BinGrid& g, const char* call);
 
 // The largest margin detection may enlarge geometries by, so that the reach of any two spheres
 // (radii plus twice the margin plus the families' extra margins) stays within 90 % of half the

@@ -93,6 +93,7 @@ SceneFingerprint sceneFingerprint(const SimState& s, const ModelLayout& model) {
     d.value(s.frame.voxelSize);
     d.value(s.domainSize);
     if (s.frame.periodic.axes) d.value(s.frame.periodic.axes);  // (so non-periodic scenes hash as before)
+    if (s.frame.periodic.shear) d.value(s.frame.periodic.shearVelocity);
     fp.domain = d.result();
 
     Hash f;

@@ -36,9 +36,11 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     m_initialScene = sceneFingerprint(m_state, m_model);
     refreshKinematicCache(m_state);
     m_grid = makeBinGrid(m_state, settings.binSize);
+    checkShearedGrid(m_state.frame.periodic, m_grid, "Initialize");
     applyDetectionMode();
     m_backends = makeBackends(m_state, m_model, settings, [this](Verbosity v, const std::string& msg) { log(v, msg); });
     m_contacts.start(settings, *m_backends.dynamics, *m_backends.kinematics);
+    m_contacts.period = &m_state.frame.periodic;
     // ChangeFamilyWhen is checked at each detection (docs/active-box.md says why).
     m_contacts.beforeDetection = [this] {
         if (!families.conditions().empty()) m_backends.dynamics->applyFamilyConditions(m_time, families);
@@ -123,6 +125,7 @@ void Simulation::advance(unsigned long long n) {
     if (loads) dynamics.uploadTrackerLoads(m_state);
     dynamics.beginRun(settings, families);
     for (unsigned long long k = 0; k < n;) {
+        m_state.frame.periodic.shearTime = m_time;  // the host state's time (a sheared cell's offset)
         // A contact set serves at most n_max steps, and only while nobody has travelled its margin.
         m_contacts.prepareStep(settings, m_step, m_lastMaxSpeed, m_timing);
         StepBatchRequest batch;
@@ -164,6 +167,7 @@ void Simulation::advance(unsigned long long n) {
         if (m_monitor.afterSteps(r.steps, r.steps == batch.maxSteps, m_time)) break;
     }
     m_monitor.end(m_time);
+    m_state.frame.periodic.shearTime = m_time;
     collab.dynamicsSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (loads) {
         clearTrackerLoads();
@@ -252,6 +256,7 @@ void Simulation::restore(SimState&& state, const Resumable& r) {
     m_contacts.invalidate();
     m_resume = std::make_unique<Resumable>(r);
     m_time = r.time;
+    m_state.frame.periodic.shearTime = m_time;  // a sheared cell's offset follows from the time
     m_step = r.step;
     m_lastMaxSpeed = r.lastMaxSpeed;
     m_realContacts = (size_t)r.realContacts;

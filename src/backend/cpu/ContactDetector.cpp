@@ -15,9 +15,11 @@ void buildBins(BinRegistry& r, const BinGrid& grid, size_t n, Id id) {
     const size_t nBins = (size_t)grid.numBins();
     r.start.assign(nBins + 1, 0);
     auto forEachBin = [&](size_t i, auto&& fn) {
+        int xa, xb;  // a layer's x bins (shifted in a sheared cell's image layers: layerXBins)
         for (int32_t z = r.lo[3 * i + 2]; z <= r.hi[3 * i + 2]; z++)
             for (int32_t y = r.lo[3 * i + 1]; y <= r.hi[3 * i + 1]; y++)
-                for (int32_t x = r.lo[3 * i + 0]; x <= r.hi[3 * i + 0]; x++) fn((size_t)binIndex(grid, x, y, z));
+                for (layerXBins(grid, z, r.lo[3 * i + 0], r.hi[3 * i + 0], xa, xb); xa <= xb; xa++)
+                    fn((size_t)binIndex(grid, xa, y, z));
     };
     for (size_t k = 0; k < n; k++) forEachBin(id(k), [&](size_t b) { r.start[b + 1]++; });
     for (size_t b = 0; b < nBins; b++) r.start[b + 1] += r.start[b];
@@ -36,10 +38,11 @@ void BinRegistry::build(const BinGrid& grid, const bodyID_t* ids, size_t n) {
     buildBins(*this, grid, n, [ids](size_t k) { return (size_t)ids[k]; });
 }
 
-void ContactDetector::detect(const SimState& s, const BinGrid& grid, double margin, const uint8_t* familyMask,
+void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double margin, const uint8_t* familyMask,
                              const float* familyExtraMargin, DetectedContacts& out, double& binningSeconds,
                              double& searchSeconds) {
     const auto t0 = std::chrono::steady_clock::now();
+    const BinGrid grid = withShearOffset(sceneGrid, s.frame.periodic);
     const size_t nS = s.spheres.size();
     const size_t nT = s.triangles.size();
     DetectionArgs args{grid, margin, familyExtraMargin, familyMask, {}, {}, nullptr, nullptr,

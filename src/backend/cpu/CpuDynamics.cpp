@@ -38,6 +38,9 @@ StepBatchResult CpuDynamics::steps(const StepBatchRequest& batch, const Settings
 StepOutcome CpuDynamics::step(double time, const Settings& settings, const FamilyRules& families,
                               TimingStats& timing) {
     StepOutcome out;
+    // A sheared cell's image offset: the step's forces see the one at its start, its wrap the one at
+    // its end (physics/Periodic.h); afterwards the state is at time + dt.
+    m_s.frame.periodic.shearTime = time;
     {
         PhaseTimer t(timing, Phase::INTEGRATION);
         families.evaluate(time + settings.dt, m_stepMotion);
@@ -58,6 +61,7 @@ StepOutcome CpuDynamics::step(double time, const Settings& settings, const Famil
     PhaseTimer t(timing, Phase::INTEGRATION);
     const IntegrationResult ir = integrateOwners(m_s, m_stepMotion, settings.gravity, settings.dt,
                                                  settings.errorOutVelocity, m_baseline, m_subset);
+    m_s.frame.periodic.shearTime = time + settings.dt;
     out.maxSpeed = ir.maxSurfaceSpeed;
     out.maxTravel = ir.maxTravel;
     if (ir.fault != OwnerFault::NONE) {

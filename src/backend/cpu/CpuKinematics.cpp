@@ -32,7 +32,8 @@ void CpuKinematics::setGeometry(const SimState& live, const BinGrid& grid, const
 void CpuKinematics::detectNow(const DetectionOrder& order, DetectionReport& report) {
     report = DetectionReport{};
     report.order = order;
-    m_detector.detect(m_live, m_grid, order.margin, m_familyMask.data(), m_familyExtraMargin.data(), m_taken,
+    // The live state is at the order's snapshot (its time, for a sheared cell's image offset, too).
+    m_detector.detect(m_live, m_grid, order.detectionMargin(), m_familyMask.data(), m_familyExtraMargin.data(), m_taken,
                       report.binningSeconds, report.searchSeconds);
     report.numPairs = m_taken.size();
 }
@@ -89,7 +90,9 @@ void CpuKinematics::run() {
             m_work.owners.family.swap(order.ownerFamily);
             result.report = DetectionReport{};
             result.report.order = order.order;
-            m_workDetector.detect(m_work, m_grid, order.order.margin, m_familyMask.data(), m_familyExtraMargin.data(),
+            m_work.frame.periodic.shearTime = order.order.shearTime;  // the snapshot's image offset
+            m_workDetector.detect(m_work, m_grid, order.order.detectionMargin(), m_familyMask.data(),
+                                  m_familyExtraMargin.data(),
                                   result.pairs, result.report.binningSeconds, result.report.searchSeconds);
             result.report.numPairs = result.pairs.size();
         } catch (...) {

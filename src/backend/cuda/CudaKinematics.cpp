@@ -140,6 +140,8 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     // The state as the detection kernels read it: static geometry here, positions from the snapshot.
     StateView v{};
     v.frame = frame;
+    v.frame.periodic.shearTime = o.shearTime;  // a sheared cell's image offset: the snapshot's
+    v.frame.periodic.shearClock = nullptr;
     v.owners.family = src.ownerFamily.data();
     v.spheres.owner = sphereOwner.data();
     v.spheres.radius = radius.data();
@@ -158,7 +160,14 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     v.numTriangles = numTriangles;
     const unsigned int nS = numSpheres, nT = numTriangles;
     const uint64_t numBins = grid.numBins();
-    DetectionArgs args{grid,    o.margin, familyExtraMargin.data(), familyMask.data(), {}, {}, nullptr, nullptr,
+    DetectionArgs args{withShearOffset(grid, v.frame.periodic),
+                       o.detectionMargin(),
+                       familyExtraMargin.data(),
+                       familyMask.data(),
+                       {},
+                       {},
+                       nullptr,
+                       nullptr,
                        sharedExtraMargin};
     // The active box: with dormant spheres registered, only the moving ones (`ids`) are binned and
     // searched, and find their dormant partners in the registry.
@@ -183,7 +192,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
         b.sortedKeys.resizeDiscarding(entries);
         b.sortedItems.resizeDiscarding(entries);
         if (entries) {
-            launch(kBinEntries, blocksFor(n, THREADS), THREADS, 0, stream, grid, ids, n, (const int*)b.lo.data(),
+            launch(kBinEntries, blocksFor(n, THREADS), THREADS, 0, stream, args.grid, ids, n, (const int*)b.lo.data(),
                    (const int*)b.hi.data(), (const unsigned int*)b.offset.data(), b.keys.data(), b.items.data());
             prim.sortPairs(b.keys.data(), b.sortedKeys.data(), b.items.data(), b.sortedItems.data(), entries, stream, 0,
                            bitsFor(numBins));

@@ -25,7 +25,7 @@ extern "C" __global__ void deme_sphere_bin_boxes(StateView s, DetectionArgs a, c
     sphereBox(s, a, i, lo, hi);
     const BinBox b = binBox(a.grid, lo, hi);
     storeBinBox(b, i, binLo, binHi);
-    count[k] = b.count();
+    count[k] = binBoxEntries(a.grid, b);
 }
 
 extern "C" __global__ void deme_triangle_bin_boxes(StateView s, DetectionArgs a, double3* triLo, double3* triHi,
@@ -35,7 +35,7 @@ extern "C" __global__ void deme_triangle_bin_boxes(StateView s, DetectionArgs a,
     triangleBox(s, a, t, triLo[t], triHi[t]);
     const BinBox b = binBox(a.grid, triLo[t], triHi[t]);
     storeBinBox(b, t, binLo, binHi);
-    count[t] = b.count();
+    count[t] = binBoxEntries(a.grid, b);
 }
 
 // (bin, item) entries of every item ids[k] in every bin of its box, at offset[k] (in item order, so a
@@ -47,10 +47,11 @@ extern "C" __global__ void deme_bin_entries(BinGrid g, const bodyID_t* ids, unsi
     if (k >= n) return;
     const size_t i = ids ? (size_t)ids[k] : k;
     unsigned int at = offset[k];
+    int xa, xb;  // a layer's x bins (shifted in a sheared cell's image layers: layerXBins)
     for (int z = binLo[3 * i + 2]; z <= binHi[3 * i + 2]; z++)
         for (int y = binLo[3 * i + 1]; y <= binHi[3 * i + 1]; y++)
-            for (int x = binLo[3 * i]; x <= binHi[3 * i]; x++) {
-                keys[at] = (unsigned int)binIndex(g, x, y, z);
+            for (layerXBins(g, z, binLo[3 * i], binHi[3 * i], xa, xb); xa <= xb; xa++) {
+                keys[at] = (unsigned int)binIndex(g, xa, y, z);
                 items[at] = (unsigned int)i;
                 at++;
             }
