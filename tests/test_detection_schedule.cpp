@@ -142,6 +142,29 @@ TEST(DetectionSchedule, SetExpiresAfterNmaxStepsOrBeyondItsMargin) {
     EXPECT_TRUE(s.needsDetection());
 }
 
+// A sheared cell limits a set's age below n_max (limitAge): the set expires then, the margin covers
+// that many steps, and a batch stops there; 0 lifts the limit.
+TEST(DetectionSchedule, ShearedCellLimitsTheSetsAge) {
+    DetectionSchedule s;
+    const Settings settings = settingsWith(10, false);
+    s.configure(settings);
+    CollaborationStats stats;
+    const double margin10 = s.marginFor(settings, 1.f);
+    s.limitAge(4);
+    EXPECT_EQ(s.nMax(), 4u);
+    const double vBound = 1.0 + (double)length(settings.gravity) * 4 * settings.dt;
+    EXPECT_NEAR(s.marginFor(settings, 1.f), settings.safetyMultiplier * vBound * settings.dt * 4 + settings.safetyAdder,
+                1e-12);
+    EXPECT_LT(s.marginFor(settings, 1.f), margin10);
+    s.installed(0, 1e-3, stats);
+    EXPECT_FALSE(s.due(3));
+    EXPECT_TRUE(s.due(4));
+    EXPECT_EQ(s.stepsBeforeReview(1, false, 16), 3u);
+    s.limitAge(0);
+    EXPECT_EQ(s.nMax(), 10u);
+    EXPECT_FALSE(s.due(4));
+}
+
 TEST(DetectionSchedule, ResultsAreRejectedWhenStaleOrTravelledTooFar) {
     DetectionSchedule s;
     s.configure(settingsWith(10, true));

@@ -73,6 +73,8 @@ BinGrid makeBinGrid(const SimState& s, double requestedSize) {
         const double volume = s.domainSize.x * s.domainSize.y * s.domainSize.z;
         const double nTarget = 8.0 * (double)std::max<size_t>(s.spheres.size(), 1);
         size = std::max(size, std::cbrt(volume / nTarget));
+        // A sheared cell needs 6 bins or more along x (kinematics/BinGrid.h, layerXBins).
+        if (s.frame.periodic.shear) size = std::min(size, s.domainSize.x / 6.0);
     }
     // Never more bins along an axis than positions can distinguish.
     size = std::max(size, std::max({s.domainSize.x, s.domainSize.y, s.domainSize.z}) / 1e6);

@@ -9,7 +9,8 @@
 namespace deme {
 
 // Bins cover the domain. Bin edge: the user's size if given, else defaultBinSize of the spheres,
-// enlarged if needed so that there are at most ~8 bins per sphere over the domain.
+// enlarged if needed so that there are at most ~8 bins per sphere over the domain (but at least 6
+// along x in a sheared cell).
 BinGrid makeBinGrid(const SimState& s, double requestedSize);
 
 // The bin edge, among twice each sphere radius (grouped), for which a detection's estimated work is

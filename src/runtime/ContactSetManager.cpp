@@ -58,6 +58,7 @@ void ContactSetManager::install(const DetectionReport& r, TimingStats& timing) {
 void ContactSetManager::detectNow(const Settings& settings, unsigned long long step, float maxSpeed,
                                   TimingStats& timing) {
     sync(step, timing);  // the kinematics side takes one order at a time
+    limitShearedAge(settings);
     const double t0 = now();
     m_schedule.beforeSyncDetection(settings.asyncDetection, step, m_stats, timing.seconds[(int)Phase::FORCE]);
     if (beforeDetection) beforeDetection();
@@ -79,8 +80,18 @@ void ContactSetManager::consider(const DetectionReport& r, unsigned long long st
     m_schedule.afterAsyncResult(m_stats, timing.seconds[(int)Phase::FORCE], r.binningSeconds + r.searchSeconds);
 }
 
+// A sheared cell: a set serves at most as many steps as keep the images' drift within half of what
+// the periods let detection reach (orderFor).
+void ContactSetManager::limitShearedAge(const Settings& settings) {
+    if (!period || !period->shear) return;
+    const double perStep = std::fabs(period->shearVelocity) * settings.dt;
+    const double steps = perStep > 0.0 ? std::floor(0.5 * settings.maxMargin / perStep) : 0.0;
+    m_schedule.limitAge(perStep > 0.0 ? (unsigned int)std::max(1.0, std::min(steps, 1e9)) : 0u);
+}
+
 void ContactSetManager::prepareStep(const Settings& settings, unsigned long long step, float maxSpeed,
                                     TimingStats& timing) {
+    limitShearedAge(settings);
     if (!settings.asyncDetection) {
         sync(step, timing);  // left from an asynchronous call before a switch
         if (m_schedule.due(step)) detectNow(settings, step, maxSpeed, timing);

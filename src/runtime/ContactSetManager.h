@@ -62,6 +62,7 @@ class ContactSetManager {
 
   private:
     DetectionOrder orderFor(const Settings& settings, unsigned long long step, float maxSpeed) const;
+    void limitShearedAge(const Settings& settings);
     void detectNow(const Settings& settings, unsigned long long step, float maxSpeed, TimingStats& timing);
     void consider(const DetectionReport& r, unsigned long long step, TimingStats& timing);
     void account(const DetectionReport& r, TimingStats& timing);

@@ -30,7 +30,7 @@ class DetectionSchedule {
     // too small costs an extra detection (the set expires), never a missed contact; so does the cap
     // that periodic boundaries put on it (Settings::maxMargin).
     double marginFor(const Settings& s, float maxSpeed) const {
-        const double n = (double)m_freq.nMax();
+        const double n = (double)nMax();
         const double vNow = std::max<double>(maxSpeed, s.maxVelocity);
         const double vBound = vNow + length(s.gravity) * n * s.dt;
         return std::min(s.maxMargin, s.safetyMultiplier * vBound * s.dt * n + s.safetyAdder);
@@ -39,7 +39,7 @@ class DetectionSchedule {
     // Whether the set in use may not serve step `step`: a host edit, a travel beyond its margin, or
     // n_max steps since its snapshot.
     bool due(unsigned long long step) const {
-        return m_needDetection || m_expired || step - m_acsStep >= m_freq.nMax();
+        return m_needDetection || m_expired || step - m_acsStep >= nMax();
     }
     bool needsDetection() const { return m_needDetection; }
     bool expired() const { return m_expired; }
@@ -55,7 +55,7 @@ class DetectionSchedule {
     // `pollSteps` steps between looks for its result. A travel beyond the margin ends a batch early
     // by itself.
     unsigned long long stepsBeforeReview(unsigned long long step, bool async, unsigned int pollSteps) const {
-        const unsigned long long age = step - m_acsStep, n = m_freq.nMax();
+        const unsigned long long age = step - m_acsStep, n = nMax();
         unsigned long long k = age < n ? n - age : 1;
         if (async) {
             const unsigned long long orderAt = m_freq.orderAge();
@@ -130,7 +130,12 @@ class DetectionSchedule {
         m_costMark = CostMark::at(stats, forceSeconds, detectSeconds);
     }
 
-    unsigned int nMax() const { return m_freq.nMax(); }
+    // The most steps a set serves: n_max, or fewer where a sheared cell limits a set's age
+    // (limitAge).
+    unsigned int nMax() const { return m_freq.nMax() < m_ageLimit ? m_freq.nMax() : m_ageLimit; }
+    // A sheared periodic cell: its images close in at the shear velocity, which travel does not
+    // count, so a set may serve only as many steps as detection's reach allows for (0: no limit).
+    void limitAge(unsigned int steps) { m_ageLimit = steps ? steps : ~0u; }
     double margin() const { return m_margin; }
     unsigned long long generation() const { return m_generation; }
     unsigned long long acsStep() const { return m_acsStep; }
@@ -175,6 +180,7 @@ class DetectionSchedule {
         }
     };
     UpdateFrequency m_freq;
+    unsigned int m_ageLimit = ~0u;  // limitAge
     CostMark m_costMark, m_asyncMark;
     double m_margin = 0.0;
     unsigned long long m_acsStep = 0, m_generation = 0;
