@@ -5,7 +5,7 @@
 // exponent of the Bagnold profile u ~ h^a - (h - z)^a fitted to it (Silbert et al. 2001: a = 3/2
 // for a steady flow), and the stress field of the flow (WriteStressField) with its ratio of shear to
 // normal stress, which a steady flow on an incline makes tan(24 deg) = 0.445.
-//   usage: DEMdemo_ChuteFlow [output_dir] [--quick]
+//   usage: DEMdemo_ChuteFlow [output_dir] [--quick] [--time seconds]   (default 2 s of flow)
 #include <deme/deme.h>
 
 #include "DemoArgs.h"
@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -46,7 +47,16 @@ double fitBagnoldExponent(const std::vector<double>& z, const std::vector<double
 }  // namespace
 
 int main(int argc, char** argv) {
-    const DemoArgs args = parseDemoArgs(argc, argv, "DemoOutput_ChuteFlow");
+    // --time T: how long the flow runs (a steady flow takes some 10^3 sqrt(d / g), about 14 s).
+    double flowTime = 2.0;
+    std::vector<char*> rest{argv[0]};
+    for (int i = 1; i < argc; i++) {
+        if (std::string(argv[i]) == "--time" && i + 1 < argc)
+            flowTime = std::atof(argv[++i]);
+        else
+            rest.push_back(argv[i]);
+    }
+    const DemoArgs args = parseDemoArgs((int)rest.size(), rest.data(), "DemoOutput_ChuteFlow");
     fs::create_directories(args.outDir);
     const double d = 0.002, r = d / 2, theta = 24.0 * PI / 180.0, g = 9.81;
     const float Lx = (float)(20 * d), Ly = (float)(10 * d), Lz = (float)(args.quick ? 25 * d : 40 * d);
@@ -89,7 +99,7 @@ int main(int argc, char** argv) {
     std::printf("%8s %14s %12s\n", "t (s)", "mean u (m/s)", "max speed");
     auto maxSpeed = sim.CreateInspector("clump_max_absv");
     const int frames = args.quick ? 2 : 40;
-    const double frameTime = args.quick ? 0.01 : 0.05;
+    const double frameTime = args.quick ? 0.01 : flowTime / frames;
     for (int f = 1; f <= frames; f++) {
         sim.DoDynamics(frameTime);
         const std::vector<float3> v = tr->Velocities();

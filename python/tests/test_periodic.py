@@ -26,6 +26,41 @@ def test_a_grain_crosses_a_periodic_face_with_its_velocity():
     assert np.allclose(tr.Vel(), [1.0, 0, 0], atol=1e-6)
 
 
+def test_a_grain_through_a_sheared_cells_top_enters_displaced_and_slower():
+    # Lees-Edwards (SetPeriodicShear): through the top at t_c = 0.02 s, the grain enters through the
+    # bottom displaced by the offset rate * Lz * t_c and slower by rate * Lz along x.
+    sim = quiet_solver()
+    mat = material(sim, E=1e7, CoR=0.5, mu=0.5)
+    L, rate, dt = 0.1, 20.0, 1e-4
+    sim.InstructBoxDomainDimension((0.0, L), (0.0, L), (0.0, L))
+    sim.InstructBoxDomainPeriodicity("xyz")
+    sim.SetPeriodicShear(rate)
+    grain = sim.AddClumps(sim.LoadSphereType(sphere_mass(0.005, 2500), 0.005, mat), [[0.05, 0.05, L - 0.0195]])
+    sim.SetInitTimeStep(dt)
+    sim.SetGravitationalAcceleration([0, 0, 0])
+    sim.Initialize()
+    tr = sim.Track(grain)
+    tr.SetVel([0.0, 0, 1.0])  # 1 m/s up: through the top half-way through step 196, ending at 0.0196 s
+    sim.DoDynamics(0.03)
+    U, tc = rate * L, 0.0196
+    offset = U * tc - L * round(U * tc / L)
+    x = 0.05 - offset - U * (0.03 - tc)
+    assert (tr.Pos()[0] - x) % L == pytest.approx(0.0, abs=1e-6) or (tr.Pos()[0] - x) % L == pytest.approx(L, abs=1e-6)
+    assert tr.Vel()[0] == pytest.approx(-U, abs=1e-5)
+
+
+def test_shear_needs_periodic_x_and_z():
+    sim = quiet_solver()
+    mat = material(sim, E=1e7, CoR=0.5, mu=0.5)
+    sim.InstructBoxDomainDimension(0.1, 0.1, 0.1)
+    sim.InstructBoxDomainPeriodicity("x")
+    sim.SetPeriodicShear(1.0)
+    sim.AddClumps(sim.LoadSphereType(sphere_mass(0.005, 2500), 0.005, mat), [[0, 0, 0]])
+    sim.SetInitTimeStep(1e-4)
+    with pytest.raises(deme.Error, match="periodic along x and z"):
+        sim.Initialize()
+
+
 def test_pressed_pair_stress_and_field():
     sim = quiet_solver()
     mat = material(sim, E=1e7, CoR=0.5, mu=0.4)

@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|profile-small|activebox|profile-box|memory|timing|gpus|settled|profile|compile|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|profile-small|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -146,6 +146,18 @@ for step in "${steps[@]}"; do
                 >>"$OUT/memory.log" 2>&1
             echo "memory r = $r: rc $?"
         done
+        ;;
+    shear)
+        # mu(I) in a sheared periodic cell (docs/periodic.md): DEMdemo_SimpleShear on the GPU.
+        DEME_BACKEND=cuda timeout 500 ./build-gpu/demos/DEMdemo_SimpleShear /tmp/deme-shear >"$OUT/shear.log" 2>&1
+        echo "shear: rc $?"; tail -n 3 "$OUT/shear.log"
+        ;;
+    chute)
+        # The chute flow to a steady state (CHUTE_TIME seconds of flow, default 15) on the GPU: its
+        # Bagnold exponent and stress ratio (docs/periodic.md).
+        DEME_BACKEND=cuda timeout 550 ./build-gpu/demos/DEMdemo_ChuteFlow /tmp/deme-chute --time "${CHUTE_TIME:-15}" \
+            >"$OUT/chute.log" 2>&1
+        echo "chute: rc $?"; tail -n 4 "$OUT/chute.log"
         ;;
     profile-box)
         # Nsight Compute: every kernel of some active-box steps (one whole-bed step first, so that the
