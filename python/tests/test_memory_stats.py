@@ -4,27 +4,19 @@
 import pytest
 
 import deme
-from conftest import material, quiet_solver, sphere_mass
+from conftest import pouring_block
 
 GROUPS = ["owner_state", "geometry", "contacts_and_history", "wildcards", "detection_scratch", "output_staging",
           "step_scratch"]
 
 
 def settled_block():
-    r = 0.0025
-    sim = quiet_solver()
-    mat = material(sim, E=1e7, CoR=0.3, mu=0.5)
-    sim.InstructBoxDomainDimension(0.1, 0.1, 0.1)
-    sim.InstructBoxDomainBoundingBC("top_open", mat)
-    pts = deme.HCPSampler(2.05 * r).SampleBox([0, 0, -0.0385], [0.02, 0.02, 0.008])
-    sim.AddClumps(sim.LoadSphereType(sphere_mass(r, 2600), r, mat), pts)
-    sim.SetInitTimeStep(2e-5)
-    sim.SetGravitationalAcceleration([0, 0, -9.81])
+    sim, n = pouring_block()
     with pytest.raises(deme.Error, match="GetMemoryStats"):
         sim.GetMemoryStats()
     sim.Initialize()
     sim.DoDynamics(0.02)
-    return sim, len(pts)
+    return sim, n
 
 
 def test_groups_add_up_and_hold_the_state(capfd):
