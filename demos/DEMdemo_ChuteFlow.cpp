@@ -145,5 +145,8 @@ int main(int argc, char** argv) {
     sim.WriteSphereFile((fs::path(args.outDir) / "spheres.vtu").string());
     sim.FlushOutput();
     std::printf("wrote %s/stress_field.vtu and spheres.vtu\n", args.outDir.string().c_str());
+    // Where the run's time went, and how often contact sets were detected.
+    sim.ShowTimingStats();
+    sim.ShowThreadCollaborationStats();
     return 0;
 }
