@@ -73,9 +73,7 @@ inline void addMemoryStats(JsonLine& j, const deme::MemoryStats& m) {
     const double n = m.spheres ? (double)m.spheres : 1.0;
     j.add("mem_device_bytes", (double)m.deviceTotal()).add("mem_host_bytes", (double)m.hostTotal());
     for (int g = 0; g < deme::NUM_MEMORY_GROUPS; g++) {
-        std::string key = deme::memoryGroupName((deme::MemoryGroup)g);
-        for (char& c : key)
-            if (c == ' ') c = '_';
+        const std::string key = deme::memoryGroupKey((deme::MemoryGroup)g);
         j.add("mem_device_" + key + "_per_sphere", (double)m.deviceBytes[g] / n);
         j.add("mem_host_" + key + "_per_sphere", (double)m.hostBytes[g] / n);
     }

@@ -18,8 +18,10 @@ enum class MemoryGroup : unsigned char {
 };
 constexpr int NUM_MEMORY_GROUPS = 7;
 
-// The group's name as ShowMemoryStats prints it.
+// The group's name as ShowMemoryStats prints it ("owner state"), and as a key of the Python dict
+// and the benchmarks' JSON ("owner_state").
 const char* memoryGroupName(MemoryGroup g);
+const char* memoryGroupKey(MemoryGroup g);
 
 struct MemoryStats {
     size_t deviceBytes[NUM_MEMORY_GROUPS] = {};  // GPU memory held now (all of this process's solvers)

@@ -43,11 +43,9 @@ void exportMessagesAndOutput(py::class_<S>& c) {
                 const deme::MemoryStats m = d.GetMemoryStats();
                 py::dict device, host;
                 for (int g = 0; g < deme::NUM_MEMORY_GROUPS; g++) {
-                    std::string key = deme::memoryGroupName((deme::MemoryGroup)g);
-                    for (char& c : key)
-                        if (c == ' ') c = '_';
-                    device[py::str(key)] = m.deviceBytes[g];
-                    host[py::str(key)] = m.hostBytes[g];
+                    const char* key = deme::memoryGroupKey((deme::MemoryGroup)g);
+                    device[key] = m.deviceBytes[g];
+                    host[key] = m.hostBytes[g];
                 }
                 py::dict r;
                 r["spheres"] = m.spheres;

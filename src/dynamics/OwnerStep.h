@@ -114,8 +114,7 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     // (Lees–Edwards) one that left through a z face also changes its x velocity by the shear
     // velocity, and is displaced by the offset at the step's end.
     float dvx;
-    const double3 x = wrapIntoShearedDomain(c.frame.periodic, advancePosition(k.ownerPos[o], v, c.dt), c.frame.origin,
-                                            shearTimeNow(c.frame.periodic) + c.dt, dvx);
+    const double3 x = wrapIntoDomain(c.frame.periodic, advancePosition(k.ownerPos[o], v, c.dt), c.frame.origin, c.dt, dvx);
     v.x += dvx;
     ow.vel[o] = v;
     const bool encoded = encodePosition(x, c.frame, ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o]);

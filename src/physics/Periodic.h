@@ -76,23 +76,20 @@ DEME_HD_INLINE double wrapAxis(double x, double lo, double length, bool periodic
     return periodic ? x + below + above : x;
 }
 
-DEME_HD_INLINE double3 wrapIntoDomain(const PeriodicBox& p, const double3& x, const double3& lo) {
-    return make_double3(wrapAxis(x.x, lo.x, p.length.x, periodicAlong(p, 0)),
-                        wrapAxis(x.y, lo.y, p.length.y, periodicAlong(p, 1)),
-                        wrapAxis(x.z, lo.z, p.length.z, periodicAlong(p, 2)));
-}
-
-// An owner at x after a step that ends at time t, wrapped into the domain; in a sheared cell one that
-// left through a z face enters through the other displaced along x by the offset at t and with the
-// shear velocity taken off (through the top) or added (through the bottom), returned in dvx.
-DEME_HD_INLINE double3 wrapIntoShearedDomain(const PeriodicBox& p, const double3& x, const double3& lo, double t,
-                                             float& dvx) {
-    // Selects, not branches: the CPU's owner sweep vectorises through this.
+// An owner at x after a step of length dt, wrapped into the domain along its periodic axes. In a
+// sheared cell one that left through a z face enters through the other displaced along x by the
+// offset at the step's end and with the shear velocity taken off (through the top) or added (through
+// the bottom), returned in dvx (0 otherwise). Selects, not branches: the CPU's owner sweep
+// vectorises through this; the offset (and a GPU's clock) is read only for an owner that crossed.
+DEME_HD_INLINE double3 wrapIntoDomain(const PeriodicBox& p, const double3& x, const double3& lo, double dt,
+                                      float& dvx) {
     const double above = x.z < lo.z ? -1.0 : x.z >= lo.z + p.length.z ? 1.0 : 0.0;  // cells above it is in
     const double k = p.shear ? above : 0.0;
-    const double offset = k != 0.0 ? shearOffsetAt(p, t) : 0.0;
+    const double offset = k != 0.0 ? shearOffsetAt(p, shearTimeNow(p) + dt) : 0.0;
     dvx = (float)(-k * p.shearVelocity);
-    return wrapIntoDomain(p, make_double3(x.x - k * offset, x.y, x.z), lo);
+    return make_double3(wrapAxis(x.x - k * offset, lo.x, p.length.x, periodicAlong(p, 0)),
+                        wrapAxis(x.y, lo.y, p.length.y, periodicAlong(p, 1)),
+                        wrapAxis(x.z, lo.z, p.length.z, periodicAlong(p, 2)));
 }
 
 }  // namespace deme

@@ -11,6 +11,13 @@ const char* memoryGroupName(MemoryGroup g) {
     return names[(int)g];
 }
 
+const char* memoryGroupKey(MemoryGroup g) {
+    static const char* keys[NUM_MEMORY_GROUPS] = {"owner_state", "geometry",          "contacts_and_history",
+                                                  "wildcards",   "detection_scratch", "output_staging",
+                                                  "step_scratch"};
+    return keys[(int)g];
+}
+
 namespace {
 
 // f over every array of a field group, counted to group g.

@@ -39,9 +39,10 @@ void CudaDynamics::upload(const SimState& s) {
 
     m_view.frame = s.frame;
     // A sheared cell's image offset follows the steps' clock in the control block (every replayed step
-    // reads it there; physics/Periodic.h).
-    m_view.frame.periodic.shearClock = reinterpret_cast<const double*>(
-        reinterpret_cast<const char*>(m_control.data()) + offsetof(StepBatchControl, time));
+    // reads it there; physics/Periodic.h). Other scenes never read it.
+    if (s.frame.periodic.shear)
+        m_view.frame.periodic.shearClock = reinterpret_cast<const double*>(
+            reinterpret_cast<const char*>(m_control.data()) + offsetof(StepBatchControl, time));
     m_view.domainSize = s.domainSize;
     m_view.numWildcards = s.numWildcards;
     m_view.numOwners = (uint32_t)s.owners.size();
