@@ -65,7 +65,7 @@ ShearPoint shearAt(double phi, bool quick) {
     for (double f : sizes) meanVolume += 4.0 / 3.0 * PI * std::pow(f * r, 3) / 3.0;
     // An FCC lattice of m^3 cells tiling the periodic cube: 4 grains a cell, the cell sized for phi
     // (neighbours 1.09 d apart at phi = 0.58).
-    const int m = quick ? 5 : 8;
+    const int m = quick ? 6 : 8;
     const double a = std::cbrt(4.0 * meanVolume / phi);
     const float L = (float)(m * a);
     DEMSolver sim;
@@ -103,10 +103,10 @@ ShearPoint shearAt(double phi, bool quick) {
     std::vector<double> mass(pts.size());
     for (size_t k = 0; k < pts.size(); k++) mass[k] = pick[k]->mass;
     const double volume = (double)L * L * L;
-    const double strainToSteady = quick ? 0.5 : 1.5, strainMeasured = quick ? 0.5 : 2.5;
+    const double strainToSteady = quick ? 1.0 : 1.5, strainMeasured = quick ? 1.0 : 2.5;
     sim.DoDynamics(strainToSteady / rate);
     double p = 0.0, tau = 0.0;
-    const int samples = quick ? 5 : 25;
+    const int samples = quick ? 10 : 25;
     for (int k = 0; k < samples; k++) {
         sim.DoDynamics(strainMeasured / rate / samples);
         // The contact part from the inspector; the kinetic part from the velocities less the
@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
     const DemoArgs args = parseDemoArgs(argc, argv, "DemoOutput_SimpleShear");
     // Volume fractions from loose to dense (random close packing of frictional spheres is near 0.59).
     const std::vector<double> fractions =
-        args.quick ? std::vector<double>{0.50, 0.56} : std::vector<double>{0.48, 0.52, 0.55, 0.57, 0.58};
+        args.quick ? std::vector<double>{0.50, 0.56, 0.58} : std::vector<double>{0.48, 0.52, 0.55, 0.57, 0.58};
     std::vector<ShearPoint> pts;
     for (double phi : fractions) {
         pts.push_back(shearAt(phi, args.quick));
@@ -158,6 +158,8 @@ int main(int argc, char** argv) {
         const MuILaw law = fitMuI(pts);
         std::printf("mu(I) = mu_s + (mu_2 - mu_s) / (I_0 / I + 1): mu_s = %.3f, mu_2 = %.3f, I_0 = %.3f (rms %.4f)\n",
                     law.muS, law.mu2, law.i0, law.rms);
+        std::printf("{\"fit\": \"mu(I)\", \"mu_s\": %.5f, \"mu_2\": %.5f, \"I_0\": %.5f, \"rms\": %.5f}\n", law.muS,
+                    law.mu2, law.i0, law.rms);
     }
     return 0;
 }

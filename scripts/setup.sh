@@ -31,6 +31,8 @@ py_has wheel || need+=(python3-wheel)
 # for Debian's own /usr/bin/python3.
 /usr/bin/python3 -c "import meshio" 2>/dev/null || need+=(python3-meshio)
 /usr/bin/python3 -c "import PIL" 2>/dev/null || need+=(python3-pil)
+# The validation suite (validation/run.py) draws its plots with matplotlib.
+/usr/bin/python3 -c "import matplotlib" 2>/dev/null || need+=(python3-matplotlib)
 if [ ${#need[@]} -gt 0 ]; then
     echo "installing: ${need[*]}"
     SUDO=""

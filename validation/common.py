@@ -1,0 +1,127 @@
+"""What every validation case shares: finding the engine, its command line, its verdicts, its plot.
+
+A case is a script in validation/cases/ that builds its set-up, measures, compares each measured
+quantity with a published or analytical reference and draws the comparison. It calls `Case.check`
+once per quantity and `Case.finish()` at the end, which writes out/<case>.json (its verdicts) and
+exits with status 1 when a verdict fails. `validation/run.py` runs the cases and gathers their
+verdicts into out/summary.json.
+"""
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+BUILD = os.environ.get("DEME_BUILD_DIR", os.path.join(ROOT, "build"))
+
+
+def import_deme():
+    """The engine's Python module: from PYTHONPATH if set, else from the build tree."""
+    try:
+        import deme  # noqa: F401
+    except ImportError:
+        sys.path.insert(0, os.path.join(BUILD, "python"))
+    import deme
+    return deme
+
+
+def demo_path(name):
+    path = os.path.join(BUILD, "demos", name)
+    if not os.path.exists(path):
+        raise SystemExit(f"{path} is missing: build the engine first (bash scripts/setup.sh)")
+    return path
+
+
+def run_demo(name, *args, timeout=3600):
+    """Runs a C++ demo of the build on the chosen backend (DEME_BACKEND) and returns its stdout."""
+    out = subprocess.run([demo_path(name), *args], capture_output=True, text=True, timeout=timeout)
+    if out.returncode not in (0, 1):
+        sys.stderr.write(out.stdout[-4000:] + out.stderr[-4000:])
+        raise SystemExit(f"{name} failed with status {out.returncode}")
+    return out.stdout
+
+
+def json_lines(text):
+    """The JSON objects a demo printed, one per line."""
+    found = []
+    for line in text.splitlines():
+        line = line.strip()
+        if line.startswith("{") and line.endswith("}"):
+            found.append(json.loads(line))
+    return found
+
+
+def commit():
+    try:
+        return subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
+                              timeout=10).stdout.strip() or "unknown"
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def device(backend):
+    if backend == "cuda":
+        try:
+            name = subprocess.run(["nvidia-smi", "--query-gpu=name", "--format=csv,noheader"], capture_output=True,
+                                  text=True, timeout=20).stdout.strip().splitlines()
+            if name:
+                return name[0]
+        except (OSError, subprocess.SubprocessError):
+            pass
+        return "GPU"
+    return f"CPU ({os.cpu_count()} cores, {platform.machine()})"
+
+
+class Case:
+    """One case's command line (--quick, --backend, --out), verdicts and plot."""
+
+    def __init__(self, name, description):
+        parser = argparse.ArgumentParser(description=description)
+        parser.add_argument("--quick", action="store_true", help="the reduced version (CI)")
+        parser.add_argument("--backend", choices=["cpu", "cuda", "auto"], default=os.environ.get("DEME_BACKEND") or "cpu")
+        parser.add_argument("--out", default=os.path.join(HERE, "out"))
+        self.args = parser.parse_args()
+        self.name = name
+        self.quick = self.args.quick
+        self.backend = self.args.backend
+        os.environ["DEME_BACKEND"] = self.backend  # the engine's solvers and the demos read it
+        os.makedirs(self.args.out, exist_ok=True)
+        self.verdicts = []
+        self.started = time.time()
+
+    def check(self, quantity, reference, source, measured, tolerance, passed):
+        """One verdict: `measured` against `reference` (from `source`) within `tolerance` (words)."""
+        v = {"case": self.name, "quantity": quantity, "reference": reference, "source": source,
+             "measured": measured, "tolerance": tolerance, "pass": bool(passed)}
+        self.verdicts.append(v)
+        print(f"{'PASS' if passed else 'FAIL'}  {quantity}: measured {measured}, reference {reference} ({tolerance})")
+        return passed
+
+    def figure(self, *args, **kwargs):
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        return plt.subplots(*args, **kwargs)
+
+    def save(self, fig):
+        """Writes the case's plot to <out>/<case>.png (through a temporary name)."""
+        fig.suptitle(f"{self.name}{' (quick)' if self.quick else ''}: {self.backend}, {commit()}", fontsize=8, y=0.995)
+        fig.tight_layout()
+        path = os.path.join(self.args.out, self.name + ".png")
+        tmp = path + ".tmp.png"
+        fig.savefig(tmp, dpi=110)
+        os.replace(tmp, path)
+
+    def finish(self):
+        record = {"case": self.name, "quick": self.quick, "backend": self.backend, "device": device(self.backend),
+                  "commit": commit(), "seconds": round(time.time() - self.started, 1), "verdicts": self.verdicts}
+        path = os.path.join(self.args.out, self.name + ".json")
+        with open(path + ".tmp", "w") as f:
+            json.dump(record, f, indent=1)
+        os.replace(path + ".tmp", path)
+        ok = bool(self.verdicts) and all(v["pass"] for v in self.verdicts)
+        sys.exit(0 if ok else 1)
