@@ -33,6 +33,8 @@ py_has wheel || need+=(python3-wheel)
 /usr/bin/python3 -c "import PIL" 2>/dev/null || need+=(python3-pil)
 # The validation suite (validation/run.py) draws its plots with matplotlib.
 /usr/bin/python3 -c "import matplotlib" 2>/dev/null || need+=(python3-matplotlib)
+# ... and runs LIGGGHTS 3.8 beside the engine (validation/cases/peer_hopper.py).
+command -v liggghts >/dev/null || need+=(liggghts)
 if [ ${#need[@]} -gt 0 ]; then
     echo "installing: ${need[*]}"
     SUDO=""
