@@ -1,8 +1,8 @@
 """Single impacts against theory: the contact benchmarks of Chung & Ooi (2011), Granular Matter 13, 643.
 
 The engine's Hertz-Mindlin model (docs/physics.md) in the eight set-ups of Chung & Ooi's benchmark,
-with materials of our choosing (spheres of R = 10 mm, E = 70 GPa, nu = 0.33, rho = 2700 kg/m^3, like
-their aluminium alloy; walls of the same material; no gravity), each compared with the theory it has:
+with materials of our choosing (spheres of R = 10 mm, E = 70 GPa, nu = 0.33, rho = 2700 kg/m^3, an
+aluminium alloy's values; walls of the same material; no gravity), each compared with the theory it has:
 
  1. two identical spheres meeting head-on, elastic (CoR = 1, mu = 0): contact time, largest overlap
     and largest force against Hertz theory (Johnson, Contact Mechanics, 1985, s. 11.1):

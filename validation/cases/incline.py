@@ -1,7 +1,7 @@
 """The end state of a sphere sent up an incline, over a map of slope angles and rolling resistance.
 
-Set-up (paper s. 3.3.1, after Zhang, Fleischmann et al. 2021, "A two-way coupled ... friction model"
-as the paper cites it): a sphere of r = 0.2 m, m = 5 kg, mu_s = mu_k = 0.25 (E = 10 MPa, CoR 0.5)
+Set-up (paper s. 3.3.1, after the friction-model study it cites, luningFricModel2021 in its
+bibliography): a sphere of r = 0.2 m, m = 5 kg, mu_s = mu_k = 0.25 (E = 10 MPa, CoR 0.5)
 starts at 0.5 m/s up a plane inclined at alpha (gravity tilted), resting on it at its static overlap;
 after 2 s its state is stationary (v = w r = 0, to 1 mm/s), rolling (contact point's slip under 1 % of
 v) or rolling with sliding. alpha in 1-45 degrees, Crr in 0-0.2 (9 x 5 points with --quick).
@@ -73,7 +73,7 @@ for crr in crrs:
 for w in wrong:
     print("  differs:", w)
 case.check(f"end states matching the theory ({judged} points >= 2 deg from its lines)", judged,
-           "paper s. 3.3.1; Zhang, Fleischmann et al. (2021)", judged - len(wrong), "all", judged > 0 and not wrong)
+           "paper s. 3.3.1 and the study it cites (luningFricModel2021)", judged - len(wrong), "all", judged > 0 and not wrong)
 
 fig, ax = case.figure(figsize=(6.5, 4.8))
 markers = {0: ("s", "C0"), 1: ("o", "C2"), 2: ("^", "C3")}
