@@ -27,12 +27,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool args0Quick(int argc, char** argv) {
-    for (int i = 1; i < argc; i++)
-        if (std::string(argv[i]) == "--quick") return true;
-    return false;
-}
-
 // The exponent a of u(z) = A (h^a - (h - z)^a) best fitting the layers' mean speeds (least squares
 // over a, A solved for each a).
 double fitBagnoldExponent(const std::vector<double>& z, const std::vector<double>& u, double h) {
@@ -62,17 +56,23 @@ int main(int argc, char** argv) {
     // --width k: a cell of 20 k x 10 k diameters (k^2 x 4,480 grains). The mean speed of the smallest
     // cell wanders by a few per cent over seconds (one of two 16 s runs on the GPU drifted 2.3 %
     // between the last two quarters); k = 2, the default, averages that out.
-    int width = args0Quick(argc, argv) ? 1 : 2;
+    int width = 0;  // 0: not given (2, or 1 with --quick)
     std::vector<char*> rest{argv[0]};
     for (int i = 1; i < argc; i++) {
         if (std::string(argv[i]) == "--time" && i + 1 < argc)
             flowTime = std::atof(argv[++i]);
-        else if (std::string(argv[i]) == "--width" && i + 1 < argc)
-            width = std::max(1, std::atoi(argv[++i]));
-        else
+        else if (std::string(argv[i]) == "--width" && i + 1 < argc) {
+            width = std::atoi(argv[++i]);
+            if (width < 1) {
+                std::fprintf(stderr, "DEMdemo_ChuteFlow: --width needs a whole number of at least 1, got '%s'\n",
+                             argv[i]);
+                return 2;
+            }
+        } else
             rest.push_back(argv[i]);
     }
     const DemoArgs args = parseDemoArgs((int)rest.size(), rest.data(), "DemoOutput_ChuteFlow");
+    if (width == 0) width = args.quick ? 1 : 2;
     fs::create_directories(args.outDir);
     const double d = 0.002, r = d / 2, theta = 24.0 * PI / 180.0, g = 9.81;
     const float Lx = (float)(20 * width * d), Ly = (float)(10 * width * d), Lz = (float)(args.quick ? 30 * d : 60 * d);
@@ -155,8 +155,8 @@ int main(int argc, char** argv) {
     double h = 0.0;
     for (int l = 0; l < layers; l++) h += std::min(1.0, count[l] / fullLayer) * d;
     std::vector<double> zs, us;
-    std::printf("\nvelocity profile over the last %d frames, flow height h = %.2f mm\n%10s %10s %10s\n",
-                averagedFrames, 1e3 * h, "z (mm)", "u (m/s)", "grains");
+    std::printf("\nvelocity profile over the last %d frames, flow height h = %.2f mm\n%10s %10s %10s\n", averagedFrames,
+                1e3 * h, "z (mm)", "u (m/s)", "grains");
     for (int l = 0; l < layers; l++) {
         // Layers of the bulk only: the dilute surface's few grains are ballistic, not Bagnold's flow.
         if (count[l] < 0.5 * fullLayer) continue;
@@ -178,19 +178,21 @@ int main(int argc, char** argv) {
     if (args.quick)
         std::printf("--quick runs far too short for a steady flow: no verdict\n");
     else
-        std::printf("Bagnold profile fitted: exponent %.3f (Silbert et al. 2001: 1.5 in a steady flow; within 10 %%: "
-                    "%s)\nmean speed of the last quarter against the third: %+.2f %% (steady within 2 %%: %s)\n",
-                    a, bagnold ? "yes" : "no", 100.0 * drift, steady ? "yes" : "no");
+        std::printf(
+            "Bagnold profile fitted: exponent %.3f (Silbert et al. 2001: 1.5 in a steady flow; within 10 %%: "
+            "%s)\nmean speed of the last quarter against the third: %+.2f %% (steady within 2 %%: %s)\n",
+            a, bagnold ? "yes" : "no", 100.0 * drift, steady ? "yes" : "no");
 
     // The stress in the flow: mean over its middle, and the field by layer.
     const float3 lo = make_float3(0.f, 0.f, (float)(z0 + 0.25 * h)), hi = make_float3(Lx, Ly, (float)(z0 + 0.75 * h));
     const StressTensor s = sim.CreateInspector("stress", lo, hi)->GetStress();
-    std::printf("stress in the middle half of the flow: pressure %.2f Pa, shear/normal |s_xz|/s_zz = %.3f "
-                "(tan 24 deg = 0.445)\n",
-                s.Pressure(), std::fabs(s.total[2]) / s.total[8]);
+    std::printf(
+        "stress in the middle half of the flow: pressure %.2f Pa, shear/normal |s_xz|/s_zz = %.3f "
+        "(tan 24 deg = 0.445)\n",
+        s.Pressure(), std::fabs(s.total[2]) / s.total[8]);
     sim.SetOutputFormat("VTU");
-    sim.WriteStressField((fs::path(args.outDir) / "stress_field.vtu").string(), make_float3(0.f), make_float3(Lx, Ly, Lz),
-                         1, 1, (unsigned int)std::max(1.0, std::floor(Lz / d)));
+    sim.WriteStressField((fs::path(args.outDir) / "stress_field.vtu").string(), make_float3(0.f),
+                         make_float3(Lx, Ly, Lz), 1, 1, (unsigned int)std::max(1.0, std::floor(Lz / d)));
     sim.WriteSphereFile((fs::path(args.outDir) / "spheres.vtu").string());
     sim.FlushOutput();
     std::printf("wrote %s/stress_field.vtu and spheres.vtu\n", args.outDir.string().c_str());

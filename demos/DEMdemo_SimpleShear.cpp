@@ -85,7 +85,8 @@ ShearPoint shearAt(double phi, bool quick) {
         for (int j = 0; j < m; j++)
             for (int k = 0; k < m; k++)
                 for (const auto& b : basis)
-                    pts.push_back(make_float3((float)((i + b[0]) * a), (float)((j + b[1]) * a), (float)((k + b[2]) * a)));
+                    pts.push_back(
+                        make_float3((float)((i + b[0]) * a), (float)((j + b[1]) * a), (float)((k + b[2]) * a)));
     std::mt19937 rng(11);
     std::vector<std::shared_ptr<DEMClumpTemplate>> pick(pts.size());
     for (auto& t : pick) t = types[rng() % 3];
@@ -145,9 +146,10 @@ int main(int argc, char** argv) {
     for (double phi : fractions) {
         pts.push_back(shearAt(phi, args.quick));
         const ShearPoint& p = pts.back();
-        std::printf("{\"case\": \"SIMPLE-SHEAR\", \"grains\": %zu, \"phi\": %.4f, \"pressure_pa\": %.3f, "
-                    "\"inertial_number\": %.4f, \"mu\": %.4f}\n",
-                    p.grains, p.phi, p.pressure, p.inertial, p.mu);
+        std::printf(
+            "{\"case\": \"SIMPLE-SHEAR\", \"grains\": %zu, \"phi\": %.4f, \"pressure_pa\": %.3f, "
+            "\"inertial_number\": %.4f, \"mu\": %.4f}\n",
+            p.grains, p.phi, p.pressure, p.inertial, p.mu);
         std::fflush(stdout);
     }
     std::sort(pts.begin(), pts.end(), [](const ShearPoint& a, const ShearPoint& b) { return a.inertial < b.inertial; });

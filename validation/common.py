@@ -82,7 +82,8 @@ class Case:
     def __init__(self, name, description):
         parser = argparse.ArgumentParser(description=description)
         parser.add_argument("--quick", action="store_true", help="the reduced version (CI)")
-        parser.add_argument("--backend", choices=["cpu", "cuda", "auto"], default=os.environ.get("DEME_BACKEND") or "cpu")
+        parser.add_argument("--backend", choices=["cpu", "cuda", "auto"],
+                            default=os.environ.get("DEME_BACKEND") or "cpu")
         parser.add_argument("--out", default=os.path.join(HERE, "out"))
         self.args = parser.parse_args()
         self.name = name

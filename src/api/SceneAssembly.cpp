@@ -22,7 +22,7 @@ const char* CALL = "Initialize";
 DomainFrame makeFrame(const float3& lo, const float3& size, unsigned int periodicAxes, bool sheared, double rate) {
     DomainFrame f;
     f.origin = to_double3(lo);
-    f.periodic = PeriodicBox{to_double3(size), periodicAxes};
+    f.periodic = PeriodicBox{to_double3(size), periodicAxes, 0u, 0.0, 0.0, nullptr};
     // Lees–Edwards: the image above slides at rate * Lz (physics/Periodic.h).
     f.periodic.shear = sheared ? 1u : 0u;
     f.periodic.shearVelocity = sheared ? rate * (double)size.z : 0.0;

@@ -5,7 +5,7 @@
 namespace deme {
 
 const char* memoryGroupName(MemoryGroup g) {
-    static const char* names[NUM_MEMORY_GROUPS] = {"owner state", "geometry",         "contacts and history",
+    static const char* names[NUM_MEMORY_GROUPS] = {"owner state", "geometry",          "contacts and history",
                                                    "wildcards",   "detection scratch", "output staging",
                                                    "step scratch"};
     return names[(int)g];
@@ -42,8 +42,9 @@ void countStateMemory(const SimState& s, MemoryStats& m) {
     forEachTriangleField(s.triangles, s.triangles, geometry);
     forEachCacheField(s.cache, s.cache, geometry);
     // The per-contact wildcards are the contacts' history (MemoryGroup::CONTACTS).
-    forEachContactField(s.contacts, s.contacts,
-                        [&](const auto& v, const auto&, FieldRole) { addHost(m, MemoryGroup::CONTACTS, vectorBytes(v)); });
+    forEachContactField(s.contacts, s.contacts, [&](const auto& v, const auto&, FieldRole) {
+        addHost(m, MemoryGroup::CONTACTS, vectorBytes(v));
+    });
     for (const std::vector<float>& w : s.wildcards.owner) addHost(m, MemoryGroup::WILDCARDS, vectorBytes(w));
     for (const std::vector<float>& w : s.wildcards.geometry) addHost(m, MemoryGroup::WILDCARDS, vectorBytes(w));
     addHost(m, MemoryGroup::OWNER_STATE, vectorBytes(s.ownerUserToInternal) + vectorBytes(s.ownerInternalToUser));

@@ -83,7 +83,7 @@ double periodicMarginCap(const SimState& s, const float* familyExtraMargin) {
     for (int a = 0; a < 3; a++)
         if (periodicAlong(p, a)) shortest = std::min(shortest, axisLength(p.length, a));
     double extra = 0.0;
-    for (int f = 0; f < NUM_FAMILIES; f++) extra = std::max(extra, (double)familyExtraMargin[f]);
+    for (unsigned int f = 0; f < NUM_FAMILIES; f++) extra = std::max(extra, (double)familyExtraMargin[f]);
     // 2 r + 2 (margin + extra) <= 0.9 L / 2.
     return std::max(0.0, 0.5 * (0.45 * shortest - 2.0 * largestRadius(s.spheres.radius)) - extra);
 }

@@ -73,7 +73,8 @@ for crr in crrs:
 for w in wrong:
     print("  differs:", w)
 case.check(f"end states matching the theory ({judged} points >= 2 deg from its lines)", judged,
-           "paper s. 3.3.1 and the study it cites (luningFricModel2021)", judged - len(wrong), "all", judged > 0 and not wrong)
+           "paper s. 3.3.1 and the study it cites (luningFricModel2021)", judged - len(wrong), "all",
+           judged > 0 and not wrong)
 
 fig, ax = case.figure(figsize=(6.5, 4.8))
 markers = {0: ("s", "C0"), 1: ("o", "C2"), 2: ("^", "C3")}
