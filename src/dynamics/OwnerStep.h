@@ -113,10 +113,10 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     // periodic axis an owner that left through one face enters through the other; in a sheared cell
     // (Lees–Edwards) one that left through a z face also changes its x velocity by the shear
     // velocity, and is displaced by the offset at the step's end.
-    const WrappedPosition moved =
-        wrapIntoDomain(c.frame.periodic, advancePosition(k.ownerPos[o], v, c.dt), c.frame.origin, c.dt);
-    const double3 x = moved.x;
-    v.x += moved.dvx;
+    float dvx;
+    const double3 x =
+        wrapIntoDomain(c.frame.periodic, advancePosition(k.ownerPos[o], v, c.dt), c.frame.origin, c.dt, dvx);
+    v.x += dvx;
     ow.vel[o] = v;
     const bool encoded = encodePosition(x, c.frame, ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o]);
     k.ownerPos[o] = decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], c.frame);

@@ -76,27 +76,20 @@ DEME_HD_INLINE double wrapAxis(double x, double lo, double length, bool periodic
     return periodic ? x + below + above : x;
 }
 
-// Where an owner that moved to x ends up, and the change of its x velocity.
-struct WrappedPosition {
-    double3 x;
-    float dvx;
-};
-
 // An owner at x after a step of length dt, wrapped into the domain along its periodic axes. In a
 // sheared cell one that left through a z face enters through the other displaced along x by the
 // offset at the step's end and with the shear velocity taken off (through the top) or added (through
-// the bottom) in dvx (0 otherwise). Selects, not branches: the CPU's owner sweep vectorises through
-// this; the offset (and a GPU's clock) is read only for an owner that crossed.
-DEME_HD_INLINE WrappedPosition wrapIntoDomain(const PeriodicBox& p, const double3& x, const double3& lo, double dt) {
+// the bottom), returned in dvx (0 otherwise). Selects, not branches: the CPU's owner sweep
+// vectorises through this; the offset (and a GPU's clock) is read only for an owner that crossed.
+DEME_HD_INLINE double3 wrapIntoDomain(const PeriodicBox& p, const double3& x, const double3& lo, double dt,
+                                      float& dvx) {
     const double above = x.z < lo.z ? -1.0 : x.z >= lo.z + p.length.z ? 1.0 : 0.0;  // cells above it is in
     const double k = p.shear ? above : 0.0;
     const double offset = k != 0.0 ? shearOffsetAt(p, shearTimeNow(p) + dt) : 0.0;
-    WrappedPosition w;
-    w.x = make_double3(wrapAxis(x.x - k * offset, lo.x, p.length.x, periodicAlong(p, 0)),
-                       wrapAxis(x.y, lo.y, p.length.y, periodicAlong(p, 1)),
-                       wrapAxis(x.z, lo.z, p.length.z, periodicAlong(p, 2)));
-    w.dvx = (float)(-k * p.shearVelocity);
-    return w;
+    dvx = (float)(-k * p.shearVelocity);
+    return make_double3(wrapAxis(x.x - k * offset, lo.x, p.length.x, periodicAlong(p, 0)),
+                        wrapAxis(x.y, lo.y, p.length.y, periodicAlong(p, 1)),
+                        wrapAxis(x.z, lo.z, p.length.z, periodicAlong(p, 2)));
 }
 
 }  // namespace deme
