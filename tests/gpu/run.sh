@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|profile-small|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|profile-small|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -258,6 +258,16 @@ for step in "${steps[@]}"; do
         echo "output (DEME_BACKEND=cuda): rc $? ($(grep -c '^\[       OK' "$OUT/output.log") ok)"
         grep -E '^\[  FAILED|^\[  SKIPPED' "$OUT/output.log" | head -20
         timeout 300 ./build-gpu/bench/output_write solver 1000000 /tmp 2>&1 | tee -a "$OUT/output.jsonl" | tail -n 2
+        ;;
+    validation)
+        # The validation suite (validation/run.py) in full on the GPU, with the module and demos of
+        # build-gpu; VALIDATION_CASES names some cases (default: all), VALIDATION_ARGS adds options
+        # (e.g. --quick). Plots and verdicts go to $OUT/validation.
+        DEME_BUILD_DIR="$PWD/build-gpu" PYTHONPATH="$PWD/build-gpu/python" DEME_CACHE_DIR="$DEME_CACHE_DIR" \
+            "$PY" validation/run.py --backend cuda --out "$OUT/validation" ${VALIDATION_ARGS:-} ${VALIDATION_CASES:-} \
+            >"$OUT/validation.log" 2>&1
+        echo "validation (cuda): rc $?"
+        tail -n 40 "$OUT/validation.log"
         ;;
     filter)
         # The gtest filter in FILTER, with DEME_BACKEND=cuda for the tests that are not backend tests
