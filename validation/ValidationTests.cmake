@@ -1,15 +1,20 @@
-# Included by the top-level CMakeLists.txt: `validation/run.py --quick` as the ctest test
-# validation.quick (the README's test command runs it, so CI does), on the CPU backend unless
-# DEME_BACKEND says otherwise, writing its plots and verdicts into <build>/validation-out. A failed
-# verdict fails the test. One thread: ctest -j2 runs another test beside it, and two OpenMP teams
-# of two on two cores wait on each other (226 s so, 31 s alone, 38 s on one thread).
+# Included by the top-level CMakeLists.txt: `validation/run.py --quick <case>` as one ctest test per
+# case, validation.quick.<case> (the README's test command runs them, so CI does), on the CPU backend
+# unless DEME_BACKEND says otherwise, writing plots and verdicts into <build>/validation-out/<case>.
+# A failed verdict fails the test. One test per case so that ctest -j2 spreads them over the cores
+# beside the other tests. One thread each: two OpenMP teams of two on two cores wait on each other
+# (the first three cases took 226 s so, 31 s alone, 38 s on one thread).
 # The interpreter the module was built for (python/CMakeLists.txt picks Debian's unless told).
 set(deme_validation_python ${Python3_EXECUTABLE})
 if(NOT deme_validation_python)
   set(deme_validation_python /usr/bin/python3)
 endif()
-add_test(NAME validation.quick
-         COMMAND ${deme_validation_python} ${PROJECT_SOURCE_DIR}/validation/run.py --quick
-                 --out ${PROJECT_BINARY_DIR}/validation-out)
-set_tests_properties(validation.quick PROPERTIES TIMEOUT 900 LABELS validation
-                     ENVIRONMENT "OMP_NUM_THREADS=1;PYTHONPATH=${PROJECT_BINARY_DIR}/python;DEME_BUILD_DIR=${PROJECT_BINARY_DIR};PYTHONDONTWRITEBYTECODE=1")
+file(GLOB deme_validation_cases CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/validation/cases/*.py)
+foreach(script ${deme_validation_cases})
+  get_filename_component(case ${script} NAME_WE)
+  add_test(NAME validation.quick.${case}
+           COMMAND ${deme_validation_python} ${PROJECT_SOURCE_DIR}/validation/run.py --quick ${case}
+                   --out ${PROJECT_BINARY_DIR}/validation-out/${case})
+  set_tests_properties(validation.quick.${case} PROPERTIES TIMEOUT 900 LABELS validation
+                       ENVIRONMENT "OMP_NUM_THREADS=1;PYTHONPATH=${PROJECT_BINARY_DIR}/python;DEME_BUILD_DIR=${PROJECT_BINARY_DIR};PYTHONDONTWRITEBYTECODE=1")
+endforeach()

@@ -10,6 +10,7 @@ import argparse
 import json
 import os
 import platform
+import shutil
 import subprocess
 import sys
 import time
@@ -94,6 +95,19 @@ class Case:
         self.verdicts = []
         self.started = time.time()
 
+    def require_liggghts(self):
+        """A case that runs LIGGGHTS beside the engine calls this first. LIGGGHTS is a CPU program: where
+        it is missing, a CPU run fails (scripts/setup.sh installs it), and a GPU run (whose machine may
+        have no LIGGGHTS) records the case as skipped, which run.py lists apart and never counts as a
+        pass."""
+        if shutil.which("liggghts"):
+            return
+        if self.backend == "cpu":
+            self.check("LIGGGHTS 3.8 installed (apt-get install liggghts; scripts/setup.sh does)", "found",
+                       "Debian package liggghts", "missing", "needed", False)
+            self.finish()
+        self.finish(skipped="LIGGGHTS is not installed on this machine (run the case with --backend cpu)")
+
     def check(self, quantity, reference, source, measured, tolerance, passed):
         """One verdict: `measured` against `reference` (from `source`) within `tolerance` (words)."""
         v = {"case": self.name, "quantity": quantity, "reference": reference, "source": source,
@@ -117,12 +131,17 @@ class Case:
         fig.savefig(tmp, dpi=110)
         os.replace(tmp, path)
 
-    def finish(self):
+    def finish(self, skipped=None):
+        """Writes the verdicts (or, with `skipped`, why the case did not run here) and exits: 0 when
+        every verdict passed or the case was skipped, 1 otherwise."""
         record = {"case": self.name, "quick": self.quick, "backend": self.backend, "device": device(self.backend),
                   "commit": commit(), "seconds": round(time.time() - self.started, 1), "verdicts": self.verdicts}
+        if skipped:
+            record["skipped"] = skipped
+            print(f"SKIPPED  {self.name}: {skipped}")
         path = os.path.join(self.args.out, self.name + ".json")
         with open(path + ".tmp", "w") as f:
             json.dump(record, f, indent=1)
         os.replace(path + ".tmp", path)
-        ok = bool(self.verdicts) and all(v["pass"] for v in self.verdicts)
+        ok = bool(skipped) or (bool(self.verdicts) and all(v["pass"] for v in self.verdicts))
         sys.exit(0 if ok else 1)

@@ -111,11 +111,9 @@ def write_peer_files(folder, positions):
 
 
 def run_liggghts(folder, n, t_end):
-    """Runs hopper_liggghts.in in `folder` for t_end seconds; returns (times, discharged fractions) or
-    None when LIGGGHTS is not installed."""
+    """Runs hopper_liggghts.in in `folder` for t_end seconds; returns (times, discharged fractions).
+    The case checks first that LIGGGHTS is installed (Case.require_liggghts)."""
     exe = shutil.which("liggghts")
-    if not exe:
-        return None
     steps = int(round(t_end / DT))
     cmd = [exe, "-in", "hopper_liggghts.in", "-log", "none", "-var", "steps", str(steps)]
     mpirun = shutil.which("mpirun")

@@ -1,0 +1,217 @@
+"""The bonded granite of the paper's s. 6.4: Scholtes & Donze's (2013) cohesive-frictional bond law as a
+custom contact force model, and the uniaxial compression rig it is tested in (validation/cases/granite.py).
+
+The law (paper s. 6.4, after Scholtes & Donze 2013, Int. J. Rock Mech. Min. Sci. 61:101-111):
+- Bonds link a sphere to the neighbours whose surfaces lie within gamma_int * R of its own when the
+  specimen is made (R the smaller radius); they are the only links that carry tension.
+- Normal force F_n = k_n u_n - gamma_n m* v_n, u_n the overlap change since bonding (compression
+  positive), k_n = 2 E_micro R_i R_j / (R_i + R_j), gamma_n = 0.01 sqrt(k_n / m*) (paper's Eq.).
+  In tension the bond yields at u_n = delta_y = -sigma_t A_int / k_n and softens linearly with the
+  stiffness -k_n / xi, xi = 2, down to zero force at delta_b = 3 delta_y, where it breaks (the
+  paper's three cases of k_n, written so that the force is continuous at delta_y).
+- Tangential force F_t = -k_t u_t - gamma_t m* v_t, k_t = nu k_n, u_t the tangential displacement
+  (incremental, rotated into the current tangent plane), capped by mu |F_n| + c A_int while the bond
+  has not yielded and by mu |F_n| after; a bond whose shear force exceeds its cap breaks.
+- A_int = pi min(R_i, R_j)^2; sigma_t = 9.3 MPa and c = 200 MPa (the paper's listing), mu = 0.3.
+- A broken or never-bonded pair in contact follows Hertz-Mindlin (paper s. 3.1: E_eff, G_eff from
+  E and nu, CoR-derived damping, Coulomb friction with mu of the pair); so do the spheres and plates.
+- The bending moment of the paper's bonds is left out: the model interface applies forces at the
+  contact point (and `torque_only_force`, the same-sense torque pair of rolling resistance), which
+  cannot express the opposite couples of a bent bond. The paper attaches no failure to it.
+
+Each sphere's owner wildcard `cracked` turns 1 when one of its bonds breaks (for the rendering).
+"""
+import math
+
+import numpy as np
+
+GRANITE_MODEL = r"""
+const float3 velB2A = (ALinVel + rotVelCPA) - (BLinVel + rotVelCPB);
+const float vn = dot(velB2A, B2A);                 // > 0: separating
+const float3 vt = velB2A - vn * B2A;
+const float mEff = AOwnerMass * BOwnerMass / (AOwnerMass + BOwnerMass);
+const float rMin = fminf(ARadius, BRadius);
+float3 ut = make_float3(ut_x, ut_y, ut_z);
+ut -= dot(ut, B2A) * B2A;                          // history into the current tangent plane
+ut += ts * vt;
+if (bond == 1.f) {                                 // marked at set-up: linked if within the range
+    if (-overlapDepth <= gamma_int[bodyAMatType] * rMin) {
+        bond = 2.f;
+        overlap0 = (float)overlapDepth;
+    } else {
+        bond = 0.f;
+        persistent = false;
+    }
+}
+if (bond == 2.f) {
+    const float kn = 2.f * E_micro[bodyAMatType] * ARadius * BRadius / (ARadius + BRadius);
+    const float kt = nu[bodyAMatType] * kn;
+    const float area = deme::PI * rMin * rMin;
+    const float dy = -sigma_t[bodyAMatType] * area / kn;   // yield (tension: negative)
+    const float db = 3.f * dy;                              // failure
+    const float un = (float)overlapDepth - overlap0;        // > 0: compressed
+    if (un >= db) {
+        float fn = (un > dy) ? kn * un : kn * dy * (un - db) / (dy - db);
+        fn -= 0.01f * sqrtf(kn * mEff) * vn;
+        float3 ft = -kt * ut - 0.01f * sqrtf(kt * mEff) * vt;
+        const float cap = mu[bodyAMatType][bodyBMatType] * fabsf(fn) + ((un > dy) ? cohesion[bodyAMatType] * area : 0.f);
+        if (length(ft) <= cap) {
+            force += fn * B2A + ft;
+            ut_x = ut.x; ut_y = ut.y; ut_z = ut.z;
+            return;
+        }
+    }
+    bond = 0.f;                                     // broken in tension or shear, for good
+    persistent = false;
+    cracked[AOwner] = 1.f;
+    cracked[BOwner] = 1.f;
+}
+// Hertz-Mindlin (paper s. 3.1) for pairs without a bond and for the plates, over the overlap beyond
+// the pair's rest overlap when it was linked (a broken link's spheres were at rest there).
+const float ov = (float)overlapDepth - fmaxf(overlap0, 0.f);
+if (ov <= 0.f) {
+    ut_x = ut_y = ut_z = 0.f;
+    return;
+}
+const float R = ARadius * BRadius / (ARadius + BRadius);
+const float sq = sqrtf(R * ov);
+const float Sn = 2.f * E_eff[bodyAMatType][bodyBMatType] * sq;
+const float St = 8.f * G_eff[bodyAMatType][bodyBMatType] * sq;
+const float beta = beta_CoR[bodyAMatType][bodyBMatType];
+const float fn = 4.f / 3.f * E_eff[bodyAMatType][bodyBMatType] * sq * ov
+                 + 2.f * sqrtf(5.f / 6.f) * beta * sqrtf(Sn * mEff) * vn;  // beta < 0: opposes vn
+float3 ft = -St * ut + 2.f * sqrtf(5.f / 6.f) * beta * sqrtf(St * mEff) * vt;
+const float cap = mu[bodyAMatType][bodyBMatType] * fmaxf(fn, 0.f);
+const float ftLen = length(ft);
+if (ftLen > cap && ftLen > 0.f) {
+    ft = ft * (cap / ftLen);
+    ut = -ft / St;                                  // sliding: the spring holds the capped force
+}
+force += fmaxf(fn, 0.f) * B2A + ft;
+ut_x = ut.x; ut_y = ut.y; ut_z = ut.z;
+"""
+
+# Granite and plates (paper s. 6.4, its table, after Potyondy & Cundall 2004 and Scholtes & Donze 2013).
+RHO, E_ROCK, NU_ROCK, MU_ROCK = 2640.0, 60e9, 0.25, 0.30
+UCS, SIGMA_T, COHESION = 200e6, 9.3e6, 200e6
+E_PLATE, NU_PLATE, MU_PLATE = 100e9, 0.30, 0.50
+RADIUS = 1.2e-3
+
+
+def affine_modulus(links_per_shell, kn_over_e, radius=RADIUS, nu_micro=NU_ROCK):
+    """Young's modulus along the stacking axis (c) of an HCP lattice of touching spheres whose bonds
+    are springs k_n (central) and k_t = nu k_n (shear) to the neighbours of the given shells (1: the 12
+    nearest at a = 2R; 2: also the 6 at sqrt(2) a), deformed affinely, per unit E_micro (kn_over_e =
+    k_n / E_micro). Uniaxial stress along c: E = 1 / S_33 of the lattice's compliance. Also returns
+    Poisson's ratio -S_13 / S_33."""
+    a = 2.0 * radius
+    pts = []
+    for k in range(-2, 3):
+        for i in range(-3, 4):
+            for j in range(-3, 4):
+                off = (0.5 * a, a * math.sqrt(3) / 6) if k % 2 else (0.0, 0.0)
+                pts.append((a * (i + 0.5 * j) + off[0], a * math.sqrt(3) / 2 * j + off[1], k * a * math.sqrt(2 / 3)))
+    pts = np.array(pts)
+    dist = np.linalg.norm(pts, axis=1)
+    reach = {1: 1.01 * a, 2: 1.42 * a}[links_per_shell]
+    kn, kt = kn_over_e, nu_micro * kn_over_e
+    vol = a ** 3 / math.sqrt(2)  # per sphere
+    C = np.zeros((3, 3, 3, 3))
+    eye = np.eye(3)
+    for p, l in zip(pts, dist):
+        if l < 1e-12 or l > reach:
+            continue
+        n = p / l
+        nnnn = np.einsum("i,j,k,l->ijkl", n, n, n, n)
+        C += 0.5 * l * l * (kn * nnnn + kt * (np.einsum("ik,j,l->ijkl", eye, n, n) - nnnn)) / vol
+    C = 0.5 * (C + C.transpose(1, 0, 2, 3))
+    C = 0.5 * (C + C.transpose(0, 1, 3, 2))
+    voigt = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
+    M = np.array([[C[i, j, k, m] * (1 if b < 3 else 2) for b, (k, m) in enumerate(voigt)] for (i, j) in voigt])
+    S = np.linalg.inv(M)
+    return 1.0 / S[2, 2], -S[0, 2] / S[2, 2]
+
+
+def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1):
+    """The specimen (an HCP block of touching spheres filling the box of half sizes `half`) between two
+    plates, the bonds made. Returns (solver, block batch, plate trackers, lattice positions)."""
+    sim = deme.DEMSolver()
+    sim.SetVerbosity("ERROR")
+    model = sim.DefineContactForceModel(GRANITE_MODEL)
+    model.SetMustHaveMatProp(["E", "nu", "CoR", "E_micro", "sigma_t", "cohesion", "gamma_int"])
+    model.SetMustPairwiseMatProp(["mu"])
+    model.SetPerContactWildcards(["bond", "overlap0", "ut_x", "ut_y", "ut_z"])
+    model.SetPerOwnerWildcards(["cracked"])
+    rock = sim.LoadMaterial({"E": E_ROCK, "nu": NU_ROCK, "CoR": 0.5, "mu": MU_ROCK, "E_micro": e_micro,
+                             "sigma_t": SIGMA_T, "cohesion": COHESION, "gamma_int": gamma_int})
+    plate = sim.LoadMaterial({"E": E_PLATE, "nu": NU_PLATE, "CoR": 0.5, "mu": MU_PLATE, "E_micro": 0.0,
+                              "sigma_t": 0.0, "cohesion": 0.0, "gamma_int": 0.0})
+    sim.SetMaterialPropertyPair("mu", rock, plate, MU_PLATE)
+    a = 2.0 * RADIUS
+    pts = np.asarray(deme.HCPSampler(a).SampleBox([0, 0, 0], half), dtype=np.float64)
+    if jitter > 0.0:
+        pts += np.random.default_rng(seed).uniform(-jitter * a, jitter * a, pts.shape)
+    z_lo, z_hi = pts[:, 2].min(), pts[:, 2].max()
+    span = 4.0 * max(half)
+    sim.InstructBoxDomainDimension(span, span, span)
+    mass = RHO * 4.0 / 3.0 * math.pi * RADIUS ** 3
+    block = sim.AddClumps(sim.LoadSphereType(mass, RADIUS, rock), pts)
+    bottom = sim.AddBCPlane([0, 0, z_lo - RADIUS], [0, 0, 1], plate)
+    top = sim.AddBCPlane([0, 0, z_hi + RADIUS], [0, 0, -1], plate)
+    bottom.SetFamily(1)
+    top.SetFamily(2)
+    sim.SetFamilyFixed(1)
+    sim.SetFamilyPrescribedLinVel(2, "0", "0", f"{-plate_speed!r}")
+    # Pairs within the interaction range must be in the contact set when the bonds are made.
+    sim.SetFamilyExtraMargin(0, 0.5 * gamma_int * RADIUS + 0.02 * RADIUS)
+    sim.SetGravitationalAcceleration([0, 0, 0])
+    sim.SetInitTimeStep(dt)
+    sim.Initialize()
+    sim.MarkFamilyPersistentContact(0, 0)
+    sim.SetFamilyContactWildcardValue(0, 0, "bond", 1.0)
+    return sim, block, (sim.Track(bottom), sim.Track(top)), pts
+
+
+def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, samples, jitter=0.0):
+    """Runs the test; returns a dict with the stress-strain curve (strain from the outer layers'
+    mean heights, stress = mean plate load over the specimen's cross-section), the number of bonds
+    and the final positions and crack flags."""
+    sim, block, (tr_bottom, tr_top), pts = build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter)
+    sim.DoDynamics(dt)  # the model links the pairs within range at its first call
+    bonds0 = sim.GetNumPersistentContacts()
+    tr = sim.Track(block)
+    layer = np.round(pts[:, 2] / (2.0 * RADIUS * math.sqrt(2.0 / 3.0))).astype(np.int64)  # lattice layers
+    low, high = layer == layer.min(), layer == layer.max()
+    width_x = pts[:, 0].max() - pts[:, 0].min() + 2 * RADIUS
+    width_y = pts[:, 1].max() - pts[:, 1].min() + 2 * RADIUS
+    area = width_x * width_y
+
+    def height():
+        z = tr.Positions()[:, 2].astype(np.float64)
+        return z[high].mean() - z[low].mean()
+
+    h0 = height()
+    t_end = end_strain * (h0 + 2 * RADIUS) / plate_speed
+    strain, stress, bonds = [0.0], [0.0], [bonds0]
+    for _ in range(samples):
+        sim.DoDynamics(t_end / samples)
+        load = 0.5 * (tr_top.ContactForce()[2] - tr_bottom.ContactForce()[2])
+        strain.append((h0 - height()) / h0)
+        stress.append(load / area)
+        bonds.append(sim.GetNumPersistentContacts())
+    n = len(pts)
+    return {"strain": np.array(strain), "stress": np.array(stress), "bonds": np.array(bonds), "spheres": n,
+            "area": area, "height": h0, "positions": tr.Positions().astype(np.float64),
+            "cracked": np.asarray(sim.GetOwnerWildcardValue("cracked", 0, n), dtype=np.float64)}
+
+
+def initial_modulus(strain, stress, lo=0.05 * UCS, hi=0.25 * UCS):
+    """Least-squares slope of stress against strain over the samples of the loading branch (before
+    the peak) whose stress lies in [lo, hi]: by default 10-50 MPa, the first quarter of the granite's
+    strength, where the lattice's first bonds have not yet broken."""
+    ipk = int(np.argmax(stress))
+    s, e = stress[:ipk + 1], strain[:ipk + 1]
+    sel = (s >= lo) & (s <= hi)
+    if sel.sum() < 2:
+        return float("nan")
+    return float(np.polyfit(e[sel], s[sel], 1)[0])

@@ -1,0 +1,75 @@
+"""Uniaxial compression of a bonded granite block (not yet in the suite: see validation/README.md).
+
+Set-up (paper s. 6.4, its granite table): a block of 5 x 5 x 10 cm filled with spheres of R = 1.2 mm on a
+hexagonal close-packed lattice of touching spheres (HCPSampler; 26,208 spheres), granite rho = 2640
+kg/m^3, E = 60 GPa, nu = 0.25, mu = 0.3, between two plates (E = 100 GPa, nu = 0.3, mu = 0.5), the
+lower one fixed, the upper one driven down. The bond law is Scholtes & Donze's (2013) as the paper
+gives it, a custom force model (validation/granite_model.py, where every term and our choices are
+stated): tensile strength 9.3 MPa and cohesion 200 MPa on the contact area pi R^2, linear softening to
+three times the yield opening, gamma_n = 0.01. Bonds link the spheres whose surfaces lie within
+gamma_int R of each other, gamma_int = 0.7, 0.9, 1.1: in this lattice 0.7 links the 12 nearest
+neighbours and 0.9 and 1.1 also the 6 at sqrt(2) a (gap 0.83 R). The micro modulus E_micro (k_n =
+2 E_micro R_i R_j / (R_i + R_j), k_t = nu k_n) is set once from the lattice's affine elasticity so
+that the 18-neighbour lattice has E = 60 GPa along its stacking axis (E_micro = 39.4 GPa); it is
+not fitted to a run. Plate speed 0.05 m/s instead of 5 mm/s (the quasi-static equivalent: the
+dynamic overstress rho c v = 0.6 MPa, 0.3 % of the strength, with c = sqrt(E / rho) = 4.8 km/s; the
+loading lasts some 240 transits of an elastic wave through the block), dt = 0.1 us, to 1 % strain.
+No gravity (2.6 kPa of weight against 200 MPa). Strain: the shortening between the mean heights of
+the top and bottom sphere layers over their initial distance (a strain gauge on the specimen: the
+plates' Hertzian contacts stay out of it); stress: the mean of the two plates' loads over the
+block's cross-section. --quick: a block of 1.2 x 1.2 x 2.4 cm (390 spheres), gamma_int 0.7 and 1.1,
+the plate at 0.2 m/s (2.5 MPa of overstress), to 1.5 % strain.
+
+Reference: the granite's UCS 200 MPa and Young's modulus 60 GPa (Potyondy & Cundall 2004, the paper's
+table); the paper reached 8 % and 5 % at gamma_int = 1.1. Verdicts (gamma_int = 1.1): the peak
+stress within 10 % of 200 MPa, the initial modulus (the slope over 10-50 MPa, before the first bonds
+break) within 10 % of 60 GPa.
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from common import Case, import_deme  # noqa: E402
+import granite_model as gm  # noqa: E402
+
+case = Case("granite", __doc__)
+deme = import_deme()
+import numpy as np  # noqa: E402
+
+e_micro = gm.E_ROCK / gm.affine_modulus(2, gm.RADIUS)[0]
+if case.quick:
+    half, gammas, speed, end_strain = [0.006, 0.006, 0.012], [0.7, 1.1], 0.2, 0.015
+else:
+    half, gammas, speed, end_strain = [0.025, 0.025, 0.05], [0.7, 0.9, 1.1], 0.05, 0.01
+runs = {}
+for g in gammas:
+    r = gm.compress(deme, half, g, e_micro, speed, 1e-7, end_strain, 100)
+    r["modulus"] = gm.initial_modulus(r["strain"], r["stress"])
+    ipk = int(np.argmax(r["stress"]))
+    r["peak"], r["peak_strain"] = float(r["stress"][ipk]), float(r["strain"][ipk])
+    runs[g] = r
+    print(f"gamma_int {g}: {r['spheres']} spheres, {r['bonds'][0]} bonds ({r['bonds'][-1]} left), "
+          f"modulus {r['modulus'] / 1e9:.1f} GPa, peak {r['peak'] / 1e6:.1f} MPa at strain {r['peak_strain']:.4f}")
+
+top = runs[max(gammas)]
+src = "granite, paper s. 6.4 table (Potyondy & Cundall 2004)"
+case.check(f"peak stress, gamma_int {max(gammas)} (MPa)", gm.UCS / 1e6, src, round(top["peak"] / 1e6, 1), "10 %",
+           abs(top["peak"] - gm.UCS) <= 0.1 * gm.UCS)
+case.check(f"initial modulus, gamma_int {max(gammas)} (GPa)", gm.E_ROCK / 1e9, src, round(top["modulus"] / 1e9, 1),
+           "10 %", abs(top["modulus"] - gm.E_ROCK) <= 0.1 * gm.E_ROCK)
+
+fig, (ax, ax2) = case.figure(1, 2, figsize=(10, 4.2), gridspec_kw={"width_ratios": [3, 2]})
+for g, r in runs.items():
+    ax.plot(r["strain"] * 100, r["stress"] / 1e6, label=f"gamma_int {g}: {r['bonds'][0]} bonds")
+ax.axhline(gm.UCS / 1e6, color="k", ls=":", label="UCS 200 MPa")
+e = np.linspace(0, gm.UCS / gm.E_ROCK, 2)
+ax.plot(e * 100, e * gm.E_ROCK / 1e6, "k--", lw=0.8, label="E = 60 GPa")
+ax.set(xlabel="axial strain (%)", ylabel="axial stress (MPa)", title=f"{top['spheres']} spheres")
+ax.legend(fontsize=7)
+p, c = top["positions"], top["cracked"]
+mid = np.abs(p[:, 1] - np.median(p[:, 1])) < gm.RADIUS * 1.5
+ax2.scatter(p[mid, 0] * 100, p[mid, 2] * 100, s=4, c=np.where(c[mid] > 0, "C3", "0.7"))
+ax2.set(xlabel="x (cm)", ylabel="z (cm)", aspect="equal",
+        title=f"gamma_int {max(gammas)} at the end: red, a bond broke")
+case.save(fig)
+case.finish()
