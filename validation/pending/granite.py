@@ -48,7 +48,8 @@ for g in gammas:
     ipk = int(np.argmax(r["stress"]))
     r["peak"], r["peak_strain"] = float(r["stress"][ipk]), float(r["strain"][ipk])
     runs[g] = r
-    print(f"gamma_int {g}: {r['spheres']} spheres, {r['bonds'][0]} bonds ({r['bonds'][-1]} left), "
+    print(f"gamma_int {g}: {r['spheres']} spheres ({r['removed']} spalled off), "
+          f"{r['bonds'][0]} bonds ({r['bonds'][-1]} left), "
           f"modulus {r['modulus'] / 1e9:.1f} GPa, peak {r['peak'] / 1e6:.1f} MPa at strain {r['peak_strain']:.4f}")
 
 top = runs[max(gammas)]
