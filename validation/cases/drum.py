@@ -1,0 +1,291 @@
+"""Rotating drum: the angle of repose over friction and rolling resistance (paper s. 6.2.1), with
+LIGGGHTS 3.8 on the same drums at three points.
+
+Set-up (validation/drum_setup.py): a drum of inner diameter D = 0.19 m turning at 3.6 rpm about its
+horizontal axis, half filled (the paper's number of grains per unit depth: 13,024 PS or 19,036 PC in
+0.20 m). Mantle (an analytical cylinder) and both end walls (planes) turn with it; walls as in the
+paper's own drum demos (DEM-Engine's DEMdemo_Granular_PlasticSphereDrum.cpp, 2023): E = 10 GPa,
+nu = 0.3, grain-wall CoR = 0.5 and mu = 0.30 whatever the grains' mu, but grain-wall Crr = 0 (the
+demo's 0.05 left out: the engine's rolling resistance against a turning wall is not relative to the
+wall -- a sphere rolling in place on the mantle feels none, README -- so it would be another model
+than LIGGGHTS's). Grains, the paper's table: PS, spheres of r = 3 mm, rho = 1592 kg/m^3; PC,
+"cylinders" of 5 spheres of r = 2 mm, centres 1 mm apart (8 mm long), with a solid cylinder's mass
+and inertia at 1128 kg/m^3 (as the demo); E = 10 MPa, nu = 0.35, CoR = 0.85; the default
+Hertz-Mindlin model with rolling resistance. One simulation holds a drum per (mu, Crr) point, mu in
+[0, 0.9] and Crr in [0, 0.08] (DRUM_GRID=<n_mu>x<n_Crr>, default 7x3; 13x5 is the paper's matrix).
+The grains start on a jittered lattice whose surface is tilted 30 degrees the way the drum lifts it
+(so that every point flows well within the paper's 2 s), settle 0.3 s with the drum at rest, then
+the drum turns 2 s to steady state and 3 s more, over which the angle is measured 30 times (every
+0.1 s) and averaged, as in the paper. Time step 2e-5 s (10 % of the PS grains' Rayleigh time, 17 % of
+a PC sphere's); n_max at most 30.
+
+Measurement (drum_setup.surface_angle): in the drum's cross-section (every grain's centre, whatever
+its depth), bins two volume-equivalent diameters wide over the middle half of the drum (|x| <= R/2);
+each bin's surface height is the mean height of its k highest grains (k = half a monolayer of the
+bin); a least-squares line through the bins' heights; the angle is atan of its slope. A point's
+uncertainty (se) is the samples' standard deviation over the square root of their effective number
+(lag-1 autocorrelation).
+
+What the full version changes from the paper, and why (about 5 minutes of one H200 for the case,
+LIGGGHTS beside it on the CPU): the PS map keeps the paper's depth, 0.20 m (DRUM_DEPTH_PS); the PC
+map's drums are 0.05 m deep (DRUM_DEPTH_PC; 4,759 clumps, 23,795 spheres a drum: at 0.20 m its
+7 x 3 map alone would be 2 M spheres), end walls kept, so its angles include four times the end
+walls' share of the paper's drum. The LIGGGHTS points run on three more PS drums, 0.05 m deep
+(DRUM_DEPTH_PEER: 3,256 spheres each, so that LIGGGHTS on the CPU keeps pace with the GPU), from the
+engine's settled state (positions, velocities, spins) in both codes. DRUM_TIMES=settle,steady,measure.
+
+Reference and verdicts: the paper's findings (s. 6.2.1; its figure's values are not in our data):
+spheres at mu = 0 give under 5 degrees (every Crr); the angle rises with mu (every Crr, both
+materials) and with Crr (every mu > 0, spheres; the paper finds Crr's effect on the cylinders small,
+drawn, not judged): along each line no step falls by more than twice its se and the last point
+exceeds the first by more than twice theirs. At (mu, Crr) = (0.3, 0), (0.6, 0.04), (0.9, 0.08) the
+spheres' angle is within 2 degrees of LIGGGHTS 3.8's (drum_liggghts.in: Hertz-Mindlin with history,
+CoR damping, constant directional torque rolling friction with the grains' pair coefficient doubled,
+as in the hopper case; the drums as turning STL meshes of 96 flats lying at R), under mpirun
+(DEME_LIGGGHTS_NP ranks; by default min(12, cores - 1) beside the GPU; on the CPU backend after the
+engine, with min(12, cores) ranks, or one with OMP_NUM_THREADS=1).
+
+--quick (CI, one core, about 90 s idle): spheres only; a thin drum (0.02 m deep, 1,302 spheres),
+soft grains (E = 1 MPa, dt = 1e-4 s: 15 % of their Rayleigh time), four points, (mu, Crr) = (0, 0),
+(0.15, 0), (0.5, 0), (0.15, 0.08); 0.25 s of settling, 1.5 s to steady state, 30 samples over 1.5 s;
+LIGGGHTS (one process) at (0.15, 0) only, on the same drum: in so thin a drum the flow at higher
+friction is intermittent and its 1-1.5 s means scatter by up to 2 degrees between runs of either code.
+"""
+import json
+import math
+import os
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from common import Case, import_deme  # noqa: E402
+import drum_setup as ds  # noqa: E402
+
+case = Case("drum", __doc__)
+deme = import_deme()
+import numpy as np  # noqa: E402
+
+LIGGGHTS_POINTS = [(0.3, 0.0), (0.6, 0.04), (0.9, 0.08)]
+
+
+def grid(spec):
+    n_mu, n_crr = (int(v) for v in spec.lower().split("x"))
+    return ([round(float(v), 4) for v in np.linspace(0, 0.9, n_mu)],
+            [round(float(v), 4) for v in np.linspace(0, 0.08, n_crr)])
+
+
+if case.quick:
+    mus, crrs = [0.0, 0.15, 0.5], [0.0, 0.08]
+    peer_points = [(0.15, 0.0)]
+    # one run: the map's drums, one of them also the LIGGGHTS point
+    runs = [dict(name="PS", grain=ds.PS, depth=0.02, young=1e6, dt=1e-4, map=True, peer=True,
+                 points=[(0.0, 0.0), (0.15, 0.0), (0.5, 0.0), (0.15, 0.08)])]
+    settle, steady, measure = 0.25, 1.5, 1.5
+    processes, beside = 1, False
+else:
+    mus, crrs = grid(os.environ.get("DRUM_GRID", "7x3"))
+    every = [(m, c) for c in crrs for m in mus]
+    # the grid points nearest the three LIGGGHTS points
+    peer_points = []
+    for p in LIGGGHTS_POINTS:
+        q = (min(mus, key=lambda m: abs(m - p[0])), min(crrs, key=lambda c: abs(c - p[1])))
+        if q not in peer_points:
+            peer_points.append(q)
+    # first the drums LIGGGHTS runs too (thinner than the map's, so that LIGGGHTS keeps pace with the GPU),
+    # then the two maps
+    runs = [dict(name="PS-peer", grain=ds.PS, depth=float(os.environ.get("DRUM_DEPTH_PEER", "0.05")), young=ds.E,
+                 dt=2e-5, map=False, peer=True, points=peer_points),
+            dict(name="PS", grain=ds.PS, depth=float(os.environ.get("DRUM_DEPTH_PS", "0.20")), young=ds.E, dt=2e-5,
+                 map=True, peer=False, points=every),
+            dict(name="PC", grain=ds.PC, depth=float(os.environ.get("DRUM_DEPTH_PC", "0.05")), young=ds.E, dt=2e-5,
+                 map=True, peer=False, points=every)]
+    settle, steady, measure = (float(v) for v in os.environ.get("DRUM_TIMES", "0.3,2,3").split(","))
+    beside = case.backend == "cuda"  # LIGGGHTS on the CPU while the GPU runs the maps
+    cores = os.cpu_count() or 1
+    if os.environ.get("DEME_LIGGGHTS_NP"):
+        processes = int(os.environ["DEME_LIGGGHTS_NP"])
+    elif beside:
+        processes = max(1, min(12, cores - 1))
+    else:
+        processes = 1 if os.environ.get("OMP_NUM_THREADS") == "1" else min(12, cores)
+SAMPLES = 30
+
+
+def mean_se(a):
+    """Mean of samples and its uncertainty: std / sqrt(n_eff), n_eff from the lag-1 autocorrelation."""
+    a = np.asarray(a, float)
+    n = len(a)
+    s = a.std(ddof=1)
+    rho = 0.0
+    if s > 0:
+        d = a - a.mean()
+        rho = float(np.clip(np.sum(d[1:] * d[:-1]) / np.sum(d * d), 0.0, 0.95))
+    n_eff = n * (1 - rho) / (1 + rho)
+    return float(a.mean()), float(s / math.sqrt(n_eff))
+
+
+# ---- the engine's maps; LIGGGHTS from the spheres' settled packings ----
+results = {}
+peer = {"points": peer_points, "folder": os.path.join(case.args.out, "drum_liggghts")}
+handle = None
+for run in runs:
+    g = run["grain"]
+    t0 = time.time()
+    drums = ds.DrumSet(deme, g, run["depth"], run["points"], settle=settle, dt=run["dt"], young=run["young"])
+    print(f"{run['name']}: {len(run['points'])} drums of {drums.n} grains ({drums.sim.GetNumSpheres()} spheres), "
+          f"depth {run['depth']} m, dt {run['dt']} s", flush=True)
+
+    def settled(states, run=run):
+        global handle
+        if not run["peer"]:
+            return
+        idx = [run["points"].index(p) for p in peer_points]
+        ds.write_peer_files(peer["folder"], run["grain"], run["depth"], peer_points, [states[i] for i in idx],
+                            young=run["young"])
+        peer.update(depth=run["depth"], dt=run["dt"], run=run["name"])
+        if beside:
+            handle = ds.start_liggghts(peer["folder"], peer_points, run["dt"], steady, measure, SAMPLES, processes)
+
+    angles = drums.run(steady, measure, SAMPLES, on_settled=settled)
+    wall = time.time() - t0
+    steps = int(round((settle + steady + measure) / run["dt"]))
+    stats = [mean_se(a) for a in angles]
+    results[run["name"]] = dict(run=run, angles=angles, stats=stats, wall=wall, steps=steps,
+                                spheres=drums.sim.GetNumSpheres(), grains=drums.n)
+    print(f"{run['name']}: {wall:.0f} s ({steps} steps, {drums.sim.GetNumSpheres() * steps / wall:.3g} sphere-steps/s)",
+          flush=True)
+    for p, (m, se) in zip(run["points"], stats):
+        print(f"  mu {p[0]:.3f} Crr {p[1]:.3f}: {m:6.2f} +- {se:.2f} deg")
+    del drums
+
+if not beside:
+    handle = ds.start_liggghts(peer["folder"], peer_points, peer["dt"], steady, measure, SAMPLES, processes)
+peer_result = ds.finish_liggghts(handle, ds.PS, peer["depth"]) if handle else None
+
+# ---- verdicts ----
+ps = results["PS"]
+ps_peer = results[peer["run"]]
+maps = {name: res for name, res in results.items() if res["run"]["map"]}
+
+
+def lookup(res, mu, crr):
+    i = res["run"]["points"].index((mu, crr))
+    return res["stats"][i], res["angles"][i]
+
+
+def rises(res, line):
+    """Along a line of (mu, Crr) points: (passed, words). No step falls by more than twice its
+    uncertainty; the last exceeds the first by more than twice theirs."""
+    st = [lookup(res, *p)[0] for p in line]
+    m = np.array([s[0] for s in st])
+    se = np.array([s[1] for s in st])
+    steps = np.diff(m)
+    tol = 2 * np.sqrt(se[1:] ** 2 + se[:-1] ** 2)
+    worst = int(np.argmin(steps - (-tol)))
+    rise, rise_tol = m[-1] - m[0], 2 * math.hypot(se[0], se[-1])
+    ok = bool(np.all(steps >= -tol) and rise > rise_tol)
+    return ok, (f"{m[0]:.1f} -> {m[-1]:.1f} (+{rise:.1f}, 2 se {rise_tol:.1f}); "
+                f"worst step {steps[worst]:+.1f} (2 se {tol[worst]:.1f})")
+
+
+def present(res, line):
+    return all(p in res["run"]["points"] for p in line)
+
+
+zero = [lookup(ps, 0.0, c)[0][0] for c in crrs if (0.0, c) in ps["run"]["points"]]
+case.check("spheres at mu = 0: largest angle over Crr (deg)", "< 5", "paper s. 6.2.1 (near-horizontal surface)",
+           round(max(abs(v) for v in zero), 2), "5 deg", max(abs(v) for v in zero) < 5)
+
+for name, res in maps.items():
+    words, ok_all = [], True
+    for c in crrs:
+        line = [(m, c) for m in mus if (m, c) in res["run"]["points"]]
+        if len(line) < 2:
+            continue
+        ok, w = rises(res, line)
+        ok_all &= ok
+        words.append(f"Crr {c:g}: {w}")
+    case.check(f"{name}: angle rises with mu (every Crr)", "rising", "paper s. 6.2.1", "; ".join(words),
+               "no step down beyond 2 se; end - start beyond 2 se", ok_all)
+words, ok_all = [], True
+for m in mus:
+    line = [(m, c) for c in crrs if (m, c) in ps["run"]["points"]]
+    if m == 0.0 or len(line) < 2:
+        continue
+    ok, w = rises(ps, line)
+    ok_all &= ok
+    words.append(f"mu {m:g}: {w}")
+case.check("PS: angle rises with Crr (every mu > 0)", "rising", "paper s. 6.2.1", "; ".join(words),
+           "no step down beyond 2 se; end - start beyond 2 se", ok_all)
+
+if peer_result is None:
+    case.check("LIGGGHTS 3.8 installed (apt-get install liggghts; scripts/setup.sh does)", "found",
+               "validation/drum_liggghts.in", "missing", "needed", False)
+else:
+    l_angles, l_wall, l_np = peer_result
+    print(f"LIGGGHTS: {l_wall:.0f} s on {l_np} process(es)")
+    for k, p in enumerate(peer_points):
+        (m_e, se_e), _ = lookup(ps_peer, *p)
+        m_l, se_l = mean_se(l_angles[k])
+        print(f"  mu {p[0]:.3f} Crr {p[1]:.3f}: engine {m_e:.2f} +- {se_e:.2f}, LIGGGHTS {m_l:.2f} +- {se_l:.2f}")
+        case.check(f"PS angle at mu = {p[0]:g}, Crr = {p[1]:g}, {peer['depth']:g} m deep drum (deg)", round(m_l, 2),
+                   "LIGGGHTS 3.8, same drum, packing, model and time step", round(m_e, 2), "2 deg",
+                   abs(m_e - m_l) <= 2.0)
+
+# ---- data and plot ----
+data = {"settle_s": settle, "steady_s": steady, "measure_s": measure, "samples": SAMPLES, "mu": mus, "Crr": crrs,
+        "walls": ds.WALL_PAIR, "runs": {}}
+for name, res in results.items():
+    r = res["run"]
+    data["runs"][name] = {
+        "depth_m": r["depth"], "E_Pa": r["young"], "dt_s": r["dt"], "grains_per_drum": res["grains"],
+        "spheres": res["spheres"], "steps": res["steps"], "wall_s": round(res["wall"], 1),
+        "points": [{"mu": p[0], "Crr": p[1], "angle_deg": round(s[0], 3), "se_deg": round(s[1], 3),
+                    "samples_deg": [round(float(v), 3) for v in a]}
+                   for p, s, a in zip(r["points"], res["stats"], res["angles"])]}
+if peer_result is not None:
+    data["liggghts"] = {"wall_s": round(l_wall, 1), "processes": l_np, "depth_m": peer["depth"], "points": [
+        {"mu": p[0], "Crr": p[1], "angle_deg": round(mean_se(a)[0], 3), "se_deg": round(mean_se(a)[1], 3),
+         "samples_deg": [round(float(v), 3) for v in a]} for p, a in zip(peer_points, l_angles)]}
+with open(os.path.join(case.args.out, "drum-data.json"), "w") as f:
+    json.dump(data, f, indent=1)
+
+panels = len(maps) + 1
+fig, axes = case.figure(1, panels, figsize=(4.8 * panels, 4.2))
+from matplotlib.patches import Rectangle  # noqa: E402 (after case.figure chose the backend)
+for ax, (name, res) in zip(axes, maps.items()):
+    # cells in grid index space, labelled with the values
+    img = np.full((len(crrs), len(mus)), np.nan)
+    for p, s in zip(res["run"]["points"], res["stats"]):
+        img[crrs.index(p[1]), mus.index(p[0])] = s[0]
+    im = ax.imshow(img, origin="lower", aspect="auto", cmap="viridis", vmin=0, vmax=max(45.0, float(np.nanmax(img))))
+    small = len(mus) > 7
+    for p, s in zip(res["run"]["points"], res["stats"]):
+        ax.text(mus.index(p[0]), crrs.index(p[1]), f"{s[0]:.1f}", ha="center", va="center", fontsize=5 if small else 7,
+                color="w" if s[0] < 25 else "k")
+    if res["run"]["peer"] and peer_result is not None:
+        for k, p in enumerate(peer_points):
+            i, j = mus.index(p[0]), crrs.index(p[1])
+            ax.add_patch(Rectangle((i - 0.45, j - 0.45), 0.9, 0.9, fill=False, ec="r", lw=1.5))
+            ax.text(i, j - 0.3, f"L {mean_se(l_angles[k])[0]:.1f}", ha="center", va="center",
+                    fontsize=5 if small else 7, color="r", bbox=dict(fc="w", ec="none", pad=0.3, alpha=0.8))
+    fig.colorbar(im, ax=ax, label="angle of repose (deg)")
+    r = res["run"]
+    ax.set_xticks(range(len(mus)), [f"{m:g}" for m in mus], fontsize=6)
+    ax.set_yticks(range(len(crrs)), [f"{c:g}" for c in crrs], fontsize=6)
+    ax.set_xlabel("mu (grain-grain; grain-wall 0.30)", fontsize=8)
+    ax.set_ylabel("Crr (grain-grain; grain-wall 0)", fontsize=8)
+    ax.set_title(f"{name}: D 0.19 m, depth {r['depth']:g} m, E {r['young'] / 1e6:g} MPa"
+                 + ("; red: LIGGGHTS" if res["run"]["peer"] else ""), fontsize=8)
+ax = axes[-1]
+t = settle + steady + (np.arange(SAMPLES) + 1) * measure / SAMPLES
+for k, p in enumerate(peer_points):
+    ax.plot(t, lookup(ps_peer, *p)[1], "-", color=f"C{k}", label=f"engine mu {p[0]:g}, Crr {p[1]:g}")
+    if peer_result is not None:
+        ax.plot(t, l_angles[k], "--", color=f"C{k}", label="LIGGGHTS 3.8")
+ax.set(xlabel="time (s)", ylabel="angle (deg)",
+       title=f"PS, {peer['depth']:g} m deep: the 30 samples, engine (solid) and LIGGGHTS (dashed)")
+ax.title.set_fontsize(8)
+ax.legend(fontsize=6)
+case.save(fig)
+case.finish()
