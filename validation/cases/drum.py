@@ -17,7 +17,7 @@ The grains start on a jittered lattice whose surface is tilted 30 degrees the wa
 (so that every point flows well within the paper's 2 s), settle 0.3 s with the drum at rest, then
 the drum turns 2 s to steady state and 3 s more, over which the angle is measured 30 times (every
 0.1 s) and averaged, as in the paper. Time step 2e-5 s (10 % of the PS grains' Rayleigh time, 17 % of
-a PC sphere's); n_max at most 30.
+a PC sphere's); contact detection at least every 20 steps on the CPU, 60 on the GPU.
 
 Measurement (drum_setup.surface_angle): in the drum's cross-section (every grain's centre, whatever
 its depth), bins two volume-equivalent diameters wide over the middle half of the drum (|x| <= R/2);
@@ -100,7 +100,7 @@ else:
             dict(name="PC", grain=ds.PC, depth=float(os.environ.get("DRUM_DEPTH_PC", "0.05")), young=ds.E, dt=2e-5,
                  map=True, peer=False, points=every)]
     settle, steady, measure = (float(v) for v in os.environ.get("DRUM_TIMES", "0.3,2,3").split(","))
-    beside = case.backend == "cuda"  # LIGGGHTS on the CPU while the GPU runs the maps
+    beside = case.backend != "cpu"  # LIGGGHTS on the CPU while the GPU runs the maps
     cores = os.cpu_count() or 1
     if os.environ.get("DEME_LIGGGHTS_NP"):
         processes = int(os.environ["DEME_LIGGGHTS_NP"])
@@ -131,7 +131,8 @@ handle = None
 for run in runs:
     g = run["grain"]
     t0 = time.time()
-    drums = ds.DrumSet(deme, g, run["depth"], run["points"], settle=settle, dt=run["dt"], young=run["young"])
+    drums = ds.DrumSet(deme, g, run["depth"], run["points"], settle=settle, dt=run["dt"], young=run["young"],
+                       max_cd_interval=20 if case.backend == "cpu" else 60)
     print(f"{run['name']}: {len(run['points'])} drums of {drums.n} grains ({drums.sim.GetNumSpheres()} spheres), "
           f"depth {run['depth']} m, dt {run['dt']} s", flush=True)
 
@@ -160,9 +161,16 @@ for run in runs:
 
 if not beside:
     handle = ds.start_liggghts(peer["folder"], peer_points, peer["dt"], steady, measure, SAMPLES, processes)
-peer_result = ds.finish_liggghts(handle, ds.PS, peer["depth"]) if handle else None
+peer_result, peer_error = None, None
+if handle:
+    try:
+        peer_result = ds.finish_liggghts(handle, ds.PS, peer["depth"])
+    except RuntimeError as e:
+        peer_error = str(e)
+        print(peer_error)
 
 # ---- verdicts ----
+skipped = None
 ps = results["PS"]
 ps_peer = results[peer["run"]]
 maps = {name: res for name, res in results.items() if res["run"]["map"]}
@@ -184,12 +192,8 @@ def rises(res, line):
     worst = int(np.argmin(steps - (-tol)))
     rise, rise_tol = m[-1] - m[0], 2 * math.hypot(se[0], se[-1])
     ok = bool(np.all(steps >= -tol) and rise > rise_tol)
-    return ok, (f"{m[0]:.1f} -> {m[-1]:.1f} (+{rise:.1f}, 2 se {rise_tol:.1f}); "
+    return ok, (f"{m[0]:.1f} -> {m[-1]:.1f} ({rise:+.1f}, 2 se {rise_tol:.1f}); "
                 f"worst step {steps[worst]:+.1f} (2 se {tol[worst]:.1f})")
-
-
-def present(res, line):
-    return all(p in res["run"]["points"] for p in line)
 
 
 zero = [lookup(ps, 0.0, c)[0][0] for c in crrs if (0.0, c) in ps["run"]["points"]]
@@ -218,9 +222,16 @@ for m in mus:
 case.check("PS: angle rises with Crr (every mu > 0)", "rising", "paper s. 6.2.1", "; ".join(words),
            "no step down beyond 2 se; end - start beyond 2 se", ok_all)
 
-if peer_result is None:
+if peer_error:
+    case.check("LIGGGHTS 3.8 run (its log: <out>/drum_liggghts/liggghts.out)", "finished",
+               "validation/drum_liggghts.in", peer_error.splitlines()[0], "needed", False)
+elif peer_result is None and case.backend == "cpu":
     case.check("LIGGGHTS 3.8 installed (apt-get install liggghts; scripts/setup.sh does)", "found",
                "validation/drum_liggghts.in", "missing", "needed", False)
+elif peer_result is None:
+    # as Case.require_liggghts: a GPU machine may have no LIGGGHTS; the maps ran, the case is skipped
+    skipped = ("LIGGGHTS is not installed on this machine: the maps ran (their verdicts in drum.json, the "
+               "angles in drum-data.json, the plot in drum.png), the LIGGGHTS points did not")
 else:
     l_angles, l_wall, l_np = peer_result
     print(f"LIGGGHTS: {l_wall:.0f} s on {l_np} process(es)")
@@ -288,4 +299,4 @@ ax.set(xlabel="time (s)", ylabel="angle (deg)",
 ax.title.set_fontsize(8)
 ax.legend(fontsize=6)
 case.save(fig)
-case.finish()
+case.finish(skipped=skipped)
