@@ -2,6 +2,11 @@
 simulation (one per (mu, Crr) point), their free-surface angle, and the same drums in LIGGGHTS 3.8
 (drum_liggghts.in).
 
+Contact model: Hertz-Mindlin as the engine's default, with a rolling resistance that opposes the
+grains' relative spin (validation/rolling_model.py, LIGGGHTS's `cdt`) rather than the default's
+(paper s. 3.1), which between grains is no rolling resistance (that file says why);
+DrumSet(rolling="paper") takes the default model.
+
 Geometry: a drum of inner diameter D = 0.19 m and depth W (the paper's 0.20 m, or thinner: a
 parameter) turning about its axis (y, horizontal; gravity along -z) at 3.6 rpm, the positive sense
 about +y, so that the bed rises on the -x side. Its mantle (an analytical cylinder) and its two end
@@ -30,6 +35,8 @@ import subprocess
 
 import numpy as np
 
+import rolling_model
+
 D_DRUM = 0.19
 R_DRUM = D_DRUM / 2
 RPM = 3.6
@@ -39,9 +46,9 @@ E, NU, COR = 1e7, 0.35, 0.85
 # The walls, as in the paper's own drum demos (projectchrono/DEM-Engine, src/demo/
 # DEMdemo_Granular_PlasticSphereDrum.cpp and ..._PlasticCylinderDrum.cpp, 2023): E = 10 GPa, nu = 0.3,
 # and for every grain-wall pair CoR = 0.5 and mu = 0.30, whatever the grains' own mu. The demos' wall
-# Crr of 0.05 is left at 0: the engine's rolling resistance against a turning wall takes the wall's
-# own turning (omega_drum x arm) for rolling, so a sphere rolling in place on the mantle feels none
-# (LIGGGHTS's takes the grain's spin alone): the two codes would not run the same model.
+# Crr of 0.05 is left at 0: against a turning wall the rolling model (rolling_model.py) takes the
+# wall's spin into the relative spin, LIGGGHTS's takes the grain's alone, so with a wall Crr the two
+# codes would not run the same model.
 WALL_E, WALL_NU = 1e10, 0.3
 WALL_PAIR = {"CoR": 0.5, "mu": 0.30, "Crr": 0.0}
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -174,7 +181,9 @@ class DrumSet:
     """Drums of one grain kind and depth, one per (mu, Crr) point, settled, then turned."""
 
     def __init__(self, deme, grain, depth, points, settle=0.3, dt=2e-5, young=E, tilt=30.0, seed=1,
-                 max_cd_interval=20, verbose="WARNING"):
+                 max_cd_interval=20, verbose="WARNING", rolling="relative"):
+        # rolling: "relative", the rolling resistance of rolling_model.py (a couple against the
+        # relative spin, as LIGGGHTS's cdt); "paper", the default model's (paper s. 3.1)
         self.grain, self.depth, self.points = grain, depth, list(points)
         self.dt = dt
         self.settle = settle
@@ -226,6 +235,10 @@ class DrumSet:
         # 0.8 m/s: with dt = 1e-4 s a 16 mm margin, 98 % of the contact set apart, steps ten times
         # slower on the CPU); 20 suits the CPU, the GPU's cheaper detection a longer interval
         sim.SetCDMaxUpdateFreq(max_cd_interval)
+        if rolling == "relative":
+            rolling_model.use(sim)
+        elif rolling != "paper":
+            raise ValueError(f"rolling must be 'relative' or 'paper', not {rolling!r}")
         sim.Initialize()
         self.sim = sim
         self.trackers = [sim.Track(b) for b in self.batches]
@@ -387,7 +400,7 @@ def write_peer_files(folder, grain, depth, points, states, young=E):
              "fix m4 all property/global coefficientFriction peratomtypepair "
              + pair_matrix(lambda k: points[k][0], WALL_PAIR["mu"], 0.0),
              "fix m5 all property/global coefficientRollingFriction peratomtypepair "
-             + pair_matrix(lambda k: 2 * points[k][1], WALL_PAIR["Crr"], 0.0)]
+             + pair_matrix(lambda k: points[k][1], WALL_PAIR["Crr"], 0.0)]
     period = 60.0 / RPM
     names = []
     for k in range(n_d):

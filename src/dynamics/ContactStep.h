@@ -21,7 +21,7 @@
 //   static constexpr bool kSeesApartPairs;    // called for pairs with overlapDepth <= 0 too
 //   static constexpr bool kWritesPersistent;  // may change the contact's `persistent` flag
 //   void operator()(const ContactInputs& in, float* contactWildcards, float3& force,
-//                   float3& torque_only_force, bool& persistent) const;
+//                   float3& torque_only_force, float3& couple_torque, bool& persistent) const;
 #pragma once
 
 #include "dynamics/ContactInputsGather.h"
@@ -62,14 +62,17 @@ DEME_HD_INLINE bool contactStep(S& s, const Model& model, size_t i, float time, 
         for (unsigned int w = 0; w < W; w++) wc[w] = 0.f;
         return false;
     }
-    float3 force = make_float3(0.f), torque_only_force = make_float3(0.f);
+    float3 force = make_float3(0.f), torque_only_force = make_float3(0.f), couple_torque = make_float3(0.f);
     bool persistent = Model::kWritesPersistent && c.persistent[i] != 0;
-    model(in, wc, force, torque_only_force, persistent);
+    model(in, wc, force, torque_only_force, couple_torque, persistent);
     if (Model::kWritesPersistent) c.persistent[i] = persistent ? 1 : 0;
     const float3 total = force + torque_only_force;
     load.force = force;
-    load.torqueA = cross(in.armA, total);
-    load.torqueB = cross(in.armB, -total);
+    // The couple acts on A as given and on B reversed: a pure couple (a bent bond, a relative
+    // rolling resistance) turns the two owners in opposite senses, which no force pair at the
+    // contact point can do.
+    load.torqueA = cross(in.armA, total) + couple_torque;
+    load.torqueB = cross(in.armB, -total) - couple_torque;
     load.ownerA = in.AOwner;
     load.ownerB = in.BOwner;
     return touching;

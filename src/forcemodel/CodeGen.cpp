@@ -84,7 +84,7 @@ std::string userForceModelSource(const ModelLayout& L, const std::string& banner
       << "\n"
          "    DEME_HD_INLINE void operator()(const ContactInputs& deme_in, float* deme_contactWildcards, float3& "
          "force,\n"
-         "                                   float3& torque_only_force, bool& persistent) const {\n";
+         "                                   float3& torque_only_force, float3& couple_torque, bool& persistent) const {\n";
     for (const auto& v : kInputs) o << "        const " << v[0] << " " << v[1] << " = deme_in." << v[1] << ";\n";
     for (size_t i = 0; i < L.contactWildcards.size(); i++)
         o << "        float& " << L.contactWildcards[i] << " = deme_contactWildcards[" << i << "];\n";
@@ -94,6 +94,7 @@ std::string userForceModelSource(const ModelLayout& L, const std::string& banner
     o << "        (void)deme_contactWildcards;\n"
          "        (void)force;\n"
          "        (void)torque_only_force;\n"
+         "        (void)couple_torque;\n"
          "        (void)persistent;\n"
          // The user's code in a block of its own, so that it may declare names the prologue has.
          "        {\n"

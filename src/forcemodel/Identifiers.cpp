@@ -16,7 +16,7 @@ const char* const kModelVariables[] = {
     "bodyAPos", "bodyBPos", "AOriQ", "BOriQ", "AOwnerMass", "BOwnerMass", "AOwnerMOI", "BOwnerMOI",
     "ARadius", "BRadius", "bodyAMatType", "bodyBMatType", "AOwnerFamily", "BOwnerFamily", "ALinVel",
     "BLinVel", "ARotVel", "BRotVel", "AOwner", "BOwner", "AGeo", "BGeo", "armA", "armB", "rotVelCPA",
-    "rotVelCPB", "force", "torque_only_force", "persistent", "E_eff", "G_eff", "beta_CoR"};
+    "rotVelCPB", "force", "torque_only_force", "couple_torque", "persistent", "E_eff", "G_eff", "beta_CoR"};
 
 // Types and helper functions a model calls (VectorTypes.h, Quaternion.h, MaterialMixing.h), the
 // engine types the generated code names (forcemodel/CodeGen.cpp) and the common math functions: a

@@ -22,7 +22,8 @@ struct FrictionalHertzModel {
     PairTable mu, Crr, E_eff, G_eff, beta_CoR;
 
     DEME_HD_INLINE void operator()(const ContactInputs& in, float* contactWildcards, float3& force,
-                                   float3& torque_only_force, bool& persistent) const {
+                                   float3& torque_only_force, float3& couple_torque, bool& persistent) const {
+        (void)couple_torque;
         (void)persistent;
         const float3 B2A = in.B2A;
         const double overlapDepth = in.overlapDepth;
@@ -50,9 +51,10 @@ struct FrictionlessHertzModel {
     PairTable E_eff, beta_CoR;
 
     DEME_HD_INLINE void operator()(const ContactInputs& in, float* contactWildcards, float3& force,
-                                   float3& torque_only_force, bool& persistent) const {
+                                   float3& torque_only_force, float3& couple_torque, bool& persistent) const {
         (void)contactWildcards;
         (void)torque_only_force;
+        (void)couple_torque;
         (void)persistent;
         const float3 B2A = in.B2A;
         const double overlapDepth = in.overlapDepth;

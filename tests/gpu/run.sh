@@ -27,14 +27,15 @@ if [ -d .pydebs ] && ! { /usr/bin/python3 -c "import numpy" 2>/dev/null && [ -d 
         mkdir -p "$prefix"
         for f in .pydebs/*.deb; do dpkg -x "$f" "$prefix"; done
     fi
-    # Debian's matplotlib looks for its data beside itself, then at the absolute /usr/share path; point
-    # the first at the prefix's copy.
+    # Debian's matplotlib looks for its data beside itself, then at the absolute /usr/share path, and
+    # for its rc file only at /etc/matplotlibrc (or $MATPLOTLIBRC): point both at the prefix's copies.
     mpl="$prefix/usr/lib/python3/dist-packages/matplotlib"
     [ -d "$mpl" ] && [ ! -e "$mpl/mpl-data" ] && ln -s "$prefix/usr/share/matplotlib/mpl-data" "$mpl/mpl-data"
     multiarch="$prefix/usr/lib/x86_64-linux-gnu"
     cat >"$prefix/python3" <<WRAPPER
 #!/bin/sh
 export PYTHONHOME="$prefix/usr"
+export MATPLOTLIBRC="$prefix/usr/share/matplotlib/mpl-data/matplotlibrc"
 export LD_LIBRARY_PATH="$multiarch:$multiarch/blas:$multiarch/lapack\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}"
 exec "$prefix/usr/bin/python3.11" "\$@"
 WRAPPER

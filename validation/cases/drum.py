@@ -6,12 +6,13 @@ horizontal axis, half filled (the paper's number of grains per unit depth: 13,02
 0.20 m). Mantle (an analytical cylinder) and both end walls (planes) turn with it; walls as in the
 paper's own drum demos (DEM-Engine's DEMdemo_Granular_PlasticSphereDrum.cpp, 2023): E = 10 GPa,
 nu = 0.3, grain-wall CoR = 0.5 and mu = 0.30 whatever the grains' mu, but grain-wall Crr = 0 (the
-demo's 0.05 left out: the engine's rolling resistance against a turning wall is not relative to the
-wall -- a sphere rolling in place on the mantle feels none, README -- so it would be another model
-than LIGGGHTS's). Grains, the paper's table: PS, spheres of r = 3 mm, rho = 1592 kg/m^3; PC,
+demo's 0.05 left out: a rolling resistance against a turning wall must see the wall's spin, which
+LIGGGHTS's meshes do not carry into it). Grains, the paper's table: PS, spheres of r = 3 mm, rho = 1592 kg/m^3; PC,
 "cylinders" of 5 spheres of r = 2 mm, centres 1 mm apart (8 mm long), with a solid cylinder's mass
-and inertia at 1128 kg/m^3 (as the demo); E = 10 MPa, nu = 0.35, CoR = 0.85; the default
-Hertz-Mindlin model with rolling resistance. One simulation holds a drum per (mu, Crr) point, mu in
+and inertia at 1128 kg/m^3 (as the demo); E = 10 MPa, nu = 0.35, CoR = 0.85; Hertz-Mindlin
+with the rolling resistance of Ai et al.'s model A, a couple against the owners' relative spin
+(validation/rolling_model.py; DRUM_ROLLING=paper runs the default model, whose rolling term is the
+paper's, for comparison: README). One simulation holds a drum per (mu, Crr) point, mu in
 [0, 0.9] and Crr in [0, 0.08] (DRUM_GRID=<n_mu>x<n_Crr>, default 7x3; 13x5 is the paper's matrix).
 The grains start on a jittered lattice whose surface is tilted 30 degrees the way the drum lifts it
 (so that every point flows well within the paper's 2 s), settle 0.3 s with the drum at rest, then
@@ -26,11 +27,12 @@ bin); a least-squares line through the bins' heights; the angle is atan of its s
 uncertainty (se) is the samples' standard deviation over the square root of their effective number
 (lag-1 autocorrelation).
 
-What the full version changes from the paper, and why (about 5 minutes of one H200 for the case,
+What the full version changes from the paper, and why (about 7 minutes of one H200 for the case,
 LIGGGHTS beside it on the CPU): the PS map keeps the paper's depth, 0.20 m (DRUM_DEPTH_PS); the PC
 map's drums are 0.05 m deep (DRUM_DEPTH_PC; 4,759 clumps, 23,795 spheres a drum: at 0.20 m its
 7 x 3 map alone would be 2 M spheres), end walls kept, so its angles include four times the end
-walls' share of the paper's drum. The LIGGGHTS points run on three more PS drums, 0.05 m deep
+walls' share of the paper's drum, and it runs the grid's first and last Crr only (Crr is not judged
+for the cylinders; so the case fits one 10-minute command). The LIGGGHTS points run on three more PS drums, 0.05 m deep
 (DRUM_DEPTH_PEER: 3,256 spheres each, so that LIGGGHTS on the CPU keeps pace with the GPU), from the
 engine's settled state (positions, velocities, spins) in both codes. DRUM_TIMES=settle,steady,measure.
 
@@ -40,10 +42,14 @@ materials) and with Crr (every mu > 0, spheres; the paper finds Crr's effect on 
 drawn, not judged): along each line no step falls by more than twice its se and the last point
 exceeds the first by more than twice theirs. At (mu, Crr) = (0.3, 0), (0.6, 0.04), (0.9, 0.08) the
 spheres' angle is within 2 degrees of LIGGGHTS 3.8's (drum_liggghts.in: Hertz-Mindlin with history,
-CoR damping, constant directional torque rolling friction with the grains' pair coefficient doubled,
-as in the hopper case; the drums as turning STL meshes of 96 flats lying at R), under mpirun
+CoR damping, constant directional torque rolling friction, the same law as the engine's model here; the drums as turning STL meshes of 96 flats lying at R), under mpirun
 (DEME_LIGGGHTS_NP ranks; by default min(12, cores - 1) beside the GPU; on the CPU backend after the
 engine, with min(12, cores) ranks, or one with OMP_NUM_THREADS=1).
+
+On a GPU machine without LIGGGHTS the case runs the maps, writes the LIGGGHTS set-up beside its output
+(<out>/drum_liggghts: the settled packings, the drums as STL, the input) and is listed as skipped;
+DRUM_FROM=<that output folder> run.py drum, on a machine with LIGGGHTS, then runs LIGGGHTS there from
+those packings and states every verdict, with the maps read back from <out>/drum-data.json.
 
 --quick (CI, one core, about 90 s idle): spheres only; a thin drum (0.02 m deep, 1,302 spheres),
 soft grains (E = 1 MPa, dt = 1e-4 s: 15 % of their Rayleigh time), four points, (mu, Crr) = (0, 0),
@@ -98,7 +104,7 @@ else:
             dict(name="PS", grain=ds.PS, depth=float(os.environ.get("DRUM_DEPTH_PS", "0.20")), young=ds.E, dt=2e-5,
                  map=True, peer=False, points=every),
             dict(name="PC", grain=ds.PC, depth=float(os.environ.get("DRUM_DEPTH_PC", "0.05")), young=ds.E, dt=2e-5,
-                 map=True, peer=False, points=every)]
+                 map=True, peer=False, points=[(m, c) for c in sorted({crrs[0], crrs[-1]}) for m in mus])]
     settle, steady, measure = (float(v) for v in os.environ.get("DRUM_TIMES", "0.3,2,3").split(","))
     beside = case.backend != "cpu"  # LIGGGHTS on the CPU while the GPU runs the maps
     cores = os.cpu_count() or 1
@@ -128,11 +134,40 @@ def mean_se(a):
 results = {}
 peer = {"points": peer_points, "folder": os.path.join(case.args.out, "drum_liggghts")}
 handle = None
+earlier = os.environ.get("DRUM_FROM")
+if earlier:
+    # Finish an earlier run's peer verdicts here (a GPU machine without LIGGGHTS): its maps from
+    # drum-data.json, LIGGGHTS from the settled packings it wrote, on this machine's CPU.
+    import shutil
+    with open(os.path.join(earlier, "drum-data.json")) as f:
+        data = json.load(f)
+    mus, crrs, settle, steady, measure = data["mu"], data["Crr"], data["settle_s"], data["steady_s"], data["measure_s"]
+    for name, r in data["runs"].items():
+        points = [(p["mu"], p["Crr"]) for p in r["points"]]
+        run = dict(name=name, grain=ds.PC if name.startswith("PC") else ds.PS, depth=r["depth_m"], young=r["E_Pa"],
+                   dt=r["dt_s"], map=not name.endswith("-peer"), peer=name.endswith("-peer") or name == "PS",
+                   points=points)
+        results[name] = dict(run=run, angles=[p["samples_deg"] for p in r["points"]],
+                             stats=[(p["angle_deg"], p["se_deg"]) for p in r["points"]], wall=r["wall_s"],
+                             steps=r["steps"], spheres=r["spheres"], grains=r["grains_per_drum"])
+        if run["peer"] and not peer.get("run", "").endswith("-peer"):
+            peer.update(depth=run["depth"], dt=run["dt"], run=name)
+    for name in results:
+        results[name]["run"]["peer"] = name == peer["run"]
+    peer["points"] = peer_points = [p for p in (tuple(q) for q in data.get("peer_points", []))] or [
+        p for p in results[peer["run"]]["run"]["points"]]
+    shutil.copytree(os.path.join(earlier, "drum_liggghts"), peer["folder"], dirs_exist_ok=True)
+    runs, beside = [], False
+    processes = int(os.environ.get("DEME_LIGGGHTS_NP", "0")) or max(1, min(12, os.cpu_count() or 1))
+    print(f"the maps of {earlier}; LIGGGHTS here on {processes} process(es)", flush=True)
+rolling = data.get("rolling", "paper") if earlier else os.environ.get("DRUM_ROLLING", "relative")
+if rolling not in ("relative", "paper"):
+    raise ValueError(f"DRUM_ROLLING={rolling!r}: 'relative' or 'paper'")
 for run in runs:
     g = run["grain"]
     t0 = time.time()
     drums = ds.DrumSet(deme, g, run["depth"], run["points"], settle=settle, dt=run["dt"], young=run["young"],
-                       max_cd_interval=20 if case.backend == "cpu" else 60)
+                       max_cd_interval=20 if case.backend == "cpu" else 60, rolling=rolling)
     print(f"{run['name']}: {len(run['points'])} drums of {drums.n} grains ({drums.sim.GetNumSpheres()} spheres), "
           f"depth {run['depth']} m, dt {run['dt']} s", flush=True)
 
@@ -245,7 +280,7 @@ else:
 
 # ---- data and plot ----
 data = {"settle_s": settle, "steady_s": steady, "measure_s": measure, "samples": SAMPLES, "mu": mus, "Crr": crrs,
-        "walls": ds.WALL_PAIR, "runs": {}}
+        "walls": ds.WALL_PAIR, "rolling": rolling, "peer_points": peer_points, "runs": {}}
 for name, res in results.items():
     r = res["run"]
     data["runs"][name] = {
