@@ -310,6 +310,7 @@ with open(os.path.join(case.args.out, "drum-data.json"), "w") as f:
 
 panels = len(maps) + 1
 fig, axes = case.figure(1, panels, figsize=(4.8 * panels, 4.2))
+axes = np.atleast_1d(axes)  # one panel (DRUM_RUNS=PS-peer): a single Axes
 from matplotlib.patches import Rectangle  # noqa: E402 (after case.figure chose the backend)
 for ax, (name, res) in zip(axes, maps.items()):
     # cells in grid index space, labelled with the values
