@@ -173,9 +173,9 @@ __global__ void forceKernel(const ContactInputs* in, FrictionalHertzModel model,
                             float3* torqueOnlyForce, unsigned int n) {
     const unsigned int i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= n) return;
-    float3 f = make_float3(0.f), t = make_float3(0.f);
+    float3 f = make_float3(0.f), t = make_float3(0.f), couple = make_float3(0.f);
     bool persistent = false;
-    model(in[i], wildcards + FrictionalHertzModel::kNumContactWildcards * i, f, t, persistent);
+    model(in[i], wildcards + FrictionalHertzModel::kNumContactWildcards * i, f, t, couple, persistent);
     force[i] = f;
     torqueOnlyForce[i] = t;
 }
