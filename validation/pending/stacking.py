@@ -134,6 +134,7 @@ for k, crr in enumerate(CRRS):
             ax.plot(d * 1e3, m, "o" if s == "stood" else "x", color=f"C{k}", ms=3, alpha=0.5)
         if m_meas is not None:
             ax.plot(d * 1e3, m_meas, "D", color=f"C{k}", ms=6, mfc="none")
+ax.set_yscale("log")
 ax.set(xlabel="gap d (mm)", ylabel="top sphere mass m2 (kg)",
        title=f"o stood, x fell after {T_END:g} s; diamonds: measured critical mass (mu {MU:g}, m1 {M1:g} kg)")
 ax.title.set_fontsize(8)
