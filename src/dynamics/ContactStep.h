@@ -20,6 +20,7 @@
 //   static constexpr unsigned int kNumContactWildcards;  // floats of history per contact
 //   static constexpr bool kSeesApartPairs;    // called for pairs with overlapDepth <= 0 too
 //   static constexpr bool kWritesPersistent;  // may change the contact's `persistent` flag
+//   static constexpr bool kWritesCouple;      // may set `couple_torque` (else it is not added)
 //   void operator()(const ContactInputs& in, float* contactWildcards, float3& force,
 //                   float3& torque_only_force, float3& couple_torque, bool& persistent) const;
 #pragma once
@@ -71,8 +72,12 @@ DEME_HD_INLINE bool contactStep(S& s, const Model& model, size_t i, float time, 
     // The couple acts on A as given and on B reversed: a pure couple (a bent bond, a relative
     // rolling resistance) turns the two owners in opposite senses, which no force pair at the
     // contact point can do.
-    load.torqueA = cross(in.armA, total) + couple_torque;
-    load.torqueB = cross(in.armB, -total) - couple_torque;
+    load.torqueA = cross(in.armA, total);
+    load.torqueB = cross(in.armB, -total);
+    if (Model::kWritesCouple) {  // compiled out for the built-in models, which leave it at zero
+        load.torqueA += couple_torque;
+        load.torqueB -= couple_torque;
+    }
     load.ownerA = in.AOwner;
     load.ownerB = in.BOwner;
     return touching;

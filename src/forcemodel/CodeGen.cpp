@@ -73,6 +73,7 @@ std::string userForceModelSource(const ModelLayout& L, const std::string& banner
       << "    static constexpr unsigned int kNumContactWildcards = " << L.contactWildcards.size() << ";\n"
       << "    static constexpr bool kSeesApartPairs = true;\n"
          "    static constexpr bool kWritesPersistent = true;\n"
+         "    static constexpr bool kWritesCouple = true;\n"
          "\n"
          "    PairTable E_eff, G_eff, beta_CoR;\n";
     for (const auto& n : L.materialProps) o << "    const float* " << n << ";\n";

@@ -17,6 +17,7 @@ struct FrictionalHertzModel {
     static constexpr unsigned int kNumContactWildcards = 4;
     static constexpr bool kSeesApartPairs = false;
     static constexpr bool kWritesPersistent = false;
+    static constexpr bool kWritesCouple = false;
 
     // Pair tables: mu and Crr, and the derived E_eff, G_eff and beta_CoR (see MaterialTables).
     PairTable mu, Crr, E_eff, G_eff, beta_CoR;
@@ -47,6 +48,7 @@ struct FrictionlessHertzModel {
     static constexpr unsigned int kNumContactWildcards = 0;
     static constexpr bool kSeesApartPairs = false;
     static constexpr bool kWritesPersistent = false;
+    static constexpr bool kWritesCouple = false;
 
     PairTable E_eff, beta_CoR;
 

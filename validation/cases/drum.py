@@ -150,25 +150,21 @@ if earlier:
     with open(os.path.join(earlier, "drum-data.json")) as f:
         data = json.load(f)
     mus, crrs, settle, steady, measure = data["mu"], data["Crr"], data["settle_s"], data["steady_s"], data["measure_s"]
+    peer_run = data["peer_run"]
     for name, r in data["runs"].items():
-        points = [(p["mu"], p["Crr"]) for p in r["points"]]
         run = dict(name=name, grain=ds.PC if name.startswith("PC") else ds.PS, depth=r["depth_m"], young=r["E_Pa"],
-                   dt=r["dt_s"], map=not name.endswith("-peer"), peer=name.endswith("-peer") or name == "PS",
-                   points=points)
+                   dt=r["dt_s"], map=name != "PS-peer", peer=name == peer_run,
+                   points=[(p["mu"], p["Crr"]) for p in r["points"]])
         results[name] = dict(run=run, angles=[p["samples_deg"] for p in r["points"]],
                              stats=[(p["angle_deg"], p["se_deg"]) for p in r["points"]], wall=r["wall_s"],
                              steps=r["steps"], spheres=r["spheres"], grains=r["grains_per_drum"])
-        if run["peer"] and not peer.get("run", "").endswith("-peer"):
-            peer.update(depth=run["depth"], dt=run["dt"], run=name)
-    for name in results:
-        results[name]["run"]["peer"] = name == peer["run"]
-    peer["points"] = peer_points = [p for p in (tuple(q) for q in data.get("peer_points", []))] or [
-        p for p in results[peer["run"]]["run"]["points"]]
+    peer.update(depth=results[peer_run]["run"]["depth"], dt=results[peer_run]["run"]["dt"], run=peer_run)
+    peer["points"] = peer_points = [tuple(p) for p in data["peer_points"]]
     shutil.copytree(os.path.join(earlier, "drum_liggghts"), peer["folder"], dirs_exist_ok=True)
     runs, beside = [], False
     processes = int(os.environ.get("DEME_LIGGGHTS_NP", "0")) or max(1, min(12, os.cpu_count() or 1))
     print(f"the maps of {earlier}; LIGGGHTS here on {processes} process(es)", flush=True)
-rolling = data.get("rolling", "paper") if earlier else os.environ.get("DRUM_ROLLING", "relative")
+rolling = data["rolling"] if earlier else os.environ.get("DRUM_ROLLING", "relative")
 if rolling not in ("relative", "paper"):
     raise ValueError(f"DRUM_ROLLING={rolling!r}: 'relative' or 'paper'")
 for run in runs:
@@ -292,7 +288,8 @@ else:
 
 # ---- data and plot ----
 data = {"settle_s": settle, "steady_s": steady, "measure_s": measure, "samples": SAMPLES, "mu": mus, "Crr": crrs,
-        "walls": ds.WALL_PAIR, "rolling": rolling, "peer_points": peer_points, "runs": {}}
+        "walls": ds.WALL_PAIR, "rolling": rolling, "peer_run": peer.get("run"), "peer_points": peer_points,
+        "runs": {}}
 for name, res in results.items():
     r = res["run"]
     data["runs"][name] = {
