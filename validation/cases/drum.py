@@ -122,7 +122,9 @@ else:
         processes = max(1, min(12, cores - 1))
     else:
         processes = 1 if os.environ.get("OMP_NUM_THREADS") == "1" else min(12, cores)
-SAMPLES = 30
+# The paper: 30 samples over the 3 s of measurement (DRUM_SAMPLES and DRUM_TIMES lengthen both, e.g.
+# 90 over 9 s, for a longer average at the same 0.1 s spacing).
+SAMPLES = int(os.environ.get("DRUM_SAMPLES", "30"))
 
 
 def mean_se(a):
@@ -150,6 +152,7 @@ if earlier:
     with open(os.path.join(earlier, "drum-data.json")) as f:
         data = json.load(f)
     mus, crrs, settle, steady, measure = data["mu"], data["Crr"], data["settle_s"], data["steady_s"], data["measure_s"]
+    SAMPLES = data.get("samples", SAMPLES)
     peer_run = data["peer_run"]
     for name, r in data["runs"].items():
         run = dict(name=name, grain=ds.PC if name.startswith("PC") else ds.PS, depth=r["depth_m"], young=r["E_Pa"],
@@ -340,7 +343,7 @@ for k, p in enumerate(peer_points if ps_peer is not None else []):
     if peer_result is not None:
         ax.plot(t, l_angles[k], "--", color=f"C{k}", label="LIGGGHTS 3.8")
 ax.set(xlabel="time (s)", ylabel="angle (deg)",
-       title=f"PS, {peer['depth']:g} m deep: the 30 samples, engine (solid) and LIGGGHTS (dashed)")
+       title=f"PS, {peer['depth']:g} m deep: the {SAMPLES} samples, engine (solid) and LIGGGHTS (dashed)")
 ax.title.set_fontsize(8)
 ax.legend(fontsize=6)
 case.save(fig)
