@@ -3,8 +3,8 @@
 // trajectory: a run of N steps in one call equals N calls of one step, bit for bit, on every backend
 // (the scene gives each grain at most one contact, the floor, so that the GPU's atomic sums have one
 // term and are exact), and the step clock that prescribed motion reads advances within a batch.
-// On a GPU the batch's steps are replays of one captured step (backend/cuda/StepGraph.h); they must
-// equal the same kernels launched one by one.
+// On a GPU the batch's steps are replays of captured steps, several to a graph (backend/cuda/StepGraph.h);
+// they must equal the same kernels launched one by one.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +14,7 @@
 #include "BackendFixture.h"
 #include "TestHelpers.h"
 #include "backend/cuda/Device.h"
+#include "backend/cuda/StepGraph.h"
 
 using namespace deme;
 using namespace deme_test;
@@ -177,4 +178,45 @@ TEST(CudaStepGraphs, ReplayEqualsDirectLaunchesBitForBit) {
         direct = inOneCall(false);
     }
     expectBitForBit(graphs, direct);
+}
+
+// GPU only: graphs of several steps (the default 8, and 7, whose batches of up to 30 steps leave
+// remainders, with batches ended early inside a graph) equal graphs of one step, bit for bit.
+TEST(CudaStepGraphs, GraphsOfSeveralStepsEqualOneStepGraphsBitForBit) {
+    if (!cuda::cudaBackendBuilt() || cuda::usableDevices().empty()) GTEST_SKIP() << "needs a GPU";
+    ScopedEnvironmentVariable backend("DEME_BACKEND", "cuda");
+    Trajectory one;
+    {
+        ScopedEnvironmentVariable steps("DEME_CUDA_GRAPH_STEPS", "1");
+        one = inOneCall(false);
+    }
+    for (const char* n : {"8", "7"}) {
+        SCOPED_TRACE(std::string("steps per graph ") + n);
+        ScopedEnvironmentVariable steps("DEME_CUDA_GRAPH_STEPS", n);
+        expectBitForBit(inOneCall(false), one);
+    }
+}
+
+// The number of steps per graph is read from the environment; anything but a whole number from 1 to
+// 256 is an error that names the variable and the value (checked without a GPU).
+TEST(CudaStepGraphs, StepsPerGraphComesFromTheEnvironment) {
+    {
+        ScopedEnvironmentVariable unset("DEME_CUDA_GRAPH_STEPS", "");
+        EXPECT_EQ(cuda::stepsPerGraph(), 8u);
+    }
+    {
+        ScopedEnvironmentVariable one("DEME_CUDA_GRAPH_STEPS", "1");
+        EXPECT_EQ(cuda::stepsPerGraph(), 1u);
+    }
+    for (const char* bad : {"0", "257", "8x", "-1"}) {
+        ScopedEnvironmentVariable v("DEME_CUDA_GRAPH_STEPS", bad);
+        try {
+            cuda::stepsPerGraph();
+            ADD_FAILURE() << "no error for " << bad;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(std::string("DEME_CUDA_GRAPH_STEPS is '") + bad + "'"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
 }

@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|profile-small|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|graphsteps|profile-small|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -192,6 +192,21 @@ for step in "${steps[@]}"; do
         DEME_CUDA_GRAPHS=0 DEME_BENCH_TIMING=1 timeout 200 ./build-gpu/bench/small_systems drum "" "" cuda async >>"$OUT/small.log" 2>&1
         echo "small drum async, no graphs: rc $?"
         grep -E '^\{' "$OUT/small.log" | cut -c1-300
+        ;;
+    graphsteps)
+        # SMALL-SYSTEMS, asynchronous detection, with graphs of GRAPH_STEPS steps (default 1, 8 and
+        # 32; 1 is a graph per step), each setting twice, alternating, in one command.
+        for round in 1 2; do
+            for c in drum impact; do
+                for k in ${GRAPH_STEPS:-1 8 32}; do
+                    echo "{\"graph_steps\": $k, \"round\": $round}" >>"$OUT/graphsteps.log"
+                    DEME_CUDA_GRAPH_STEPS=$k DEME_BENCH_TIMING=1 timeout 200 ./build-gpu/bench/small_systems $c "" "" cuda async \
+                        >>"$OUT/graphsteps.log" 2>&1
+                    echo "graphsteps $c $k round $round: rc $?"
+                done
+            done
+        done
+        grep -E "^\{" "$OUT/graphsteps.log" | cut -c1-330
         ;;
     sweep)
         # Many small runs on one GPU at once (a calibration sweep): 1, 2, 4 and 8 drum solvers, each

@@ -92,10 +92,12 @@ class CudaDynamics : public DynamicsBackend {
     DeviceBuffer<StepBatchControl> m_control;
     StepBatchControl* m_controlHost = nullptr;
     DeviceBuffer<unsigned int> m_blocksDone;  // deme_place_and_finish's count of finished blocks
-    // One step's launches, without and with stored contact forces, and their graphs.
+    // One step's launches, without and with stored contact forces, and their graphs: plain steps
+    // go in graphs of m_graphSteps steps (StepGraph.h), the rest of a batch one step a graph.
     LaunchList m_plainStep, m_storingStep;
-    StepGraph m_plainGraph, m_storingGraph;
+    StepGraph m_plainGraph, m_plainGraphs, m_storingGraph;
     bool m_useGraphs = true;
+    unsigned int m_graphSteps = 8;
     // The families' prescriptions, compiled from the user's expressions (recompiled when they change).
     CudaModule m_familyModule;
     CudaKernel kFamilyMotion;

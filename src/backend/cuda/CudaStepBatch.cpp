@@ -1,5 +1,5 @@
 // CudaDynamics' steps, in batches (dynamics/StepBatch.h): one step's kernels are written down once
-// as a launch list and replayed for every step of the batch as a CUDA graph (StepGraph.h); the
+// as a launch list and replayed for the steps of the batch from CUDA graphs (StepGraph.h); the
 // step's time, size and the rule that ends a batch early live in a control block in device memory,
 // so nothing in the replayed step changes from one step to the next. The host synchronises once per
 // batch, when it reads the control block back.
@@ -79,13 +79,17 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
     }
     recordStep(m_plainStep, settings, false);
     if (batch.storeContactForcesAtEnd) recordStep(m_storingStep, settings, true);
-    for (unsigned long long k = 0; k < n; k++) {
-        const bool store = batch.storeContactForcesAtEnd && k + 1 == n;
-        const LaunchList& list = store ? m_storingStep : m_plainStep;
-        if (m_useGraphs)
-            (store ? m_storingGraph : m_plainGraph).launch(list, st);
-        else
-            list.enqueue(st);
+    // The batch's steps: the last one stores the contact forces if asked; the plain ones go in
+    // graphs of m_graphSteps steps, then one a graph.
+    const unsigned long long plain = batch.storeContactForcesAtEnd ? n - 1 : n;
+    if (m_useGraphs) {
+        unsigned long long k = 0;
+        if (m_graphSteps > 1)
+            for (; k + m_graphSteps <= plain; k += m_graphSteps) m_plainGraphs.launch(m_plainStep, st, m_graphSteps);
+        for (; k < plain; k++) m_plainGraph.launch(m_plainStep, st);
+        if (plain < n) m_storingGraph.launch(m_storingStep, st);
+    } else {
+        for (unsigned long long k = 0; k < n; k++) (k < plain ? m_plainStep : m_storingStep).enqueue(st);
     }
     m_control.downloadAsync(m_controlHost, 1, st);
     synchronize(st);
@@ -111,10 +115,11 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
 
 std::string CudaDynamics::launchReport() const {
     if (!m_useGraphs) return "steps launched kernel by kernel (DEME_CUDA_GRAPHS=0)";
-    const unsigned long long made = m_plainGraph.captures() + m_storingGraph.captures();
-    const unsigned long long updated = m_plainGraph.updates() + m_storingGraph.updates();
-    return "steps replayed from CUDA graphs: " + std::to_string(made) + " captured (" + std::to_string(updated) +
-           " of them updated in place, " + std::to_string(made - updated) + " instantiated)";
+    const unsigned long long made = m_plainGraph.captures() + m_plainGraphs.captures() + m_storingGraph.captures();
+    const unsigned long long updated = m_plainGraph.updates() + m_plainGraphs.updates() + m_storingGraph.updates();
+    return "steps replayed from CUDA graphs of up to " + std::to_string(m_graphSteps) + " steps: " +
+           std::to_string(made) + " captured (" + std::to_string(updated) + " of them updated in place, " +
+           std::to_string(made - updated) + " instantiated)";
 }
 
 }  // namespace deme::cuda

@@ -2,8 +2,11 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <string>
 
 #include <cuda_runtime_api.h>
+
+#include <deme/Error.h>
 
 #include "backend/cuda/CudaCheck.h"
 
@@ -18,17 +21,27 @@ bool stepGraphsEnabled() {
     return !(v && std::strcmp(v, "0") == 0);
 }
 
+unsigned int stepsPerGraph() {
+    const char* v = std::getenv("DEME_CUDA_GRAPH_STEPS");
+    if (!v || !*v) return 8;
+    char* end = nullptr;
+    const unsigned long n = std::strtoul(v, &end, 10);
+    if (*end || n < 1 || n > 256)
+        throwError("Initialize", std::string("DEME_CUDA_GRAPH_STEPS is '") + v + "', not a whole number from 1 to 256");
+    return (unsigned int)n;
+}
+
 StepGraph::~StepGraph() {
     if (m_exec && cudaGraphExecDestroy(static_cast<cudaGraphExec_t>(m_exec)) != cudaSuccess) cudaGetLastError();
 }
 
-void StepGraph::make(const LaunchList& list, Stream stream) {
+void StepGraph::make(const LaunchList& list, Stream stream, unsigned int repeats) {
     cudaStream_t st = static_cast<cudaStream_t>(stream);
     // Thread-local capture: the kinematics thread goes on using the GPU meanwhile.
     DEME_CUDA_CHECK(CALL, cudaStreamBeginCapture(st, cudaStreamCaptureModeThreadLocal));
     cudaGraph_t graph = nullptr;
     try {
-        list.enqueue(stream);
+        for (unsigned int r = 0; r < repeats; r++) list.enqueue(stream);
     } catch (...) {
         if (cudaStreamEndCapture(st, &graph) == cudaSuccess && graph) cudaGraphDestroy(graph);
         cudaGetLastError();
@@ -58,11 +71,12 @@ void StepGraph::make(const LaunchList& list, Stream stream) {
     }
     m_captures++;
     m_made = list;
+    m_repeats = repeats;
 }
 
-void StepGraph::launch(const LaunchList& list, Stream stream) {
-    if (list.empty()) return;
-    if (!m_exec || list != m_made) make(list, stream);
+void StepGraph::launch(const LaunchList& list, Stream stream, unsigned int repeats) {
+    if (list.empty() || repeats == 0) return;
+    if (!m_exec || repeats != m_repeats || list != m_made) make(list, stream, repeats);
     DEME_CUDA_CHECK(CALL, cudaGraphLaunch(static_cast<cudaGraphExec_t>(m_exec), static_cast<cudaStream_t>(stream)));
 }
 

@@ -3,6 +3,10 @@
 // more than running them. The graph is made from the step's launch list (LaunchList.h) by stream
 // capture and kept while the list stays the same; when it changes (a new contact set, a grown
 // array, a recompiled prescription), the graph is updated in place where CUDA allows, or made anew.
+// A graph may hold several replays of the list one after the other (`repeats`): every graph launch
+// and the gap after it cost the GPU a few microseconds, as much as a small kernel, so a batch queues
+// its steps in graphs of several steps (CudaStepBatch.cpp). Kernels that find the batch ended return
+// at once, so a step queued past the batch's end does nothing, as with one graph per step.
 // DEME_CUDA_GRAPHS=0 launches the lists directly instead (docs/cuda-backend.md).
 #pragma once
 
@@ -18,21 +22,25 @@ class StepGraph {
     StepGraph(const StepGraph&) = delete;
     StepGraph& operator=(const StepGraph&) = delete;
 
-    // Queues `list` on `stream` once, through the graph made from it.
-    void launch(const LaunchList& list, Stream stream);
+    // Queues `list` on `stream` `repeats` times in a row, through the graph made from as many
+    // copies of it.
+    void launch(const LaunchList& list, Stream stream, unsigned int repeats = 1);
     // Graphs made (captures) and updated in place so far, for the timing report and tests.
     unsigned long long captures() const { return m_captures; }
     unsigned long long updates() const { return m_updates; }
 
   private:
-    void make(const LaunchList& list, Stream stream);
+    void make(const LaunchList& list, Stream stream, unsigned int repeats);
 
     LaunchList m_made;       // the list the graph was made from
+    unsigned int m_repeats = 0;  // and how many copies of it it holds
     void* m_exec = nullptr;  // a cudaGraphExec_t
     unsigned long long m_captures = 0, m_updates = 0;
 };
 
 // Whether step graphs are used (DEME_CUDA_GRAPHS unset or not "0").
 bool stepGraphsEnabled();
+// How many steps one graph launch queues (DEME_CUDA_GRAPH_STEPS, default 8; 1 is a graph per step).
+unsigned int stepsPerGraph();
 
 }  // namespace deme::cuda
