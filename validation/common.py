@@ -122,9 +122,11 @@ class Case:
         import matplotlib.pyplot as plt
         return plt.subplots(*args, **kwargs)
 
-    def save(self, fig):
-        """Writes the case's plot to <out>/<case>.png (through a temporary name)."""
-        fig.suptitle(f"{self.name}{' (quick)' if self.quick else ''}: {self.backend}, {commit()}", fontsize=8, y=0.995)
+    def save(self, fig, origin=None):
+        """Writes the case's plot to <out>/<case>.png (through a temporary name). origin: where the
+        data came from when it is not this run (e.g. "cuda, 9ac9233", a GPU run drawn here)."""
+        made = f"{self.backend}, {commit()}" if origin is None else f"{origin} (drawn on {self.backend}, {commit()})"
+        fig.suptitle(f"{self.name}{' (quick)' if self.quick else ''}: {made}", fontsize=8, y=0.995)
         fig.tight_layout()
         path = os.path.join(self.args.out, self.name + ".png")
         tmp = path + ".tmp.png"
