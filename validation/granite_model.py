@@ -22,6 +22,7 @@ The law (paper s. 6.4, after Scholtes & Donze 2013, Int. J. Rock Mech. Min. Sci.
 Each sphere's owner wildcard `cracked` turns 1 when one of its bonds breaks (for the rendering).
 """
 import math
+import os
 
 import numpy as np
 
@@ -99,12 +100,13 @@ E_PLATE, NU_PLATE, MU_PLATE = 100e9, 0.30, 0.50
 RADIUS = 1.2e-3
 
 
-def affine_modulus(links_per_shell, kn_over_e, radius=RADIUS, nu_micro=NU_ROCK):
-    """Young's modulus along the stacking axis (c) of an HCP lattice of touching spheres whose bonds
-    are springs k_n (central) and k_t = nu k_n (shear) to the neighbours of the given shells (1: the 12
-    nearest at a = 2R; 2: also the 6 at sqrt(2) a), deformed affinely, per unit E_micro (kn_over_e =
-    k_n / E_micro). Uniaxial stress along c: E = 1 / S_33 of the lattice's compliance. Also returns
-    Poisson's ratio -S_13 / S_33."""
+def affine_modulus(links_per_shell, kn_over_e, radius=RADIUS, nu_micro=NU_ROCK, axis=2):
+    """Young's modulus along `axis` of an HCP lattice of touching spheres stacked along z (axis 2: its
+    stacking axis c; axis 0: across the stacking, along a row of a layer), whose bonds are springs k_n
+    (central) and k_t = nu k_n (shear) to the neighbours of the given shells (1: the 12 nearest at
+    a = 2R; 2: also the 6 at sqrt(2) a), deformed affinely, per unit E_micro (kn_over_e = k_n /
+    E_micro). Uniaxial stress along the axis: E = 1 / S_aa of the lattice's compliance. Also returns
+    Poisson's ratio -S_ba / S_aa (b the next axis)."""
     a = 2.0 * radius
     pts = []
     for k in range(-2, 3):
@@ -130,7 +132,8 @@ def affine_modulus(links_per_shell, kn_over_e, radius=RADIUS, nu_micro=NU_ROCK):
     voigt = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
     M = np.array([[C[i, j, k, m] * (1 if b < 3 else 2) for b, (k, m) in enumerate(voigt)] for (i, j) in voigt])
     S = np.linalg.inv(M)
-    return 1.0 / S[2, 2], -S[0, 2] / S[2, 2]
+    other = (axis + 1) % 3
+    return 1.0 / S[axis, axis], -S[other, axis] / S[axis, axis]
 
 
 def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1):
@@ -149,7 +152,13 @@ def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1):
                               "sigma_t": 0.0, "cohesion": 0.0, "gamma_int": 0.0})
     sim.SetMaterialPropertyPair("mu", rock, plate, MU_PLATE)
     a = 2.0 * RADIUS
-    pts = np.asarray(deme.HCPSampler(a).SampleBox([0, 0, 0], half), dtype=np.float64)
+    # GRANITE_C_AXIS=x: the lattice's stacking axis along x (the sampler stacks its layers along z),
+    # so that the block is loaded across its layers' stacking rather than along it.
+    if os.environ.get("GRANITE_C_AXIS", "z") == "x":
+        pts = np.asarray(deme.HCPSampler(a).SampleBox([0, 0, 0], [half[2], half[1], half[0]]), dtype=np.float64)
+        pts = pts[:, [2, 1, 0]]
+    else:
+        pts = np.asarray(deme.HCPSampler(a).SampleBox([0, 0, 0], half), dtype=np.float64)
     if jitter > 0.0:
         pts += np.random.default_rng(seed).uniform(-jitter * a, jitter * a, pts.shape)
     z_lo, z_hi = pts[:, 2].min(), pts[:, 2].max()
@@ -184,8 +193,9 @@ def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, sample
     sim.DoDynamics(dt)  # the model links the pairs within range at its first call
     bonds0 = sim.GetNumPersistentContacts()
     tr = sim.Track(block)
-    layer = np.round(pts[:, 2] / (2.0 * RADIUS * math.sqrt(2.0 / 3.0))).astype(np.int64)  # lattice layers
-    low, high = layer == layer.min(), layer == layer.max()
+    # The outer layers of spheres (within R/2 of the lowest and highest centres: whole lattice layers
+    # when the stacking axis is z, the outer rows of every layer when it is x).
+    low, high = pts[:, 2] < pts[:, 2].min() + 0.5 * RADIUS, pts[:, 2] > pts[:, 2].max() - 0.5 * RADIUS
     width_x = pts[:, 0].max() - pts[:, 0].min() + 2 * RADIUS
     width_y = pts[:, 1].max() - pts[:, 1].min() + 2 * RADIUS
     area = width_x * width_y
@@ -221,7 +231,8 @@ def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, sample
             kept.append(i)
         except deme.Error:
             pass
-    cracked = np.asarray(sim.GetOwnerWildcardValue("cracked", 0, n), dtype=np.float64)[kept]
+    # (owner by owner: the range call refuses a range that holds a removed owner)
+    cracked = np.asarray([sim.GetOwnerWildcardValue("cracked", i, 1)[0] for i in kept], dtype=np.float64)
     return {"strain": np.array(strain), "stress": np.array(stress), "bonds": np.array(bonds), "spheres": n,
             "area": area, "height": h0, "positions": np.array(positions, dtype=np.float64), "cracked": cracked,
             "removed": sim.GetNumRemovedClumps()}
