@@ -117,8 +117,8 @@ std::string CudaDynamics::launchReport() const {
     if (!m_useGraphs) return "steps launched kernel by kernel (DEME_CUDA_GRAPHS=0)";
     const unsigned long long made = m_plainGraph.captures() + m_plainGraphs.captures() + m_storingGraph.captures();
     const unsigned long long updated = m_plainGraph.updates() + m_plainGraphs.updates() + m_storingGraph.updates();
-    return "steps replayed from CUDA graphs of up to " + std::to_string(m_graphSteps) + " steps: " +
-           std::to_string(made) + " captured (" + std::to_string(updated) + " of them updated in place, " +
+    return "steps replayed from CUDA graphs of up to " + std::to_string(m_graphSteps) +
+           " steps: " + std::to_string(made) + " captured (" + std::to_string(updated) + " of them updated in place, " +
            std::to_string(made - updated) + " instantiated)";
 }
 

@@ -32,9 +32,9 @@ class StepGraph {
   private:
     void make(const LaunchList& list, Stream stream, unsigned int repeats);
 
-    LaunchList m_made;       // the list the graph was made from
+    LaunchList m_made;           // the list the graph was made from
     unsigned int m_repeats = 0;  // and how many copies of it it holds
-    void* m_exec = nullptr;  // a cudaGraphExec_t
+    void* m_exec = nullptr;      // a cudaGraphExec_t
     unsigned long long m_captures = 0, m_updates = 0;
 };
 
