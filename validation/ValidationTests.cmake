@@ -18,3 +18,9 @@ foreach(script ${deme_validation_cases})
   set_tests_properties(validation.quick.${case} PROPERTIES TIMEOUT 900 LABELS validation
                        ENVIRONMENT "OMP_NUM_THREADS=1;PYTHONPATH=${PROJECT_BINARY_DIR}/python;DEME_BUILD_DIR=${PROJECT_BINARY_DIR};PYTHONDONTWRITEBYTECODE=1")
 endforeach()
+# The suite's own tooling (validation/tests: e.g. the drum's replay of earlier runs from their data),
+# with pytest, as the Python module's tests.
+add_test(NAME validation.tools
+         COMMAND ${deme_validation_python} -m pytest -q -p no:cacheprovider ${PROJECT_SOURCE_DIR}/validation/tests)
+set_tests_properties(validation.tools PROPERTIES TIMEOUT 300 LABELS validation
+                     ENVIRONMENT "OMP_NUM_THREADS=1;PYTHONPATH=${PROJECT_BINARY_DIR}/python;DEME_BUILD_DIR=${PROJECT_BINARY_DIR};PYTHONDONTWRITEBYTECODE=1")
