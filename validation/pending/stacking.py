@@ -24,6 +24,9 @@ of the statics (the ladder's half step is 1.5 %; the rest allows for the load ar
 speed rather than quasi-statically).
 
 --quick: gaps 10 and 40 mm, Crr 0.02 and 0.05, 7 masses a ladder (about 20 s on one core).
+STACK_DT_FRACTION (the step over the Rayleigh time, default 0.1), STACK_RAMP (the gravity ramp's
+length, default 0.5 s) and STACK_ROLLING=spring (validation/rolling_spring_model.py's rolling moment,
+which has a static state) are the studies of validation/README.md.
 """
 import math
 import os
@@ -39,8 +42,10 @@ import numpy as np  # noqa: E402
 
 R, M1, MU, G, E, NU, COR = 0.15, 1.0, 0.2, 9.81, 1e7, 0.3, 0.5
 STEP = 1.03
-T_END = 3.0
-RAMP, RAMP_STEPS = 0.5, 50  # gravity from 0 to g in 50 steps over 0.5 s: a quasi-static load
+# Gravity from 0 to g in 50 steps over 0.5 s (a quasi-static load; STACK_RAMP sets the time), then
+# held to 2.5 s after the ramp's end.
+RAMP, RAMP_STEPS = float(os.environ.get("STACK_RAMP", "0.5")), 50
+T_END = RAMP + 2.5
 if case.quick:
     GAPS, CRRS, LADDER = [0.01, 0.04], [0.02, 0.05], range(-3, 4)
 else:
@@ -61,6 +66,11 @@ for d in GAPS:
 
 sim = deme.DEMSolver()
 sim.SetVerbosity("QUIET")
+# STACK_ROLLING=spring: the rolling moment of validation/rolling_spring_model.py (a spring capped at the
+# default model's moment, with a static state) in place of the default model's (README says why).
+if os.environ.get("STACK_ROLLING", "default") == "spring":
+    import rolling_spring_model
+    rolling_spring_model.use(sim)
 floor = sim.LoadMaterial({"E": E, "nu": NU, "CoR": COR, "mu": MU, "Crr": 0.0})
 mats = {}
 for crr in CRRS:
