@@ -2,11 +2,8 @@
 
 #include <cstdlib>
 #include <cstring>
-#include <string>
 
 #include <cuda_runtime_api.h>
-
-#include <deme/Error.h>
 
 #include "backend/cuda/CudaCheck.h"
 
@@ -19,16 +16,6 @@ constexpr const char* CALL = "DoDynamics";
 bool stepGraphsEnabled() {
     const char* v = std::getenv("DEME_CUDA_GRAPHS");
     return !(v && std::strcmp(v, "0") == 0);
-}
-
-unsigned int stepsPerGraph() {
-    const char* v = std::getenv("DEME_CUDA_GRAPH_STEPS");
-    if (!v || !*v) return 8;
-    char* end = nullptr;
-    const unsigned long n = std::strtoul(v, &end, 10);
-    if (*end || n < 1 || n > 256)
-        throwError("Initialize", std::string("DEME_CUDA_GRAPH_STEPS is '") + v + "', not a whole number from 1 to 256");
-    return (unsigned int)n;
 }
 
 StepGraph::~StepGraph() {

@@ -10,6 +10,11 @@
 // DEME_CUDA_GRAPHS=0 launches the lists directly instead (docs/cuda-backend.md).
 #pragma once
 
+#include <cstdlib>
+#include <string>
+
+#include <deme/Error.h>
+
 #include "backend/cuda/CudaTypes.h"
 #include "backend/cuda/LaunchList.h"
 
@@ -41,6 +46,15 @@ class StepGraph {
 // Whether step graphs are used (DEME_CUDA_GRAPHS unset or not "0").
 bool stepGraphsEnabled();
 // How many steps one graph launch queues (DEME_CUDA_GRAPH_STEPS, default 8; 1 is a graph per step).
-unsigned int stepsPerGraph();
+// Inline, without CUDA: a library built without the backend parses (and tests) it the same way.
+inline unsigned int stepsPerGraph() {
+    const char* v = std::getenv("DEME_CUDA_GRAPH_STEPS");
+    if (!v || !*v) return 8;
+    char* end = nullptr;
+    const unsigned long n = std::strtoul(v, &end, 10);
+    if (*end || n < 1 || n > 256)
+        throwError("Initialize", std::string("DEME_CUDA_GRAPH_STEPS is '") + v + "', not a whole number from 1 to 256");
+    return (unsigned int)n;
+}
 
 }  // namespace deme::cuda
