@@ -21,10 +21,16 @@ Contact wildcards: delta_tan_x, delta_tan_y, delta_tan_z (the tangential displac
 per material: E, nu, CoR (through the derived tables E_eff, G_eff, beta_CoR).
 """
 
-MODEL = r"""
+def hertz_mindlin(rolling, history=(), stored=""):
+    """The default model's body (Hertz normal force with CoR damping, Mindlin friction capped at mu
+    |F_n|) with `rolling` as its rolling term: C++ run after the normal force, with k_n, k_t, R_eff,
+    overlapDepth and the normal force in `force` defined; `history` names the rolling term's own
+    contact wildcards (cleared when the pair is apart), `stored` writes them back at the end."""
+    clear = "".join(f" {w} = 0.f;" for w in history)
+    return r"""
 if (overlapDepth <= 0.0) {
     // Apart: no force, and the history ends (the default model is not called for such pairs).
-    delta_tan_x = 0.f; delta_tan_y = 0.f; delta_tan_z = 0.f; delta_time = 0.f;
+    delta_tan_x = 0.f; delta_tan_y = 0.f; delta_tan_z = 0.f; delta_time = 0.f;""" + clear + r"""
     return;
 }
 const float E_cnt = E_eff[bodyAMatType][bodyBMatType];
@@ -48,21 +54,9 @@ const float Sn = 2.f * E_cnt * sqrt_Rd;
 const float k_n = 2.f / 3.f * Sn;
 const float gamma_n = 2.f * sqrtf(5.f / 6.f) * beta * sqrtf(Sn * mass_eff);
 force += (k_n * (float)overlapDepth + gamma_n * vn) * B2A;
-
-// Rolling resistance: a couple against the relative spin, of size Crr R_eff times the elastic normal
-// force, its twisting part removed.
-if (Crr_cnt > 0.f) {
-    const float3 w_rel = rotateToGlobal(AOriQ, ARotVel) - rotateToGlobal(BOriQ, BRotVel);
-    const float w_mag = length(w_rel);
-    if (w_mag > 1e-12f) {
-        float3 tau = (-Crr_cnt * R_eff * k_n * (float)overlapDepth / w_mag) * w_rel;
-        tau -= dot(tau, B2A) * B2A;
-        couple_torque = tau;
-    }
-}
-
+const float k_t = 8.f * G_cnt * sqrt_Rd;
+""" + rolling + r"""
 if (mu_cnt > 0.f) {
-    const float k_t = 8.f * G_cnt * sqrt_Rd;
     const float gamma_t = -2.f * sqrtf(5.f / 6.f) * beta * sqrtf(mass_eff * k_t);
     float3 tangent_force = -k_t * delta_tan - gamma_t * vrel_tan;
     const float ft = length(tangent_force);
@@ -80,7 +74,22 @@ if (mu_cnt > 0.f) {
 delta_tan_x = delta_tan.x;
 delta_tan_y = delta_tan.y;
 delta_tan_z = delta_tan.z;
-"""
+""" + stored
+
+
+# Rolling resistance: a couple against the relative spin, of size Crr R_eff times the elastic normal
+# force, its twisting part removed.
+MODEL = hertz_mindlin(r"""
+if (Crr_cnt > 0.f) {
+    const float3 w_rel = rotateToGlobal(AOriQ, ARotVel) - rotateToGlobal(BOriQ, BRotVel);
+    const float w_mag = length(w_rel);
+    if (w_mag > 1e-12f) {
+        float3 tau = (-Crr_cnt * R_eff * k_n * (float)overlapDepth / w_mag) * w_rel;
+        tau -= dot(tau, B2A) * B2A;
+        couple_torque = tau;
+    }
+}
+""")
 
 
 def use(sim):
