@@ -136,3 +136,33 @@ TEST(ApiTemplate, ScaleScalesMassAndInertia) {
     EXPECT_FLOAT_EQ(t->relPos[0].x, 2.f);
     EXPECT_FLOAT_EQ(t->GetExtent(), 3.f);
 }
+
+// At Initialize the solver takes a batch's clumps into its state and the batch lets go of its
+// per-clump arrays (docs/memory.md): its getters of initial values are errors naming the call, its
+// count and owner offset stay, and trackers read the clumps. The same for UpdateClumps.
+TEST(ApiBatch, InitializeTakesTheBatchsArrays) {
+    DEMSolver sim;
+    sim.SetBackend("cpu");
+    sim.SetVerbosity("QUIET");
+    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.3));
+    sim.InstructBoxDomainDimension(1, 1, 1);
+    auto t = sim.LoadSphereType(1.f, 0.01f, mat);
+    auto a = sim.AddClumps(t, {make_float3(0, 0, 0), make_float3(0.1f, 0, 0)});
+    EXPECT_EQ(a->GetPositions().size(), 2u);
+    sim.SetInitTimeStep(1e-5);
+    sim.Initialize();
+    EXPECT_EQ(a->GetNumClumps(), 2u);
+    EXPECT_NE(demeErrorMessage([&] { a->GetPositions(); }).find("DEMClumpBatch::GetPositions: the batch's clumps are in "
+                                                                "the solver's state"),
+              std::string::npos);
+    EXPECT_NE(demeErrorMessage([&] { a->GetFamilies(); }).find("DEMClumpBatch::GetFamilies"), std::string::npos);
+    EXPECT_NE(demeErrorMessage([&] { a->SetVel(make_float3(1, 0, 0)); }).find("already initialized"), std::string::npos);
+    EXPECT_NEAR(sim.Track(a)->Pos(1).x, 0.1, 1e-6);
+
+    auto b = sim.AddClumps(t, {make_float3(0.3f, 0, 0)});
+    EXPECT_EQ(b->GetPositions().size(), 1u);  // waiting for UpdateClumps: still the batch's own
+    sim.UpdateClumps();
+    EXPECT_EQ(b->GetNumClumps(), 1u);
+    EXPECT_NE(demeErrorMessage([&] { b->GetOriQs(); }).find("DEMClumpBatch::GetOriQs"), std::string::npos);
+    EXPECT_NEAR(sim.Track(b)->Pos().x, 0.3, 1e-6);
+}

@@ -32,11 +32,14 @@ class DEMClumpTemplate {
 };
 
 // Clumps added by one AddClumps call. Setters take one value for all clumps or one per clump.
+// At Initialize (or UpdateClumps) the solver takes the batch's clumps into its own state and the
+// batch lets go of its per-clump arrays of initial values (docs/memory.md): from then on their
+// getters are errors, and a tracker reads and steers the running clumps. The templates stay.
 class DEMClumpBatch {
   public:
     DEMClumpBatch(std::vector<std::shared_ptr<DEMClumpTemplate>> types, std::vector<float3> positions);
 
-    size_t GetNumClumps() const { return m_pos.size(); }
+    size_t GetNumClumps() const { return m_numClumps; }
     void SetVel(const float3& v);
     void SetVel(const std::vector<float3>& v);
     void SetAngVel(const float3& w);  // local frame
@@ -47,11 +50,11 @@ class DEMClumpBatch {
     void SetFamily(const std::vector<unsigned int>& families);
 
     const std::vector<std::shared_ptr<DEMClumpTemplate>>& GetTypes() const { return m_types; }
-    const std::vector<float3>& GetPositions() const { return m_pos; }
-    const std::vector<float3>& GetVelocities() const { return m_vel; }
-    const std::vector<float3>& GetAngVelocities() const { return m_angVel; }
-    const std::vector<float4>& GetOriQs() const { return m_oriQ; }
-    const std::vector<family_t>& GetFamilies() const { return m_family; }
+    const std::vector<float3>& GetPositions() const;
+    const std::vector<float3>& GetVelocities() const;
+    const std::vector<float3>& GetAngVelocities() const;
+    const std::vector<float4>& GetOriQs() const;
+    const std::vector<family_t>& GetFamilies() const;
     // Index of the batch's first clump among all owners; valid after Initialize.
     size_t GetOwnerOffset() const { return m_ownerOffset; }
 
@@ -61,8 +64,12 @@ class DEMClumpBatch {
     std::vector<float3> m_pos, m_vel, m_angVel;
     std::vector<float4> m_oriQ;
     std::vector<family_t> m_family;
+    size_t m_numClumps = 0;
     size_t m_ownerOffset = 0;
     bool m_initialized = false;
+    // Marks the batch initialized and frees its per-clump arrays (the solver's state holds them).
+    void handOver();
+    void requireArrays(const char* call) const;
 };
 
 }  // namespace deme

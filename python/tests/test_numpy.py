@@ -132,6 +132,20 @@ def test_batch_inputs_before_initialize(sim):
     assert sim.AddClumps([tmpl, tmpl], [[0.3, 0, 0], [0.4, 0, 0]]).GetNumClumps() == 2
 
 
+def test_batch_arrays_go_to_the_solver_at_initialize(sim):
+    """At Initialize the solver takes the batch's clumps; its getters of initial values are errors."""
+    mat = material(sim)
+    sim.InstructBoxDomainDimension(1, 1, 1)
+    tmpl = sim.LoadSphereType(1.0, 0.01, mat)
+    batch = sim.AddClumps(tmpl, [[0, 0, 0], [0.1, 0, 0]])
+    sim.SetInitTimeStep(1e-5)
+    sim.Initialize()
+    assert batch.GetNumClumps() == 2
+    with pytest.raises(deme.Error, match=r"^DEMClumpBatch::GetPositions: the batch's clumps are in the solver's state"):
+        batch.GetPositions()
+    np.testing.assert_allclose(sim.Track(batch).Positions()[1], [0.1, 0, 0], atol=1e-6)
+
+
 def test_clump_template_arrays(sim):
     mat = material(sim)
     radii = np.array([0.01, 0.02])

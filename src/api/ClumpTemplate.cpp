@@ -27,7 +27,44 @@ DEMClumpBatch::DEMClumpBatch(std::vector<std::shared_ptr<DEMClumpTemplate>> type
       m_vel(m_pos.size(), make_float3(0.f)),
       m_angVel(m_pos.size(), make_float3(0.f)),
       m_oriQ(m_pos.size(), make_float4(0.f, 0.f, 0.f, 1.f)),
-      m_family(m_pos.size(), 0) {}
+      m_family(m_pos.size(), 0),
+      m_numClumps(m_pos.size()) {}
+
+void DEMClumpBatch::requireArrays(const char* call) const {
+    if (m_initialized)
+        throwError(call, "the batch's clumps are in the solver's state since Initialize (or UpdateClumps); read "
+                         "and steer them with a tracker");
+}
+
+void DEMClumpBatch::handOver() {
+    m_initialized = true;
+    m_pos = {};
+    m_vel = {};
+    m_angVel = {};
+    m_oriQ = {};
+    m_family = {};
+}
+
+const std::vector<float3>& DEMClumpBatch::GetPositions() const {
+    requireArrays("DEMClumpBatch::GetPositions");
+    return m_pos;
+}
+const std::vector<float3>& DEMClumpBatch::GetVelocities() const {
+    requireArrays("DEMClumpBatch::GetVelocities");
+    return m_vel;
+}
+const std::vector<float3>& DEMClumpBatch::GetAngVelocities() const {
+    requireArrays("DEMClumpBatch::GetAngVelocities");
+    return m_angVel;
+}
+const std::vector<float4>& DEMClumpBatch::GetOriQs() const {
+    requireArrays("DEMClumpBatch::GetOriQs");
+    return m_oriQ;
+}
+const std::vector<family_t>& DEMClumpBatch::GetFamilies() const {
+    requireArrays("DEMClumpBatch::GetFamilies");
+    return m_family;
+}
 
 namespace {
 

@@ -237,9 +237,9 @@ void DEMSolver::Initialize() {
     size_t offset = 0;
     for (auto& b : m_scene->batches) {
         b->m_ownerOffset = offset;
-        b->m_initialized = true;
         offset += b->GetNumClumps();
         for (auto& t : b->GetTypes()) t->m_frozen = true;
+        b->handOver();
     }
     for (auto& o : m_scene->externObjs) {
         o->m_ownerID = offset++;

@@ -52,8 +52,8 @@ void DEMSolver::UpdateClumps() {
     const SimState rows = assembleScene(part, m_sim->forceModel());
     m_sim->insertClumps(rows);
     for (auto& b : m_scene->pendingBatches) {
-        b->m_initialized = true;
         for (auto& t : b->GetTypes()) t->m_frozen = true;
+        b->handOver();
     }
     m_scene->pendingBatches.clear();
 }

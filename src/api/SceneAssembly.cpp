@@ -38,6 +38,15 @@ bool insideDomain(const double3& p, const float3& lo, const float3& size) {
            p.z <= (double)lo.z + size.z;
 }
 
+// Capacity for n rows in every array of the owners' and the spheres' field groups.
+struct ReserveRows {
+    size_t n;
+    template <class V>
+    void operator()(V& v, V&, FieldRole) const {
+        v.reserve(n);
+    }
+};
+
 void addOwner(SimState& s, const double3& pos, const float4& q, const float3& v, const float3& w, family_t fam,
               OwnerType type, bool dynamic, inertiaID_t inertia, float extent, size_t ownerIndex, const char* what) {
     OwnerArrays& o = s.owners;
@@ -174,12 +183,20 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
         }
     const std::vector<size_t> order =
         spatialOrder(scene, user.size(), [&](size_t u) { return user[u].batch->GetPositions()[user[u].index]; });
-    s.ownerUserToInternal.resize(user.size());
-    s.ownerInternalToUser.resize(user.size());
     std::vector<uint32_t> userSphereStart(user.size() + 1, 0);
     for (size_t u = 0; u < user.size(); u++)
         userSphereStart[u + 1] =
             userSphereStart[u] + (uint32_t)user[u].batch->GetTypes()[user[u].index]->GetNumSpheres();
+    // Every array to its final size at once: grown by doubling, the owner and sphere arrays would
+    // keep up to half their bytes unused for the whole run (docs/memory.md).
+    const size_t nOwnersTotal = user.size() + scene.externObjs.size() + scene.meshes.size();
+    forEachOwnerField(s.owners, s.owners, ReserveRows{nOwnersTotal});
+    forEachSphereField(s.spheres, s.spheres, ReserveRows{userSphereStart[user.size()]});
+    s.ownerUserToInternal.reserve(nOwnersTotal);
+    s.ownerInternalToUser.reserve(nOwnersTotal);
+    s.ownerUserToInternal.resize(user.size());
+    s.ownerInternalToUser.resize(user.size());
+    s.sphereInternalToUser.reserve(userSphereStart[user.size()]);
     for (size_t u : order) {
         const DEMClumpBatch* b = user[u].batch;
         const size_t i = user[u].index;

@@ -90,9 +90,13 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
     {
         const int t = cpuThreadIndex();
         DetectedContacts& mine = m_threadOut[t];
-        mine.geomA.clear();
-        mine.geomB.clear();
-        mine.type.clear();
+        // Room for this thread's share of as many pairs as last time, and a little more: grown by
+        // doubling instead, the lists would hold up to twice the pairs' bytes while the copies below
+        // are made.
+        const size_t expected = m_lastPairs / (size_t)T + m_lastPairs / (size_t)T / 16 + 64;
+        mine.geomA.reserve(expected);
+        mine.geomB.reserve(expected);
+        mine.type.reserve(expected);
         std::vector<bodyID_t> partners(64);
         size_t begin, end;
         threadRange(nSearched, t, T, begin, end);
@@ -129,12 +133,14 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
     out.geomB.resize(total);
     out.type.resize(total);
     size_t at = 0;
-    for (const auto& t : m_threadOut) {
+    for (auto& t : m_threadOut) {
         std::copy(t.geomA.begin(), t.geomA.end(), out.geomA.begin() + at);
         std::copy(t.geomB.begin(), t.geomB.end(), out.geomB.begin() + at);
         std::copy(t.type.begin(), t.type.end(), out.type.begin() + at);
         at += t.size();
+        t = DetectedContacts();  // released: they would hold a second copy of every pair until next time
     }
+    m_lastPairs = total;
     if (dormant) sortPairs(s, out);
     searchSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 }

@@ -66,7 +66,8 @@ class ContactDetector {
     // Scratch buffers reused between detections.
     BinRegistry m_spheres, m_triangles;
     std::vector<double3> m_triLo, m_triHi;
-    std::vector<DetectedContacts> m_threadOut;
+    std::vector<DetectedContacts> m_threadOut;  // each thread's pairs, only while a detection runs
+    size_t m_lastPairs = 0;                     // how many the last detection found
 };
 
 }  // namespace deme
