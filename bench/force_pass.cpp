@@ -15,12 +15,8 @@
 #include "api/ForceModelSetup.h"
 #include "api/SceneAssembly.h"
 #include "parallel/Parallel.h"
-#include "dynamics/KinematicCache.h"
 #include "backend/cpu/CpuForceModel.h"
-#include "backend/cpu/ContactDetector.h"
-#include "backend/cpu/HistoryMapping.h"
-#include "kinematics/BinGridSizing.h"
-#include "runtime/FamilyRules.h"
+#include "backend/cpu/StandaloneContactSet.h"
 
 using namespace deme;
 using namespace deme_bench;
@@ -84,16 +80,8 @@ void timeModel(const Scene& scene, const DEMForceModel& model, const char* name,
     const ModelLayout layout = resolveModelLayout(model, scene, "force_pass");
     SimState s = assembleScene(scene, layout);
     const CpuForceModel active = loadCpuForceModel(layout, "force_pass");
-    refreshKinematicCache(s);
     // The contact set of a detection with a 20 um margin (about a fifth of its pairs apart).
-    const BinGrid grid = makeBinGrid(s, 0.0);
-    FamilyRules families;
-    const float extra[NUM_FAMILIES] = {};
-    ContactDetector detector;
-    DetectedContacts pairs;
-    double binning = 0.0, search = 0.0;
-    detector.detect(s, grid, 2e-5, families.contactMask(), extra, pairs, binning, search);
-    installDetectedContacts(s, pairs);
+    detectAndInstallContacts(s, 2e-5);
     std::vector<double> t;
     size_t real = 0;
     for (int i = 0; i < passes; i++) {

@@ -15,14 +15,10 @@
 #include "api/ForceModelSetup.h"
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
-#include "backend/cpu/ContactDetector.h"
 #include "backend/cpu/CpuForceModel.h"
-#include "backend/cpu/HistoryMapping.h"
 #include "backend/cpu/Integration.h"
-#include "dynamics/KinematicCache.h"
-#include "kinematics/BinGridSizing.h"
+#include "backend/cpu/StandaloneContactSet.h"
 #include "parallel/Parallel.h"
-#include "runtime/FamilyRules.h"
 
 using namespace deme;
 
@@ -84,15 +80,7 @@ Loads passAndReduce(const Scene& scene, int threads, SimState* out = nullptr) {
         resolveModelLayout(DEMForceModel(DEMForceModel::Kind::FRICTIONAL_HERTZIAN), scene, "test");
     SimState s = assembleScene(scene, layout);
     const CpuForceModel model = loadCpuForceModel(layout, "test");
-    refreshKinematicCache(s);
-    const BinGrid grid = makeBinGrid(s, 0.0);
-    FamilyRules families;
-    const float extra[NUM_FAMILIES] = {};
-    ContactDetector detector;
-    DetectedContacts pairs;
-    double binning = 0.0, search = 0.0;
-    detector.detect(s, grid, 2e-4, families.contactMask(), extra, pairs, binning, search);
-    installDetectedContacts(s, pairs);
+    detectAndInstallContacts(s, 2e-4);
     model.pass(s, 0.0, 1e-6);
     IntegrationSubset all;
     reduceContactForces(s, all);
