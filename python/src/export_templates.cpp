@@ -41,10 +41,10 @@ void export_templates(py::module_& m) {
         .def("SetFamily", py::overload_cast<const std::vector<unsigned int>&>(&B::SetFamily), py::arg("families"),
              "One family per clump.")
         .def("GetTypes", &B::GetTypes, "The template of each clump.")
-        .def("GetPositions", &B::GetPositions, "Initial positions, (N, 3).")
-        .def("GetVelocities", &B::GetVelocities, "Initial velocities, (N, 3).")
-        .def("GetAngVelocities", &B::GetAngVelocities, "Initial angular velocities (local frame), (N, 3).")
-        .def("GetOriQs", &B::GetOriQs, "Initial orientations, (N, 4) with columns x, y, z, w.")
+        .def("GetPositions", &B::GetPositions, "Initial positions, (N, 3); an error once Initialize or UpdateClumps took the batch.")
+        .def("GetVelocities", &B::GetVelocities, "Initial velocities, (N, 3); until Initialize or UpdateClumps.")
+        .def("GetAngVelocities", &B::GetAngVelocities, "Initial angular velocities (local frame), (N, 3); until Initialize or UpdateClumps.")
+        .def("GetOriQs", &B::GetOriQs, "Initial orientations, (N, 4) with columns x, y, z, w; until Initialize or UpdateClumps.")
         .def(
             "GetFamilies",
             [](const B& b) {
@@ -53,7 +53,7 @@ void export_templates(py::module_& m) {
                 if (!f.empty()) std::memcpy(out.mutable_data(), f.data(), f.size());
                 return out;
             },
-            "Families, (N,) uint8.")
+            "Families, (N,) uint8; until Initialize or UpdateClumps.")
         .def("GetOwnerOffset", &B::GetOwnerOffset,
              "Owner id of the batch's first clump (valid after Initialize).");
 }
