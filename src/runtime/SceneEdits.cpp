@@ -52,10 +52,8 @@ void resizeDerived(SimState& s) {
     ContactArrays& c = s.contacts;
     c.meshContacts.clear();
     c.meshContactGroups.clear();
-    c.torqueB.clear();
-    c.ownerAStart.clear();
-    c.ownerBStart.clear();
-    c.ownerBEntries.clear();
+    c.ownerStart.clear();
+    c.ownerEntries.clear();
 }
 
 }  // namespace

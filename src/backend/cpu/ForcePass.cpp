@@ -1,7 +1,5 @@
 #include "backend/cpu/ForcePass.h"
 
-#include <deme/Error.h>
-
 #include "parallel/Parallel.h"
 #include "backend/cpu/ForcePassLoop.h"
 #include "physics/BuiltInForceModels.h"
@@ -32,27 +30,23 @@ void buildOwnerContactIndex(SimState& s) {
     ContactArrays& c = s.contacts;
     const size_t n = c.size();
     const size_t nOwners = s.owners.size();
-    // A's side: the set is sorted by A, and A is always a sphere, whose owners ascend with their
-    // ids (state/SimState.h), so each owner's contacts as A are one run.
-    c.ownerAStart.assign(nOwners + 1, 0);
-    bodyID_t prev = 0;
-    for (size_t i = 0; i < n; i++) {
-        const bodyID_t o = s.spheres.owner[c.geomA[i]];
-        if (o < prev) throwError("contact detection", "internal: the contact set is not sorted by A's owner");
-        prev = o;
-        c.ownerAStart[o + 1]++;
-    }
-    for (size_t o = 0; o < nOwners; o++) c.ownerAStart[o + 1] += c.ownerAStart[o];
-    // B's side: per owner, its contacts as B in contact order (a fixed order for its sums).
     std::vector<bodyID_t> ownerB(n);
 #pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < n; i++) ownerB[i] = contactOwnerB(s, i);
-    c.ownerBStart.assign(nOwners + 1, 0);
-    for (size_t i = 0; i < n; i++) c.ownerBStart[ownerB[i] + 1]++;
-    for (size_t o = 0; o < nOwners; o++) c.ownerBStart[o + 1] += c.ownerBStart[o];
-    c.ownerBEntries.resize(n);
-    std::vector<uint32_t> fill(c.ownerBStart.begin(), c.ownerBStart.end() - 1);
-    for (size_t i = 0; i < n; i++) c.ownerBEntries[fill[ownerB[i]]++] = (uint32_t)i;
+    c.ownerStart.assign(nOwners + 1, 0);
+    for (size_t i = 0; i < n; i++) {
+        c.ownerStart[s.spheres.owner[c.geomA[i]] + 1]++;
+        c.ownerStart[ownerB[i] + 1]++;
+    }
+    for (size_t o = 0; o < nOwners; o++) c.ownerStart[o + 1] += c.ownerStart[o];
+    c.ownerEntries.resize(c.ownerStart[nOwners]);
+    std::vector<uint32_t> fill(c.ownerStart.begin(), c.ownerStart.end() - 1);
+    // Serial fill in contact order: each owner sums its contacts in a fixed order, so results do
+    // not depend on the thread count.
+    for (size_t i = 0; i < n; i++) {
+        c.ownerEntries[fill[s.spheres.owner[c.geomA[i]]]++] = (uint32_t)(i << 1);
+        c.ownerEntries[fill[ownerB[i]]++] = (uint32_t)((i << 1) | 1u);
+    }
 }
 
 }  // namespace deme

@@ -19,8 +19,7 @@ struct IntegrationResult {
 
 struct IntegrationSubset;
 
-// Completes each owner's contact force and torque (contactForce/contactTorque): to what the force
-// pass gave it as A it adds its contacts as B, in a fixed order:
+// Sums each owner's contact forces and torques (in a fixed order) into contactForce/contactTorque:
 // every owner, or those of subset.reduced (the others have no contacts and hold zeros).
 void reduceContactForces(SimState& s, const IntegrationSubset& subset);
 
