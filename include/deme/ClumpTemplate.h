@@ -69,7 +69,9 @@ class DEMClumpBatch {
     bool m_initialized = false;
     // Marks the batch initialized and frees its per-clump arrays (the solver's state holds them).
     void handOver();
-    void requireArrays(const char* call) const;
+    // `values`, or a deme::Error naming `call` once the batch was handed over.
+    template <class T>
+    const T& initialValues(const T& values, const char* call) const;
 };
 
 }  // namespace deme

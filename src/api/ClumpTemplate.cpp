@@ -30,10 +30,12 @@ DEMClumpBatch::DEMClumpBatch(std::vector<std::shared_ptr<DEMClumpTemplate>> type
       m_family(m_pos.size(), 0),
       m_numClumps(m_pos.size()) {}
 
-void DEMClumpBatch::requireArrays(const char* call) const {
+template <class T>
+const T& DEMClumpBatch::initialValues(const T& values, const char* call) const {
     if (m_initialized)
         throwError(call, "the batch's clumps are in the solver's state since Initialize (or UpdateClumps); read "
                          "and steer them with a tracker");
+    return values;
 }
 
 void DEMClumpBatch::handOver() {
@@ -46,24 +48,17 @@ void DEMClumpBatch::handOver() {
 }
 
 const std::vector<float3>& DEMClumpBatch::GetPositions() const {
-    requireArrays("DEMClumpBatch::GetPositions");
-    return m_pos;
+    return initialValues(m_pos, "DEMClumpBatch::GetPositions");
 }
 const std::vector<float3>& DEMClumpBatch::GetVelocities() const {
-    requireArrays("DEMClumpBatch::GetVelocities");
-    return m_vel;
+    return initialValues(m_vel, "DEMClumpBatch::GetVelocities");
 }
 const std::vector<float3>& DEMClumpBatch::GetAngVelocities() const {
-    requireArrays("DEMClumpBatch::GetAngVelocities");
-    return m_angVel;
+    return initialValues(m_angVel, "DEMClumpBatch::GetAngVelocities");
 }
-const std::vector<float4>& DEMClumpBatch::GetOriQs() const {
-    requireArrays("DEMClumpBatch::GetOriQs");
-    return m_oriQ;
-}
+const std::vector<float4>& DEMClumpBatch::GetOriQs() const { return initialValues(m_oriQ, "DEMClumpBatch::GetOriQs"); }
 const std::vector<family_t>& DEMClumpBatch::GetFamilies() const {
-    requireArrays("DEMClumpBatch::GetFamilies");
-    return m_family;
+    return initialValues(m_family, "DEMClumpBatch::GetFamilies");
 }
 
 namespace {
