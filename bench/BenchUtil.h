@@ -72,10 +72,12 @@ inline void addRunSummary(JsonLine& j, const deme::RunSummary& r) {
 inline void addMemoryStats(JsonLine& j, const deme::MemoryStats& m) {
     const double n = m.spheres ? (double)m.spheres : 1.0;
     j.add("mem_device_bytes", (double)m.deviceTotal()).add("mem_host_bytes", (double)m.hostTotal());
+    j.add("mem_estimate_bytes", (double)m.estimatedTotal()).add("mem_estimated_pairs", (double)m.estimatedPairs);
     for (int g = 0; g < deme::NUM_MEMORY_GROUPS; g++) {
         const std::string key = deme::memoryGroupKey((deme::MemoryGroup)g);
         j.add("mem_device_" + key + "_per_sphere", (double)m.deviceBytes[g] / n);
         j.add("mem_host_" + key + "_per_sphere", (double)m.hostBytes[g] / n);
+        j.add("mem_estimate_" + key + "_per_sphere", (double)m.estimatedBytes[g] / n);
     }
 }
 

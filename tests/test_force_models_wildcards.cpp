@@ -134,7 +134,10 @@ namespace {
 // Sphere 0 flies at 1 m/s along x through sphere 1, which is fixed (the model gives no force), turns
 // round far away and comes back through it: two contacts of the same pair, each about 200 steps long.
 // On the GPU the owner wildcard the model writes there is read back on the host every step.
-void checkContactAge(bool async, float initialAge) {
+// editEveryStep: a third sphere, far from both, has its velocity set by a tracker before every step,
+// an edit of the owners that sends them to the backend and re-detects: the pair's history stays
+// (on a GPU the contact set never leaves the device for it).
+void checkContactAge(bool async, float initialAge, bool editEveryStep = false) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial({});
@@ -150,6 +153,7 @@ void checkContactAge(bool async, float initialAge) {
     target->SetFamily(1);
     sim.SetFamilyFixed(1);
     mover->SetVel(std::vector<float3>{make_float3(1, 0, 0)});
+    auto bystander = sim.AddClumps(tmpl, {make_float3(0.3f, 0.3f, 0.3f)});
     if (initialAge != 0.f) sim.SetFamilyContactWildcardInitValue(0, 1, "age", initialAge);
     sim.SetInitTimeStep(1e-4);
     // Re-detection every 3 steps at most: the count must survive some 130 of them per contact.
@@ -158,6 +162,7 @@ void checkContactAge(bool async, float initialAge) {
     sim.SetSynchronousContactDetection(!async);
     sim.Initialize();
     auto tr = sim.Track(mover);
+    auto still = sim.Track(bystander);
     for (int pass = 0; pass < 2; pass++) {
         // The pair has left the contact set (0.04 m apart, far beyond the margin): a new contact.
         double expected = initialAge;
@@ -168,6 +173,7 @@ void checkContactAge(bool async, float initialAge) {
                 expected += 1;
                 contactSteps++;
             }
+            if (editEveryStep) still->SetVel(make_float3(0, 0, 0));
             sim.DoStepDynamics();
             if (contactSteps > 0)
                 ASSERT_EQ(sim.GetOwnerWildcardValue("ageSeen", 0), expected) << "pass " << pass << ", step " << step;
@@ -184,6 +190,9 @@ DEME_BACKEND_TEST(ForceModelContactWildcards, CounterEqualsContactAgeAcrossRedet
 DEME_BACKEND_TEST(ForceModelContactWildcards, CounterEqualsContactAgeAsync) { checkContactAge(true, 0.f); }
 // A contact between families 0 and 1 starts at the value set for them.
 DEME_BACKEND_TEST(ForceModelContactWildcards, FamilyInitialValue) { checkContactAge(false, 1000.f); }
+DEME_BACKEND_TEST(ForceModelContactWildcards, CounterSurvivesTrackerEditsEveryStep) {
+    checkContactAge(false, 0.f, true);
+}
 
 // The generated GPU kernel and the CPU's code give the same Coulomb force to 1e-5 (both compute in
 // double from the same float positions); each against the law: ElectrostaticForceFollowsCoulombsLaw.

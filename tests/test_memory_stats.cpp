@@ -49,23 +49,11 @@ size_t sphereBytes() {
 // hold (GetDeviceMemUsage).
 DEME_BACKEND_TEST(MemoryStatsGroups, GroupsHoldTheirArraysAndAddUp) {
     DEMSolver sim;
-    sim.SetVerbosity("QUIET");
-    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.4));
-    sim.InstructBoxDomainDimension({0.f, 0.1f}, {0.f, 0.1f}, {0.f, 0.2f});
-    sim.InstructBoxDomainBoundingBC("all", mat);
-    const float r = 0.004f;
-    auto type = sim.LoadSphereType((float)sphereMass(r, 2500), r, mat);
-    std::vector<float3> xyz;
-    for (int k = 0; k < 10; k++)
-        for (int j = 0; j < 10; j++)
-            for (int i = 0; i < 10; i++) xyz.push_back(make_float3(0.007f + 0.0095f * i, 0.007f + 0.0095f * j, 0.006f + 0.0085f * k));
-    sim.AddClumps(type, xyz);
-    sim.SetInitTimeStep(2e-5);
-    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    addThousandSphereBed(sim);
     EXPECT_NE(demeErrorMessage([&] { sim.GetMemoryStats(); }).find("GetMemoryStats"), std::string::npos);
     sim.Initialize();
     sim.DoDynamics(0.3);
-    const size_t n = xyz.size(), contacts = sim.GetNumContacts();
+    const size_t n = 1000, contacts = sim.GetNumContacts();
     ASSERT_GT(contacts, n / 2);  // settled into a bed
     const MemoryStats m = sim.GetMemoryStats();
     EXPECT_EQ(m.spheres, n);
@@ -89,7 +77,14 @@ DEME_BACKEND_TEST(MemoryStatsGroups, GroupsHoldTheirArraysAndAddUp) {
         EXPECT_EQ(m.deviceTotal(), 0u);
         return;
     }
-    // The GPU: the device copy of the state, two contact sets, kT's bins and snapshot.
+    // The GPU: the device copy of the state, two contact sets, kT's bins and snapshot. The contact
+    // set stays there: the host copies it only for a call that reads it (here a contact file) and
+    // lets the copy go when the steps go on.
+    EXPECT_EQ(m.host(MemoryGroup::CONTACTS), 0u);
+    sim.WriteContactFile((scratchDir() / "contacts.csv").string());
+    EXPECT_GE(sim.GetMemoryStats().host(MemoryGroup::CONTACTS), contacts * (2 * sizeof(bodyID_t) + 1));
+    sim.DoDynamics(1e-4);
+    EXPECT_EQ(sim.GetMemoryStats().host(MemoryGroup::CONTACTS), 0u);
     EXPECT_EQ(m.deviceTotal(), sim.GetDeviceMemUsage());  // this test's solver is the only one
     EXPECT_GE(m.device(MemoryGroup::OWNER_STATE), n * ownerBytes());
     EXPECT_GE(m.device(MemoryGroup::GEOMETRY), n * sphereBytes());

@@ -26,6 +26,11 @@ const char* memoryGroupKey(MemoryGroup g);
 struct MemoryStats {
     size_t deviceBytes[NUM_MEMORY_GROUPS] = {};  // GPU memory held now (all of this process's solvers)
     size_t hostBytes[NUM_MEMORY_GROUPS] = {};    // host arrays of this solver (their capacities)
+    // What Initialize estimated the run would hold where its steps keep their arrays (the GPU on the
+    // CUDA backend, the host on the CPU's) with its first contact set of `estimatedPairs` pairs; a
+    // scene whose estimate exceeds the memory there fails at Initialize (docs/memory.md).
+    size_t estimatedBytes[NUM_MEMORY_GROUPS] = {};
+    size_t estimatedPairs = 0;
     size_t spheres = 0;
     size_t device(MemoryGroup g) const { return deviceBytes[(int)g]; }
     size_t host(MemoryGroup g) const { return hostBytes[(int)g]; }
@@ -37,6 +42,11 @@ struct MemoryStats {
     size_t hostTotal() const {
         size_t t = 0;
         for (size_t b : hostBytes) t += b;
+        return t;
+    }
+    size_t estimatedTotal() const {
+        size_t t = 0;
+        for (size_t b : estimatedBytes) t += b;
         return t;
     }
 };

@@ -41,11 +41,12 @@ void exportMessagesAndOutput(py::class_<S>& c) {
             "GetMemoryStats",
             [](const S& d) {
                 const deme::MemoryStats m = d.GetMemoryStats();
-                py::dict device, host;
+                py::dict device, host, estimate;
                 for (int g = 0; g < deme::NUM_MEMORY_GROUPS; g++) {
                     const char* key = deme::memoryGroupKey((deme::MemoryGroup)g);
                     device[key] = m.deviceBytes[g];
                     host[key] = m.hostBytes[g];
+                    estimate[key] = m.estimatedBytes[g];
                 }
                 py::dict r;
                 r["spheres"] = m.spheres;
@@ -53,11 +54,16 @@ void exportMessagesAndOutput(py::class_<S>& c) {
                 r["host"] = host;
                 r["device_total"] = m.deviceTotal();
                 r["host_total"] = m.hostTotal();
+                r["estimate"] = estimate;
+                r["estimate_total"] = m.estimatedTotal();
+                r["estimated_pairs"] = m.estimatedPairs;
                 return r;
             },
             "Memory by array group: {'spheres', 'device': {group: bytes}, 'host': {group: bytes}, 'device_total', "
-            "'host_total'}; groups owner_state, geometry, contacts_and_history, wildcards, detection_scratch, "
-            "output_staging, step_scratch.")
+            "'host_total', 'estimate': {group: bytes}, 'estimate_total', 'estimated_pairs'}; groups owner_state, "
+            "geometry, contacts_and_history, wildcards, detection_scratch, output_staging, step_scratch. The "
+            "estimate is what Initialize expected the run to hold where its steps keep their arrays (the GPU's on "
+            "'cuda', the host's on 'cpu'), with its first contact set of estimated_pairs pairs.")
         .def("ShowMemoryStats", &D::ShowMemoryStats, "Prints memory by array group, in MiB and bytes per sphere.")
         .def("ClearThreadCollaborationStats", &D::ClearThreadCollaborationStats,
              "Starts the collaboration counters and GetDynamicsWaitShare afresh (after a settling phase).")

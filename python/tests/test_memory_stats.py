@@ -1,6 +1,7 @@
 # Memory by array group from Python (GetMemoryStats, ShowMemoryStats; docs/memory.md): the groups
 # add up to the totals, the state's groups hold at least their arrays, and a call before
-# Initialize is a deme.Error naming it.
+# Initialize is a deme.Error naming it; Initialize's estimate of the run's memory, and a scene larger
+# than the memory there (DEME_MEMORY_LIMIT) failing at Initialize.
 import pytest
 
 import deme
@@ -30,7 +31,10 @@ def test_groups_add_up_and_hold_the_state(capfd):
     assert m["host"]["owner_state"] >= 60 * n
     assert m["host"]["geometry"] >= 24 * n  # at least the placed centres (3 doubles)
     # The contact sets live where the backend steps: on the GPU the host keeps no copy of them.
-    assert m["device" if sim.GetBackend() == "cuda" else "host"]["contacts_and_history"] > 0
+    side = "device" if sim.GetBackend() == "cuda" else "host"
+    assert m[side]["contacts_and_history"] > 0
+    if side == "device":
+        assert m["host"]["contacts_and_history"] == 0
     if sim.GetBackend() == "cuda":
         assert m["device_total"] == sim.GetDeviceMemUsage()
     else:
@@ -38,3 +42,16 @@ def test_groups_add_up_and_hold_the_state(capfd):
     sim.ShowMemoryStats()
     out = capfd.readouterr().out
     assert "contacts and history" in out and "total" in out
+
+
+def test_initialize_estimates_the_memory_and_refuses_a_scene_too_large(monkeypatch):
+    sim, n = pouring_block()
+    sim.Initialize()
+    m = sim.GetMemoryStats()
+    assert sorted(m["estimate"]) == sorted(GROUPS)
+    assert m["estimate_total"] == sum(m["estimate"].values()) > 0
+    assert m["estimated_pairs"] == 6 * n
+    monkeypatch.setenv("DEME_MEMORY_LIMIT", str(m["estimate_total"] // 2))
+    small, _ = pouring_block()
+    with pytest.raises(deme.Error, match=r"Initialize.*needs about %d bytes" % m["estimate_total"]):
+        small.Initialize()

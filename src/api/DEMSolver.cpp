@@ -292,10 +292,10 @@ bool DEMSolver::WasInterrupted() const { return m_sim->monitor().stopped(); }
 double DEMSolver::GetSimTime() const { return m_sim->time(); }
 double DEMSolver::GetTimeStep() const { return m_sim->settings.dt; }
 size_t DEMSolver::GetNumClumps() const {
-    return m_sim->initialized() ? m_sim->state().numClumps : m_scene->numClumps();
+    return m_sim->initialized() ? m_sim->numClumps() : m_scene->numClumps();
 }
 size_t DEMSolver::GetNumSpheres() const {
-    if (m_sim->initialized()) return m_sim->state().spheres.size();
+    if (m_sim->initialized()) return m_sim->numSpheres();
     size_t n = 0;
     for (const auto& b : m_scene->batches)
         for (const auto& t : b->GetTypes()) n += t->GetNumSpheres();
@@ -303,7 +303,7 @@ size_t DEMSolver::GetNumSpheres() const {
 }
 size_t DEMSolver::GetNumContacts() const { return m_sim->numRealContacts(); }
 double DEMSolver::GetAvgSphContacts() const {
-    const size_t nS = m_sim->state().spheres.size();
+    const size_t nS = m_sim->numSpheres();
     if (nS == 0) return 0.0;
     const size_t ss = m_sim->numSphereSphereContacts();
     return (double)(2 * ss + (m_sim->numRealContacts() - ss)) / (double)nS;
@@ -360,8 +360,8 @@ void DEMSolver::ShowMemStats() const {
         for (size_t i = 0; i < 2; i++)
             std::cout << (i == 0 ? " (GPU " : ", GPU ") << ids[i] << ": "
                       << (double)cuda::deviceBytesAllocatedOn(ids[i]) / (1 << 20) << " MiB" << (i == 1 ? ")" : "");
-    if (m_sim->initialized() && m_sim->settings.onGpu && m_sim->state().spheres.size())
-        std::cout << " (" << (double)cuda::deviceBytesAllocated() / (double)m_sim->state().spheres.size()
+    if (m_sim->initialized() && m_sim->settings.onGpu && m_sim->numSpheres())
+        std::cout << " (" << (double)cuda::deviceBytesAllocated() / (double)m_sim->numSpheres()
                   << " bytes per sphere)";
     std::cout << std::endl;
 }

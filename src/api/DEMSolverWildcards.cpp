@@ -166,7 +166,7 @@ void setContactWildcards(Simulation& sim, const char* call, const FamilySelector
     const unsigned int w = wildcardIndex(sim, call, WildcardKind::CONTACT, name);
     requireFiniteValue(call, value);
     sim.refreshContactSet();
-    setContactWildcard(sim.editState(), which, w, value);
+    setContactWildcard(sim.editStateWithContacts(), which, w, value);
 }
 
 }  // namespace
@@ -215,7 +215,7 @@ void setPersistence(Simulation& sim, const char* call, const FamilySelector& whi
                    "must be called after Initialize() (it applies to the contacts now "
                    "in the set)");
     sim.refreshContactSet();
-    setContactPersistence(sim.editState(), which, persistent);
+    setContactPersistence(sim.editStateWithContacts(), which, persistent);
 }
 
 }  // namespace
@@ -257,7 +257,7 @@ void DEMSolver::RemoveFamilyPersistentContactBoth(unsigned int family) {
 }
 
 size_t DEMSolver::GetNumPersistentContacts() const {
-    return m_sim->initialized() ? countPersistentContacts(m_sim->state()) : 0;
+    return m_sim->initialized() ? countPersistentContacts(m_sim->stateWithContacts()) : 0;
 }
 
 }  // namespace deme

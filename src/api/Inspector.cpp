@@ -43,7 +43,7 @@ const Simulation& DEMInspector::live(const char* call) const {
 StressTensor DEMInspector::GetStress() const {
     const char* call = "DEMInspector::GetStress";
     if (m_kind != "stress") throwError(call, "\"" + m_kind + "\" is not a stress inspector");
-    return measureStress(live(call).state(), to_double3(m_lo), to_double3(m_hi));
+    return measureStress(live(call).stateWithContacts(), to_double3(m_lo), to_double3(m_hi));
 }
 
 double DEMInspector::GetValue() const {

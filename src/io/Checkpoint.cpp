@@ -155,7 +155,7 @@ const SectionDef SECTIONS[] = {
     {"clock", writeClock},
     {"settings", writeSettings},
     {"families", writeFamilies},
-    {"state", [](const Simulation& sim, ByteWriter& out) { writeStateSection(sim.state(), out); }},
+    {"state", [](const Simulation& sim, ByteWriter& out) { writeStateSection(sim.stateWithContacts(), out); }},
 };
 
 void readSection(const std::string& name, ByteReader& in, Staging& st, const Simulation& sim,
@@ -206,7 +206,7 @@ void readCheckpoint(Simulation& sim, const std::string& path, const std::string&
             throwError(call, "\"" + path + "\" has a section \"" + s->first +
                                  "\" this build does not know (written by a newer version of the engine?)");
         seen[k] = true;
-        if (s->first == "state") st.state = sim.state();  // a copy: sizes of what is not stored stay valid
+        if (s->first == "state") st.state = sim.state();  // a copy: sizes of what is not stored stay valid (the contacts are all read)
         ByteReader in(s->second.data(), s->second.size(), call, path);
         readSection(s->first, in, st, sim, call, path);
     }

@@ -148,7 +148,7 @@ OutputFrame stageClumpFrame(const Simulation& sim) {
 }
 
 OutputFrame stageContactFrame(const Simulation& sim) {
-    const SimState& s = sim.state();
+    const SimState& s = sim.stateWithContacts();
     const long nc = (long)s.contacts.size();
     const float time = (float)sim.time(), dt = (float)sim.settings.dt;
     // Pairs in contact, and pairs a custom model gives a force at a distance. Two passes (which
@@ -226,7 +226,7 @@ OutputFrame stageMeshFrame(const Simulation& sim) {
 
 OutputFrame stageStressFrame(const Simulation& sim, const double3& lo, const double3& hi, const unsigned int n[3],
                              const char* call) {
-    const std::vector<StressTensor> cells = measureStressField(sim.state(), lo, hi, n);
+    const std::vector<StressTensor> cells = measureStressField(sim.stateWithContacts(), lo, hi, n);
     OutputFrame f = newFrame(sim, call, cells.size());
     FrameColumn& xyz = f.addColumn("points", {"X", "Y", "Z"}, ValueType::FLOAT64, f.rows);
     f.pointsColumn = 0;

@@ -129,10 +129,15 @@ class KinematicsBackend {
 class DynamicsBackend {
   public:
     virtual ~DynamicsBackend() = default;
-    // The host state becomes the one the steps run on (after Initialize and host-side edits).
-    virtual void upload(const SimState& s) = 0;
-    // The evolved state (and contact set) into `s`.
+    // The host state becomes the one the steps run on (after Initialize and host-side edits). With
+    // withContacts false the contact set the backend holds stays as it is (the host's copy of it may
+    // be empty then): edits of owners and geometry leave the pairs and their history alone.
+    virtual void upload(const SimState& s, bool withContacts) = 0;
+    // The evolved state into `s`: owners, the kinematic cache and the model's wildcards; not the
+    // contact set, which downloadContacts brings where a caller reads it.
     virtual void download(SimState& s) = 0;
+    // The contact set in use (pairs, history, per-contact forces) into s.contacts.
+    virtual void downloadContacts(SimState& s) = 0;
     // Tracker loads (AddAcc) of `s` for the coming call, or zeros.
     virtual void uploadTrackerLoads(const SimState& s) = 0;
     // Before the steps of one DoDynamics call (the GPU compiles changed prescriptions here).
@@ -175,6 +180,10 @@ class DynamicsBackend {
     virtual bool onGpu() const = 0;
     // Adds the host memory this backend holds of its own (MemoryStats::hostBytes).
     virtual void countHostMemory(MemoryStats& /*m*/) const {}
+    // The bytes a run may take where its steps keep their arrays, for the check at Initialize
+    // (runtime/MemoryEstimate.h): the GPU's free memory; on the CPU what the machine has available
+    // plus what the host state already holds. 0 where not known.
+    virtual size_t memoryAvailable() const = 0;
 };
 
 // A backend's two sides, made together (each side knows its partner).

@@ -59,6 +59,8 @@ MemoryStats Simulation::hostMemory() const {
     if (m_backends.dynamics) m_backends.dynamics->countHostMemory(m);
     if (m_backends.kinematics) m_backends.kinematics->countHostMemory(m);
     m.spheres = m_state.spheres.size();
+    for (int g = 0; g < NUM_MEMORY_GROUPS; g++) m.estimatedBytes[g] = m_memoryEstimate.bytes[g];
+    m.estimatedPairs = m_memoryEstimate.pairs;
     return m;
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
+#include <type_traits>
 
 #include <deme/Error.h>
 
@@ -39,14 +40,19 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     checkShearedGrid(m_state.frame.periodic, m_grid, "Initialize");
     applyDetectionMode();
     m_backends = makeBackends(m_state, m_model, settings, [this](Verbosity v, const std::string& msg) { log(v, msg); });
+    // A scene too large for the memory its steps use fails here, not in its first detection.
+    const DynamicsBackend& dynamics = *m_backends.dynamics;
+    m_memoryEstimate = estimateRunMemory(m_state, m_grid, dynamics.onGpu());
+    requireMemoryFor(m_memoryEstimate, dynamics.memoryAvailable(),
+                     dynamics.onGpu() ? dynamics.description() + " memory" : "host memory", "Initialize");
     m_contacts.start(settings, *m_backends.dynamics, *m_backends.kinematics);
     m_contacts.period = &m_state.frame.periodic;
     // ChangeFamilyWhen is checked at each detection (docs/active-box.md says why).
     m_contacts.beforeDetection = [this] {
         if (!families.conditions().empty()) m_backends.dynamics->applyFamilyConditions(m_time, families);
     };
-    m_backendStale = true;
-    m_hostStale = false;
+    m_backendStale = m_backendContactsStale = true;
+    m_hostStale = m_hostContactsStale = false;
     m_initialized = true;
     log(Verbosity::INFO, "initialized: " + std::to_string(m_state.numClumps) + " clumps, " +
                              std::to_string(m_state.spheres.size()) + " spheres, " +
@@ -78,10 +84,36 @@ const SimState& Simulation::state() const {
     return m_state;
 }
 
+const SimState& Simulation::stateWithContacts() const {
+    state();
+    if (m_hostContactsStale) {
+        m_backends.dynamics->downloadContacts(m_state);
+        m_hostContactsStale = false;
+    }
+    return m_state;
+}
+
 SimState& Simulation::editState() {
     state();
     m_backendStale = true;
     return m_state;
+}
+
+SimState& Simulation::editStateWithContacts() {
+    stateWithContacts();
+    m_backendStale = m_backendContactsStale = true;
+    return m_state;
+}
+
+void Simulation::markHostBehind() {
+    if (!m_backends.dynamics->onGpu()) return;  // the CPU steps the host state itself
+    m_hostStale = true;
+    // Contacts the host edited and has not sent yet stay until the upload that sends them.
+    if (m_backendContactsStale) return;
+    m_hostContactsStale = true;
+    forEachContactField(m_state.contacts, m_state.contacts, [](auto& field, auto&, FieldRole) {
+        std::remove_reference_t<decltype(field)>().swap(field);
+    });
 }
 
 void Simulation::uploadIfEdited() {
@@ -90,7 +122,9 @@ void Simulation::uploadIfEdited() {
     // kinematics side is idle while its geometry changes.
     m_contacts.dropOrderInFlight();
     settings.maxMargin = periodicMarginCap(m_state, settings.familyExtraMargin);
-    m_backends.dynamics->upload(m_state);  // (the GPU's makes dT's GPU current for what follows)
+    // (the GPU's upload makes dT's GPU current for what follows)
+    m_backends.dynamics->upload(m_state, m_backendContactsStale);
+    m_backendContactsStale = false;
     m_backends.kinematics->setGeometry(m_state, m_grid, families, settings);
     m_contacts.invalidate();
     // After a restart: go on with the restored set where the backend can (Simulation::restore).
@@ -139,7 +173,7 @@ void Simulation::advance(unsigned long long n) {
         batch.storeContactForcesAtEnd = k + batch.maxSteps == n || polled;
         const StepBatchResult r = dynamics.steps(batch, settings, families, m_timing);
         const StepOutcome& last = r.last;
-        m_hostStale = dynamics.onGpu();
+        markHostBehind();
         m_time = r.time;
         m_step += r.steps;
         k += r.steps;
@@ -178,14 +212,14 @@ void Simulation::advance(unsigned long long n) {
 void Simulation::syncContactDetection() {
     if (!m_initialized) return;
     m_contacts.sync(m_step, m_timing);
-    if (m_backends.dynamics->onGpu()) m_hostStale = true;
+    markHostBehind();
 }
 
 void Simulation::refreshContactSet() {
     if (!m_initialized) return;
     uploadIfEdited();
     m_contacts.bringUpToDate(settings, m_step, m_lastMaxSpeed, m_timing);
-    if (m_backends.dynamics->onGpu()) m_hostStale = true;
+    markHostBehind();
 }
 
 void Simulation::reportFault(const StepOutcome& r) const {
@@ -234,7 +268,7 @@ void Simulation::setOwnerPos(size_t owner, const double3& p, const char* call) {
 }
 
 Simulation::Resumable Simulation::resumable() const {
-    state();  // the backend's contact set is the host's record now
+    stateWithContacts();  // the backend's contact set is the host's record now
     Resumable r{m_time, m_step, m_lastMaxSpeed, m_realContacts, m_realSphereSphere, m_contacts.frequency().learned(),
                 m_contacts.progress(), {}};
     // Before the first step, or right after an edit, there is no set in use to go on with.
@@ -251,8 +285,9 @@ void Simulation::restore(SimState&& state, const Resumable& r) {
     const bool resized = state.owners.size() != m_state.owners.size() || state.spheres.size() != m_state.spheres.size();
     m_state = std::move(state);  // in place: the CPU backend steps this very object
     if (resized) m_grid = makeBinGrid(m_state, settings.binSize);
-    m_hostStale = false;
-    m_backendStale = true;  // uploaded (and contacts re-detected) before the next step
+    m_hostStale = m_hostContactsStale = false;
+    // Uploaded, contact set and all (and contacts re-detected), before the next step.
+    m_backendStale = m_backendContactsStale = true;
     m_contacts.invalidate();
     m_resume = std::make_unique<Resumable>(r);
     m_time = r.time;

@@ -10,6 +10,7 @@
 #include "runtime/Backends.h"
 #include "runtime/ContactSetManager.h"
 #include "runtime/FamilyRules.h"
+#include "runtime/MemoryEstimate.h"
 #include "runtime/RunMonitor.h"
 #include "runtime/SceneFingerprint.h"
 #include "runtime/Settings.h"
@@ -37,17 +38,27 @@ class Simulation {
 
     double time() const { return m_time; }
     // The state for reading; on the GPU backend it is brought back from the device first if the
-    // device has moved on.
+    // device has moved on. Without the contact set: on the GPU backend s.contacts may be empty or
+    // behind (the set lives on the device, and the host keeps no copy of it between calls).
     const SimState& state() const;
+    // The same with the contact set (output of contacts, stress, checkpoints).
+    const SimState& stateWithContacts() const;
     // The state for editing (tracker setters, family changes): the backend's copy is replaced by it
-    // before the next step, which re-detects contacts.
+    // before the next step, which re-detects contacts; the backend's contact set and its history
+    // stay.
     SimState& editState();
+    // For edits of the contact set itself (scene edits, contact wildcards and persistence): the
+    // backend's set is replaced by the host's too.
+    SimState& editStateWithContacts();
     // The state for adding tracker loads (AddAcc): they go to the backend with the next call by
     // themselves, without replacing its state.
     SimState& trackerLoadState() {
         state();
         return m_state;
     }
+    // Counts the host keeps itself (scene edits happen on the host): no download.
+    size_t numSpheres() const { return m_state.spheres.size(); }
+    size_t numClumps() const { return m_state.numClumps; }
     const TimingStats& timing() const { return m_timing; }
     size_t numRealContacts() const { return m_realContacts; }
     size_t numSphereSphereContacts() const { return m_realSphereSphere; }
@@ -71,6 +82,8 @@ class Simulation {
     std::string launchReport() const { return m_backends.dynamics ? m_backends.dynamics->launchReport() : ""; }
     // Host memory by group: the state's arrays and the backends' own (runtime/MemoryAccounting.cpp).
     MemoryStats hostMemory() const;
+    // What Initialize estimated the run would hold (runtime/MemoryEstimate.h).
+    const MemoryEstimate& memoryEstimate() const { return m_memoryEstimate; }
 
     // Host-side changes to the state (tracker setters, family changes) call this so that the next
     // step re-detects contacts instead of trusting the old margin.
@@ -127,6 +140,12 @@ class Simulation {
     // backend's (needs a download; never on the CPU, which steps the host state itself).
     bool m_backendStale = true;
     mutable bool m_hostStale = false;
+    // The same for the contact set, which on a GPU the host copies only when a caller reads it.
+    bool m_backendContactsStale = true;
+    mutable bool m_hostContactsStale = false;
+    // After steps or a detection on a GPU: the host's copy is behind, and its contact arrays are
+    // let go (a GPU run's host keeps no copy of the set between calls).
+    void markHostBehind();
     TimingStats m_timing;
     BinGrid m_grid{};
     double m_time = 0.0;
@@ -136,6 +155,7 @@ class Simulation {
     float m_lastMaxSpeed = 0.f;
     RunMonitor m_monitor;
     SceneFingerprint m_initialScene;
+    MemoryEstimate m_memoryEstimate;
     // A restored contact set and schedule for the next upload (restore()); none once taken.
     std::unique_ptr<Resumable> m_resume;
     ContactSetManager m_contacts;

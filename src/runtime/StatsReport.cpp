@@ -22,7 +22,7 @@ std::string timingReport(const Simulation& sim) {
     os << "  step loop wall time " << wall << " s";
     if (wall > 0 && t.steps > 0)
         os << ", " << std::scientific << std::setprecision(3)
-           << (double)sim.state().spheres.size() * (double)t.steps / wall << " sphere-steps/s";
+           << (double)sim.numSpheres() * (double)t.steps / wall << " sphere-steps/s";
     const std::string launches = sim.launchReport();
     if (!launches.empty()) os << "\n  " << launches;
     return os.str();

@@ -8,14 +8,16 @@
 #include "backend/cpu/Integration.h"
 #include "backend/cpu/MeshContacts.h"
 #include "parallel/Parallel.h"
+#include "runtime/MemoryAccounting.h"
+#include "runtime/MemoryEstimate.h"
 
 namespace deme {
 
 CpuDynamics::CpuDynamics(SimState& s, CpuForceModel model, CpuKinematics& kinematics)
     : m_s(s), m_model(std::move(model)), m_kinematics(kinematics) {}
 
-void CpuDynamics::upload(const SimState& s) {
-    // The steps run on the host state itself; travel is measured from now until the next set.
+void CpuDynamics::upload(const SimState& s, bool /*withContacts*/) {
+    // The steps run on the host state itself (its contacts too); travel is measured from now until the next set.
     m_baseline = s.owners.travel;
     m_orderBaseline = s.owners.travel;
     m_subsetStale = true;
@@ -111,6 +113,14 @@ void CpuDynamics::countHostMemory(MemoryStats& m) const {
     addHost(m, MemoryGroup::OWNER_STATE, vectorBytes(m_baseline) + vectorBytes(m_orderBaseline));
     addHost(m, MemoryGroup::STEP_SCRATCH,
             vectorBytes(m_subset.owners) + vectorBytes(m_subset.spheres) + vectorBytes(m_subset.reduced));
+}
+
+size_t CpuDynamics::memoryAvailable() const {
+    const size_t free = hostMemoryAvailable();
+    if (free == 0) return 0;
+    MemoryStats held;
+    countStateMemory(m_s, held);
+    return free + held.hostTotal();
 }
 
 }  // namespace deme

@@ -21,8 +21,9 @@ class CpuDynamics : public DynamicsBackend {
     // Steps `s` (the host state: nothing is copied) with `model`; installs what `kinematics` detects.
     CpuDynamics(SimState& s, CpuForceModel model, CpuKinematics& kinematics);
 
-    void upload(const SimState& s) override;
+    void upload(const SimState& s, bool withContacts) override;
     void download(SimState&) override {}
+    void downloadContacts(SimState&) override {}
     void uploadTrackerLoads(const SimState&) override {}
     void beginRun(const Settings&, const FamilyRules&) override { m_subsetStale = true; }
     StepBatchResult steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules& families,
@@ -38,6 +39,7 @@ class CpuDynamics : public DynamicsBackend {
     std::string description() const override;
     bool onGpu() const override { return false; }
     void countHostMemory(MemoryStats& m) const override;
+    size_t memoryAvailable() const override;
 
     const CpuForceModel& model() const { return m_model; }
 

@@ -14,19 +14,21 @@ void CudaDynamics::refreshView() {
     viewContacts(m_contacts[m_current], m_numContacts, m_view);
 }
 
-void CudaDynamics::upload(const SimState& s) {
+void CudaDynamics::upload(const SimState& s, bool withContacts) {
     select();
     const Stream st = m_stream;
     m_state.upload(s, st);
     m_baseline.resizeDiscarding(s.owners.size());
     if (!s.owners.travel.empty()) m_baseline.uploadAsync(s.owners.travel.data(), s.owners.size(), st);
     m_orderBaseline.resizeDiscarding(s.owners.size());
-    // The contact set the host has (history included).
-    m_W = s.numWildcards;
-    m_current = 0;
-    m_numContacts = (uint32_t)s.contacts.size();
-    uploadContacts(s.contacts, m_W, m_contacts[0], st);
-    m_contacts[1].force.release();  // only the set in use holds per-contact forces (install)
+    if (withContacts) {
+        // The contact set the host has (history included).
+        m_W = s.numWildcards;
+        m_current = 0;
+        m_numContacts = (uint32_t)s.contacts.size();
+        uploadContacts(s.contacts, m_W, m_contacts[0], st);
+        m_contacts[1].force.release();  // only the set in use holds per-contact forces (install)
+    }
     m_motion.resizeDiscarding(NUM_FAMILIES);
     m_reduction.resizeDiscarding(1);
     m_maxTravelBits.resizeDiscarding(1);
@@ -59,9 +61,14 @@ void CudaDynamics::upload(const SimState& s) {
 void CudaDynamics::download(SimState& s) {
     select();
     m_state.download(s, m_stream);
-    downloadContacts(m_contacts[m_current], m_numContacts, m_W, s.contacts, m_stream);
     synchronize(m_stream);
     m_model.download(s);
+}
+
+void CudaDynamics::downloadContacts(SimState& s) {
+    select();
+    cuda::downloadContacts(m_contacts[m_current], m_numContacts, m_W, s.contacts, m_stream);
+    synchronize(m_stream);
 }
 
 void CudaDynamics::uploadTrackerLoads(const SimState& s) {
@@ -88,5 +95,15 @@ void CudaDynamics::beginRun(const Settings&, const FamilyRules& families) {
 }
 
 std::string CudaDynamics::description() const { return "GPU " + std::to_string(m_device) + " (" + m_name + ")"; }
+
+size_t CudaDynamics::memoryAvailable() const {
+    select();
+    size_t freeBytes = 0, totalBytes = 0;
+    if (cudaMemGetInfo(&freeBytes, &totalBytes) != cudaSuccess) {
+        cudaGetLastError();
+        return 0;
+    }
+    return freeBytes;
+}
 
 }  // namespace deme::cuda

@@ -4,9 +4,10 @@
 // dT's own stream. The step loop and the contact-set schedule above it are the engine's one
 // (runtime/Simulation, runtime/ContactSetManager); contact detection is CudaKinematics'.
 //
-// The host SimState stays the record between calls: upload() copies it to the device after
-// Initialize and after host-side edits, download() copies the evolved state back when the host needs
-// it. Files: CudaDynamics.cpp (state copies), CudaStepBatch.cpp (the steps, in batches replayed from
+// The host SimState stays the record of owners and geometry between calls: upload() copies it to the
+// device after Initialize and after host-side edits, download() copies the evolved state back when
+// the host needs it. The contact set lives on the device: downloadContacts() copies it for a caller
+// that reads it, upload() replaces it only after the host edited the set itself. Files: CudaDynamics.cpp (state copies), CudaStepBatch.cpp (the steps, in batches replayed from
 // a captured step), CudaContactSets.cpp (installing a detected set), CudaDynamicsSetup.cpp (the
 // kernels' compilation).
 #pragma once
@@ -40,8 +41,9 @@ class CudaDynamics : public DynamicsBackend {
     // The kinematics side whose results install() takes (made after this, on dT's stream).
     void setKinematics(CudaKinematics* kinematics) { m_kinematics = kinematics; }
 
-    void upload(const SimState& s) override;
+    void upload(const SimState& s, bool withContacts) override;
     void download(SimState& s) override;
+    void downloadContacts(SimState& s) override;
     void uploadTrackerLoads(const SimState& s) override;
     void beginRun(const Settings& settings, const FamilyRules& families) override;
     StepBatchResult steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules& families,
@@ -58,6 +60,7 @@ class CudaDynamics : public DynamicsBackend {
     std::string description() const override;
     std::string launchReport() const override;
     bool onGpu() const override { return true; }
+    size_t memoryAvailable() const override;
 
     // What kinematics orders snapshot, on this stream.
     const DeviceState& state() const { return m_state; }

@@ -95,15 +95,13 @@ void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, S
 
 void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, ContactArrays& c, Stream stream) {
     forEachContactField(d, c, [&](const auto& dev, auto& host, FieldRole role) {
-        if (role == FieldRole::HOST) return;  // the CPU's bookkeeping; the torques follow below
+        // The CPU's bookkeeping (its per-owner index, per-contact torques) has no device copy: the
+        // GPU adds loads to the owners directly. Left empty, it costs the host nothing.
+        if (role == FieldRole::HOST) return;
         const size_t count = contactFieldCount(c, host, n, W);
         host.resize(count);
         if (count) dev.downloadAsync(host.data(), count, stream);
     });
-    // Per-contact torques exist only in the CPU's reduction (the GPU adds loads to the owners
-    // directly): they read as zero.
-    c.torqueA.assign(n, make_float3(0.f));
-    c.torqueB.assign(n, make_float3(0.f));
 }
 
 void viewContacts(DeviceContacts& d, uint32_t n, StateView& v) {

@@ -1,0 +1,169 @@
+#include "runtime/MemoryEstimate.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <type_traits>
+
+#include <deme/Error.h>
+
+#include "runtime/MemoryAccounting.h"
+
+namespace deme {
+
+namespace {
+
+template <class V>
+constexpr size_t elementBytes(const V&) {
+    return sizeof(typename std::remove_reference_t<V>::value_type);
+}
+
+// The bytes a backend's copy of a field group holds: the host arrays' sizes (they are the scene's,
+// assembled by Initialize), the fields of the roles that backend keeps.
+struct SizedBytes {
+    size_t& sum;
+    bool deviceCopy;  // the GPU keeps no HOST-role field
+    template <class V>
+    void operator()(const V& v, const V&, FieldRole role) const {
+        if (deviceCopy && role == FieldRole::HOST) return;
+        sum += v.size() * elementBytes(v);
+    }
+};
+
+// Contact pairs: the bytes one pair takes in one contact set (W wildcard floats), the CPU's
+// bookkeeping included where `host`; the per-contact force only where `withForce`.
+size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host, bool withForce) {
+    size_t b = 0;
+    forEachContactField(c, c, [&](const auto& v, const auto&, FieldRole role) {
+        const void* f = &v;
+        if (f == &c.wildcards) b += W * elementBytes(v);
+        else if (f == &c.force) b += withForce ? elementBytes(v) : 0;
+        else if (f == &c.ownerEntries) b += host ? 2 * elementBytes(v) : 0;  // one entry per side
+        else if (f == &c.meshContacts || f == &c.meshContactGroups || f == &c.ownerStart) return;  // not per pair
+        else if (role != FieldRole::HOST || host) b += elementBytes(v);
+    });
+    return b;
+}
+
+// Detection's bin entries: a box of extent d overlaps on average 1 + d / edge bins along each axis
+// (a sphere's is 2r; a triangle's is taken in its owner's frame).
+double binsOverlapped(const BinGrid& g, double dx, double dy, double dz) {
+    return (1.0 + dx / g.edge.x) * (1.0 + dy / g.edge.y) * (1.0 + dz / g.edge.z);
+}
+double expectedSphereEntries(const SimState& s, const BinGrid& g) {
+    double sum = 0.0;
+    for (float r : s.spheres.radius) sum += binsOverlapped(g, 2.0 * r, 2.0 * r, 2.0 * r);
+    return sum;
+}
+double expectedTriangleEntries(const SimState& s, const BinGrid& g) {
+    const TriangleArrays& t = s.triangles;
+    double sum = 0.0;
+    for (size_t i = 0; i < t.size(); i++) {
+        const float3 a = t.v0[i], b = t.v1[i], c = t.v2[i];
+        auto extent = [](float p, float q, float r) { return (double)std::max({p, q, r}) - std::min({p, q, r}); };
+        sum += binsOverlapped(g, extent(a.x, b.x, c.x), extent(a.y, b.y, c.y), extent(a.z, b.z, c.z));
+    }
+    return sum;
+}
+
+std::string gib(size_t bytes) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.2f GiB", (double)bytes / (1024.0 * 1024.0 * 1024.0));
+    return buf;
+}
+
+}  // namespace
+
+MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, size_t pairs) {
+    MemoryEstimate e;
+    const size_t nO = s.owners.size(), nS = s.spheres.size();
+    e.pairs = pairs ? pairs : (size_t)(ESTIMATED_PAIRS_PER_SPHERE * (double)nS);
+    auto& b = e.bytes;
+    size_t& owner = b[(int)MemoryGroup::OWNER_STATE];
+    size_t& geometry = b[(int)MemoryGroup::GEOMETRY];
+    const SizedBytes ownerSum{owner, onGpu}, geometrySum{geometry, onGpu};
+    // Owners, mass properties, the integration's per-owner scratch; geometry and its placed poses
+    // (the kinematic cache, which Initialize has filled): as ShowMemoryStats groups them.
+    forEachOwnerField(s.owners, s.owners, ownerSum);
+    forEachMassField(s.massProps, s.massProps, ownerSum);
+    forEachScratchField(s.integrationScratch, s.integrationScratch, [&](const auto& v, const auto&, FieldRole) {
+        owner += nO * elementBytes(v);
+    });
+    owner += 2 * sizeof(double) * nO;  // each owner's travel at the set's and the order's snapshots
+    forEachSphereField(s.spheres, s.spheres, geometrySum);
+    forEachAnalyticalField(s.analytical, s.analytical, geometrySum);
+    forEachTriangleField(s.triangles, s.triangles, geometrySum);
+    forEachCacheField(s.cache, s.cache, geometrySum);
+    if (!onGpu) {  // the host's id maps and per-owner ranges
+        owner += 4 * (s.ownerUserToInternal.size() + s.ownerInternalToUser.size());
+        geometry += 4 * (s.ownerSphereStart.size() + s.ownerTriStart.size() + s.sphereInternalToUser.size() +
+                         s.sphereUserToInternal.size());
+    }
+    for (const std::vector<float>& w : s.wildcards.owner) b[(int)MemoryGroup::WILDCARDS] += 4 * w.size();
+    for (const std::vector<float>& w : s.wildcards.geometry) b[(int)MemoryGroup::WILDCARDS] += 4 * w.size();
+
+    const unsigned int W = s.numWildcards;
+    const size_t nT = s.triangles.size();
+    const double entries = expectedSphereEntries(s, grid), triEntries = expectedTriangleEntries(s, grid);
+    const size_t bins = (size_t)grid.numBins() + 1;
+    size_t& contacts = b[(int)MemoryGroup::CONTACTS];
+    size_t& detection = b[(int)MemoryGroup::DETECTION];
+    if (onGpu) {
+        // Two sets (the one in use and the one a detection fills), per-contact forces in the one in
+        // use, and history mapping's scratch (missing flags and their scan, 8 B; the merged pairs,
+        // 9 B) (backend/cuda/CudaDynamics, DeviceHistoryMapping).
+        contacts = e.pairs * (bytesPerPair(s.contacts, W, false, true) + bytesPerPair(s.contacts, W, false, false) + 17);
+        // kT's snapshot (sphere centres, owner families), its copies of sphere owners and radii, the
+        // spheres' bin boxes (6 ints), entry counts and offsets, pair counts and offsets; the sorted
+        // bin entries (keys and items, twice) and the bins' starts; the outbox's pairs (ids, type)
+        // (backend/cuda/CudaKinematics.cpp, Work::detect).
+        detection = nS * (24 + 8 + 24 + 8 + 8) + nO + (size_t)(16.0 * entries) + 4 * bins + 9 * e.pairs;
+        // Triangles, where there are any: their global boxes (2 double3), bin boxes, counts and
+        // offsets, sorted entries and their own bins' starts.
+        if (nT) detection += nT * (48 + 24 + 8) + (size_t)(16.0 * triEntries) + 4 * bins;
+        b[(int)MemoryGroup::STEP_SCRATCH] = 16 * nO;  // step subsets (CudaDynamics: 4 lists of 4 B)
+    } else {
+        contacts = e.pairs * bytesPerPair(s.contacts, W, true, true) + 4 * (nO + 1);
+        // The bin boxes (6 ints) and the registry's entries and bins' starts, for spheres and for
+        // triangles (whose global boxes, 2 double3, are kept too) (backend/cpu/ContactDetector).
+        detection = nS * 24 + (size_t)(4.0 * entries) + 4 * bins;
+        if (nT) detection += nT * (48 + 24) + (size_t)(4.0 * triEntries) + 4 * bins;
+    }
+    return e;
+}
+
+void requireMemoryFor(const MemoryEstimate& e, size_t available, const std::string& where, const char* call) {
+    if (const char* limit = std::getenv("DEME_MEMORY_LIMIT")) {
+        char* end = nullptr;
+        const unsigned long long v = std::strtoull(limit, &end, 10);
+        if (end == limit || *end != '\0')
+            throwError(call, std::string("DEME_MEMORY_LIMIT is \"") + limit + "\", not a number of bytes");
+        if (v < available) available = (size_t)v;
+    }
+    if (available == 0 || e.total() <= available) return;  // 0: not known
+    std::ostringstream msg;
+    msg << "the scene needs about " << e.total() << " bytes (" << gib(e.total()) << ") of " << where << " and "
+        << available << " (" << gib(available) << ") are available: ";
+    bool first = true;
+    for (int g = 0; g < NUM_MEMORY_GROUPS; g++) {
+        if (!e.bytes[g]) continue;
+        msg << (first ? "" : ", ") << memoryGroupName((MemoryGroup)g) << " " << gib(e.bytes[g]);
+        first = false;
+    }
+    msg << ", with " << e.pairs << " contact pairs assumed (" << ESTIMATED_PAIRS_PER_SPHERE
+        << " per sphere); use fewer or larger grains, or a device with more memory";
+    throwError(call, msg.str());
+}
+
+size_t hostMemoryAvailable() {
+    std::ifstream in("/proc/meminfo");
+    std::string line;
+    unsigned long long kib = 0;
+    while (std::getline(in, line))
+        if (std::sscanf(line.c_str(), "MemAvailable: %llu kB", &kib) == 1) return (size_t)kib * 1024;
+    return 0;
+}
+
+}  // namespace deme

@@ -1,0 +1,47 @@
+// What a run will hold in the memory its steps use (the GPU's on the CUDA backend, the host's on the
+// CPU's) once its first contact set is built, estimated at Initialize from the scene's counts and the
+// state's field lists (state/StateFields.h), group by group as ShowMemoryStats counts them. A scene
+// that does not fit then fails at Initialize with a deme::Error saying what it needs and what there
+// is, not in its first detection (docs/memory.md, "Scenes too large").
+#pragma once
+
+#include <deme/MemoryStats.h>
+
+#include <cstddef>
+#include <string>
+
+#include "kinematics/BinGrid.h"
+#include "state/SimState.h"
+
+namespace deme {
+
+// The first contact set's size the estimate assumes: six pairs per sphere, what a dense packing
+// within the margin has (MIXER-BENCH early spheres, a lattice closer than the margin: 5.95; a
+// settled bed of spheres: 4-7). A set that grows beyond it later is an error naming the array.
+constexpr double ESTIMATED_PAIRS_PER_SPHERE = 6.0;
+
+struct MemoryEstimate {
+    size_t bytes[NUM_MEMORY_GROUPS] = {};
+    size_t pairs = 0;  // the contact pairs assumed
+    size_t total() const {
+        size_t t = 0;
+        for (size_t b : bytes) t += b;
+        return t;
+    }
+};
+
+// onGpu: the CUDA backend's device buffers (two contact sets, history mapping's scratch, detection's
+// sorted bin entries); otherwise the CPU backend's host arrays. pairs: the contact set's size, or
+// ESTIMATED_PAIRS_PER_SPHERE per sphere where 0.
+MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, size_t pairs = 0);
+
+// Throws a deme::Error from `call` when the estimate exceeds `available` bytes (0: not known, no
+// check) of `where` ("GPU 0 (NVIDIA H200)", "host memory"), naming both and the groups. `available`
+// is capped by the environment variable DEME_MEMORY_LIMIT (bytes) where set: a smaller machine, for
+// tests and for runs that must leave memory to others.
+void requireMemoryFor(const MemoryEstimate& e, size_t available, const std::string& where, const char* call);
+
+// The bytes this machine can still give (MemAvailable of /proc/meminfo; 0 where unknown).
+size_t hostMemoryAvailable();
+
+}  // namespace deme
