@@ -38,21 +38,33 @@ unsigned int DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, uns
     m_oldHadPersistent = false;
     if (nOld == 0) return nFresh;
     const ContactKeys fresh = keysOf(freshSet, nFresh), old = keysOf(oldSet, nOld);
+    const uint8_t* persistent = oldSet.persistent.data();
+    // Whether the old set has any persistent pair at all (one byte read per pair). Most runs have
+    // none: they need no per-pair scratch, which is let go (8 B per pair otherwise).
+    m_any.resize(1, stream);
+    m_any.zeroAsync(stream);
+    launch(m_missing, blocksFor(nOld, THREADS), THREADS, 0, stream, fresh, old, persistent, (unsigned int*)nullptr,
+           m_any.data());
+    unsigned int any = 0;
+    m_any.downloadAsync(&any, 1, stream);
+    synchronize(stream);
+    m_oldHadPersistent = any != 0;
+    if (!any) {
+        m_isMissing.release();
+        m_missingBefore.release();
+        return nFresh;
+    }
     m_isMissing.resize((size_t)nOld + 1, stream);
     m_missingBefore.resize((size_t)nOld + 1, stream);
-    m_any.resize(1, stream);
     m_isMissing.zeroAsync(stream);
-    m_any.zeroAsync(stream);
-    launch(m_missing, blocksFor(nOld, THREADS), THREADS, 0, stream, fresh, old,
-           (const uint8_t*)oldSet.persistent.data(), m_isMissing.data(), m_any.data());
+    launch(m_missing, blocksFor(nOld, THREADS), THREADS, 0, stream, fresh, old, persistent, m_isMissing.data(),
+           m_any.data());
     prim.exclusiveSum(m_isMissing.data(), m_missingBefore.data(), (size_t)nOld + 1, stream);
-    unsigned int counts[2] = {0, 0};  // missing pairs, any persistent
-    m_missingBefore.downloadAsync(&counts[0], 1, stream, nOld);
-    m_any.downloadAsync(&counts[1], 1, stream);
+    unsigned int missing = 0;
+    m_missingBefore.downloadAsync(&missing, 1, stream, nOld);
     synchronize(stream);
-    m_oldHadPersistent = counts[1] != 0;
-    if (counts[0] == 0) return nFresh;
-    const unsigned int total = nFresh + counts[0];
+    if (missing == 0) return nFresh;
+    const unsigned int total = nFresh + missing;
     m_mergedA.resize(total, stream);
     m_mergedB.resize(total, stream);
     m_mergedType.resize(total, stream);

@@ -15,14 +15,16 @@ __device__ inline size_t globalIndex() { return (size_t)blockIdx.x * blockDim.x 
 
 }  // namespace
 
-// missing[j] = 1 for a persistent pair j of the old set that the new set lacks (missing has nOld + 1
-// entries, the last left 0 for the exclusive sum); *anyPersistent = 1 if the old set has any.
+// *anyPersistent = 1 if the old set has a persistent pair; where `missing` is given (nOld + 1
+// entries, the last left 0 for the exclusive sum), missing[j] = 1 for a persistent pair j of the old
+// set that the new set lacks. Launched without `missing` first: a set with no persistent pair needs
+// no per-pair scratch.
 extern "C" __global__ void deme_persistent_missing(ContactKeys fresh, ContactKeys old, const uint8_t* oldPersistent,
                                                    unsigned int* missing, unsigned int* anyPersistent) {
     const size_t j = globalIndex();
     if (j >= old.n) return;
     if (oldPersistent[j]) *anyPersistent = 1u;
-    missing[j] = persistentPairMissing(fresh, old, oldPersistent, (unsigned int)j) ? 1u : 0u;
+    if (missing) missing[j] = persistentPairMissing(fresh, old, oldPersistent, (unsigned int)j) ? 1u : 0u;
 }
 
 // One thread per pair of the fresh set, then per pair of the old set: each goes to its place in the
