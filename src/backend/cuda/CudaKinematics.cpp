@@ -56,6 +56,9 @@ struct DeviceBins {
 struct CudaKinematics::Work {
     int device = 0, dTDevice = 0;
     bool staged = false;  // kT on another GPU than dT: copy the snapshot in and the contact list out
+    // Not staged: the spheres' owners and radii are read from dT's own state (INPUT fields, which
+    // change only while kT is idle); staged, from the copies below.
+    const DeviceState* shared = nullptr;
     Stream stream = nullptr;
     CudaModule module;
     CudaKernel kSphereBoxes, kTriBoxes, kBinEntries, kBinCounts, kPairSearch;
@@ -87,7 +90,7 @@ struct CudaKinematics::Work {
 };
 
 void CudaKinematics::Work::upload(const Geometry& g) {
-    uploadResized(sphereOwner, g.sphereOwner, stream);
+    uploadResized(sphereOwner, g.sphereOwner, stream);  // empty where not staged
     uploadResized(radius, g.radius, stream);
     uploadResized(anaOwner, g.anaOwner, stream);
     uploadResized(anaType, g.anaType, stream);
@@ -143,8 +146,9 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     v.frame.periodic.shearTime = o.shearTime;  // a sheared cell's image offset: the snapshot's
     v.frame.periodic.shearClock = nullptr;
     v.owners.family = src.ownerFamily.data();
-    v.spheres.owner = sphereOwner.data();
-    v.spheres.radius = radius.data();
+    // (The view's pointers are writable; detection only reads them.)
+    v.spheres.owner = staged ? sphereOwner.data() : const_cast<bodyID_t*>(shared->spheres.owner.data());
+    v.spheres.radius = staged ? radius.data() : const_cast<float*>(shared->spheres.radius.data());
     v.analytical.owner = anaOwner.data();
     v.analytical.type = anaType.data();
     v.analytical.radius = anaRadius.data();
@@ -309,8 +313,10 @@ void CudaKinematics::setGeometry(const SimState& s, const BinGrid& g, const Fami
                                  const Settings& settings) {
     if (!m_mailbox.idle()) throwError(CALL, "internal: the kinematics geometry changed while an order was in flight");
     Geometry& k = m_geometry;
-    k.sphereOwner = s.spheres.owner;
-    k.radius = s.spheres.radius;
+    // A second GPU needs its own copy of the spheres' owners and radii; dT's GPU has them already.
+    const bool staged = m_kTDevice != m_dTDevice;
+    k.sphereOwner = staged ? s.spheres.owner : std::vector<bodyID_t>();
+    k.radius = staged ? s.spheres.radius : std::vector<float>();
     k.anaOwner = s.analytical.owner;
     k.anaType = s.analytical.type;
     k.anaRadius = s.analytical.radius;
@@ -382,6 +388,7 @@ void CudaKinematics::run() {
         w->device = m_kTDevice;
         w->dTDevice = m_dTDevice;
         w->staged = m_kTDevice != m_dTDevice;
+        w->shared = &m_source;
         cudaStream_t stream = nullptr;
         // Non-blocking: no implicit synchronisation with the legacy default stream, so kT's work
         // overlaps dT's on a shared GPU.
