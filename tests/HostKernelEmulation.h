@@ -27,6 +27,15 @@ void runThreads(size_t n, Kernel kernel) {
         kernel();
     }
 }
+
+// The same from thread n-1 down to 0: for kernels whose atomics' order must not matter.
+template <class Kernel>
+void runThreadsReversed(size_t n, Kernel kernel) {
+    for (size_t i = n; i-- > 0;) {
+        blockIdx.x = (unsigned int)i;
+        kernel();
+    }
+}
 }  // namespace
 
 #define __global__

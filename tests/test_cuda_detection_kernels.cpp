@@ -53,32 +53,29 @@ void stableSortPairs(const std::vector<Key>& keys, const std::vector<unsigned in
     }
 }
 
-// What the kernels leave for one kind of item (spheres or triangles).
+// What the kernels leave for one kind of item (spheres or triangles): start has numBins + 2 entries
+// (the first numBins + 1 are each bin's first entry and the end).
 struct EmulatedBins {
     std::vector<int> lo, hi;
-    std::vector<unsigned int> count, keys, items, sortedKeys, sortedItems, start;
+    std::vector<unsigned int> start, items;
+    std::vector<unsigned int> starts(size_t numBins) const { return {start.begin(), start.begin() + numBins + 1}; }
 };
 
-// The binning of CudaKinematics::detect, for items ids[0, n) (all `items` if null) whose boxes
-// `boxes(lo, hi, count)` sets.
+// The counting sort of CudaKinematics::detect, for items ids[0, n) (all `items` if null) whose boxes
+// `boxes()` sets. The scatter's threads run from the last to the first: on a GPU their order is the
+// atomics', and the per-bin sort must put each bin's items in increasing order whatever it was.
 template <class Boxes>
 void emulateBinning(EmulatedBins& b, unsigned int items, const bodyID_t* ids, unsigned int n, const BinGrid& g,
                     size_t numBins, Boxes&& boxes) {
     b.lo.assign(3 * (size_t)items, 0);
     b.hi.assign(3 * (size_t)items, 0);
-    b.count.assign(n + 1, 0);
+    b.start.assign(numBins + 2, 0);
     boxes();
-    exclusiveSum(b.count);  // now the offsets
-    const unsigned int entries = b.count[n];
-    b.keys.assign(entries, 0);
-    b.items.assign(entries, 0);
-    runThreads(n, [&] {
-        deme_bin_entries(g, ids, n, b.lo.data(), b.hi.data(), b.count.data(), b.keys.data(), b.items.data());
-    });
-    stableSortPairs(b.keys, b.items, b.sortedKeys, b.sortedItems);  // CUB's radix sort by bin
-    b.start.assign(numBins + 1, 0);
-    runThreads(entries, [&] { deme_bin_counts(b.keys.data(), entries, b.start.data()); });
+    runThreads(n, [&] { deme_bin_count(g, ids, n, b.lo.data(), b.hi.data(), b.start.data()); });
     exclusiveSum(b.start);
+    b.items.assign(b.start[numBins + 1], 0);
+    runThreadsReversed(n, [&] { deme_bin_scatter(g, ids, n, b.lo.data(), b.hi.data(), b.start.data(), b.items.data()); });
+    runThreads(numBins, [&] { deme_bin_sort(b.start.data(), numBins, b.items.data()); });
 }
 
 // The dormant registry as DeviceDormantRegistry::rebuild builds it.
@@ -163,22 +160,20 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     const unsigned int nSearched = r.usedRegistry ? (unsigned int)r.registry.moving.size() : nS;
     emulateBinning(r.spheres, nS, ids, nSearched, grid, grid.numBins(), [&] {
         runThreads(nSearched, [&] {
-            deme_sphere_bin_boxes(v, args, ids, nSearched, r.spheres.lo.data(), r.spheres.hi.data(),
-                                  r.spheres.count.data());
+            deme_sphere_bin_boxes(v, args, ids, nSearched, r.spheres.lo.data(), r.spheres.hi.data());
         });
     });
     std::vector<double3> triLo(nT), triHi(nT);
     emulateBinning(r.triangles, nT, nullptr, nT, grid, grid.numBins(), [&] {
         runThreads(nT, [&] {
-            deme_triangle_bin_boxes(v, args, triLo.data(), triHi.data(), r.triangles.lo.data(), r.triangles.hi.data(),
-                                    r.triangles.count.data());
+            deme_triangle_bin_boxes(v, args, triLo.data(), triHi.data(), r.triangles.lo.data(), r.triangles.hi.data());
         });
     });
     args.sphereBins =
-        BinsView{r.spheres.lo.data(), r.spheres.hi.data(), r.spheres.start.data(), r.spheres.sortedItems.data()};
+        BinsView{r.spheres.lo.data(), r.spheres.hi.data(), r.spheres.start.data(), r.spheres.items.data()};
     if (nT)
-        args.triangleBins = BinsView{r.triangles.lo.data(), r.triangles.hi.data(), r.triangles.start.data(),
-                                     r.triangles.sortedItems.data()};
+        args.triangleBins =
+            BinsView{r.triangles.lo.data(), r.triangles.hi.data(), r.triangles.start.data(), r.triangles.items.data()};
     args.triLo = triLo.data();
     args.triHi = triHi.data();
     std::vector<unsigned int> count(nSearched + 1, 0);
@@ -283,8 +278,8 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorExactly) {
                 SCOPED_TRACE(testing::Message() << "seed " << seed << ", bin " << binSize << ", margin " << margin);
                 const EmulatedDetection gpu = emulateDetect(s, grid, margin, dr.rules.contactMask(), dr.extra);
                 const BinRegistry cpuBins = cpuSphereBins(s, grid, margin, dr.extra);
-                EXPECT_EQ(gpu.spheres.start, cpuBins.start);
-                EXPECT_EQ(gpu.spheres.sortedItems, cpuBins.entries);
+                EXPECT_EQ(gpu.spheres.starts(grid.numBins()), cpuBins.start);
+                EXPECT_EQ(gpu.spheres.items, cpuBins.entries);
                 expectTheCpuDetectorsPairs(s, grid, margin, dr);
                 cases++;
             }
@@ -404,33 +399,37 @@ TEST(CudaDetectionKernels, DormantRegistryMatchesTheCpuCachedDetectorExactly) {
     EXPECT_EQ(cases, 10);
 }
 
-// The case the bin-count kernel exists for: items in a thin slab of a tall grid, so that long runs
-// of bins below and above hold nothing. Every bin's start must still be the first entry at or after
-// it, and the last one the number of entries.
+// The case the counting sort's shifted starts exist for: items in a thin slab of a tall grid, so that
+// long runs of bins below and above hold nothing. Every bin's start must still be the first entry at
+// or after it, the last one the number of entries, and each bin's items in increasing order.
 TEST(CudaDetectionKernels, BinStartsOfAMostlyEmptyGrid) {
     const BinGrid g{make_double3(0, 0, 0), 1.0, make_double3(1, 1, 1), 4, 4, 50, 0u};
     const size_t numBins = 4 * 4 * 50;
-    // Three unit boxes at z in [20, 22): items 0 and 1 share bins.
+    // Three boxes at z in [20, 22): items 0 and 1 share bins.
     std::vector<int> lo = {0, 0, 20, 1, 1, 20, 3, 3, 21}, hi = {1, 1, 21, 2, 2, 21, 3, 3, 21};
-    std::vector<unsigned int> count = {8, 8, 1, 0};
-    exclusiveSum(count);
-    const unsigned int entries = count[3];
-    std::vector<unsigned int> keys(entries), items(entries);
-    runThreads(3,
-               [&] { deme_bin_entries(g, nullptr, 3, lo.data(), hi.data(), count.data(), keys.data(), items.data()); });
-    std::vector<unsigned int> start(numBins + 1, 0);
-    runThreads(entries, [&] { deme_bin_counts(keys.data(), entries, start.data()); });
+    std::vector<std::pair<unsigned int, unsigned int>> entries;  // (bin, item), from the boxes by hand
+    for (unsigned int i = 0; i < 3; i++)
+        for (int z = lo[3 * i + 2]; z <= hi[3 * i + 2]; z++)
+            for (int y = lo[3 * i + 1]; y <= hi[3 * i + 1]; y++)
+                for (int x = lo[3 * i]; x <= hi[3 * i]; x++) entries.push_back({(unsigned int)binIndex(g, x, y, z), i});
+    std::sort(entries.begin(), entries.end());
+    std::vector<unsigned int> start(numBins + 2, 0);
+    runThreads(3, [&] { deme_bin_count(g, nullptr, 3, lo.data(), hi.data(), start.data()); });
     exclusiveSum(start);
-    std::vector<unsigned int> sorted = keys;
-    std::stable_sort(sorted.begin(), sorted.end());
+    ASSERT_EQ(start[numBins + 1], 17u);
+    std::vector<unsigned int> items(17, 99);
+    runThreadsReversed(3, [&] { deme_bin_scatter(g, nullptr, 3, lo.data(), hi.data(), start.data(), items.data()); });
+    runThreads(numBins, [&] { deme_bin_sort(start.data(), numBins, items.data()); });
     for (size_t b = 0; b <= numBins; b++) {
-        const unsigned int expected =
-            (unsigned int)(std::lower_bound(sorted.begin(), sorted.end(), (unsigned int)b) - sorted.begin());
-        ASSERT_EQ(start[b], expected) << "bin " << b;
+        const auto first = std::lower_bound(entries.begin(), entries.end(), std::make_pair((unsigned int)b, 0u));
+        ASSERT_EQ(start[b], (unsigned int)(first - entries.begin())) << "bin " << b;
     }
+    for (size_t k = 0; k < entries.size(); k++) EXPECT_EQ(items[k], entries[k].second) << "entry " << k;
     EXPECT_EQ(start[numBins], 17u);
     EXPECT_EQ(start[0], 0u);
-    // Bin (1, 1, 20) holds items 0 and 1.
+    // Bin (1, 1, 20) holds items 0 and 1, in that order.
     const size_t shared = 1 + 4 * (1 + 4 * 20);
-    EXPECT_EQ(start[shared + 1] - start[shared], 2u);
+    ASSERT_EQ(start[shared + 1] - start[shared], 2u);
+    EXPECT_EQ(items[start[shared]], 0u);
+    EXPECT_EQ(items[start[shared] + 1], 1u);
 }

@@ -103,18 +103,6 @@ DEME_HD inline void layerXBins(const BinGrid& g, int z, int x0, int x1, int& xa,
     while (xa >= g.nx) xa -= g.nx, xb -= g.nx;
 }
 
-// Bin registrations of box b: the product of its bins per axis, layer by layer in a sheared cell.
-DEME_HD inline unsigned int binBoxEntries(const BinGrid& g, const BinBox& b) {
-    if (!g.shear) return b.count();
-    unsigned int n = 0;
-    for (int z = b.lo[2]; z <= b.hi[2]; z++) {
-        int xa, xb;
-        layerXBins(g, z, b.lo[0], b.hi[0], xa, xb);
-        n += (unsigned int)((xb - xa + 1) * (b.hi[1] - b.lo[1] + 1));
-    }
-    return n;
-}
-
 // Stores box b of item i as three lows and three highs (the layout both backends' bins use).
 DEME_HD inline void storeBinBox(const BinBox& b, size_t i, int* lo, int* hi) {
     for (int a = 0; a < 3; a++) {

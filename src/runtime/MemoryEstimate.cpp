@@ -115,14 +115,14 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         // the one in use, and the pairs (ids, type) of the outbox kT fills
         // (backend/cuda/CudaDynamics, CudaContactSets, DeviceHistoryMapping).
         contacts = e.pairs * (bytesPerPair(s.contacts, W, false, true) + bytesPerPair(s.contacts, W, false, false) + 9);
-        // kT's snapshot (sphere centres, owner families), the spheres' bin boxes (6 ints), entry
-        // counts and offsets, pair counts and offsets; the sorted bin entries (keys and items,
-        // twice) and the bins' starts (backend/cuda/CudaKinematics.cpp, Work::detect). (kT on a
-        // second GPU also copies the spheres' owners and radii there, 8 B per sphere not counted.)
-        detection = nS * (24 + 24 + 8 + 8) + nO + (size_t)(16.0 * entries) + 4 * bins;
-        // Triangles, where there are any: their global boxes (2 double3), bin boxes, counts and
-        // offsets, sorted entries and their own bins' starts.
-        if (nT) detection += nT * (48 + 24 + 8) + (size_t)(16.0 * triEntries) + 4 * bins;
+        // kT's snapshot (sphere centres, owner families), the spheres' bin boxes (6 ints), pair
+        // counts and offsets; the bins' entries (an item id each) and starts, from the counting
+        // sort (backend/cuda/CudaKinematics.cpp, Work::detect). (kT on a second GPU also copies the
+        // spheres' owners and radii there, 8 B per sphere not counted.)
+        detection = nS * (24 + 24 + 8) + nO + (size_t)(4.0 * entries) + 4 * (bins + 1);
+        // Triangles, where there are any: their global boxes (2 double3), bin boxes, entries and
+        // their own bins' starts.
+        if (nT) detection += nT * (48 + 24) + (size_t)(4.0 * triEntries) + 4 * (bins + 1);
         b[(int)MemoryGroup::STEP_SCRATCH] = 16 * nO;  // step subsets (CudaDynamics: 4 lists of 4 B)
     } else {
         contacts = e.pairs * bytesPerPair(s.contacts, W, true, true) + 4 * (nO + 1);

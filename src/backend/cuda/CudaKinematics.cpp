@@ -45,9 +45,11 @@ void onDevice(int device, int back, F&& f) {
 }
 
 // Items registered in bins (spheres or triangles).
+// A kind of items' bins (deme_bin_count and what follows it in kernels/Detection.cu): per item its
+// box of bins; per bin its first entry (numBins + 2, the last the entries' count); the entries.
 struct DeviceBins {
     DeviceBuffer<int> lo, hi;
-    DeviceBuffer<unsigned int> count, offset, keys, items, sortedKeys, sortedItems, start;
+    DeviceBuffer<unsigned int> start, items;
 };
 
 }  // namespace
@@ -61,7 +63,7 @@ struct CudaKinematics::Work {
     const DeviceState* shared = nullptr;
     Stream stream = nullptr;
     CudaModule module;
-    CudaKernel kSphereBoxes, kTriBoxes, kBinEntries, kBinCounts, kPairSearch;
+    CudaKernel kSphereBoxes, kTriBoxes, kBinCount, kBinScatter, kBinSort, kPairSearch;
     DevicePrimitives prim;
     DeviceDormantRegistry dormant;  // the active box: dormant spheres registered once
     // Static geometry (a copy of Geometry).
@@ -181,37 +183,31 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     const unsigned int nSearched = useDormant ? dormant.numMoving() : nS;
     const DormantBinsView dormantBins = useDormant ? dormant.view() : DormantBinsView{nullptr, nullptr, 0.0};
 
-    // 1. Bins of every geometry enlarged by its margin: of items ids[0, n) (all `items` if null).
+    // 1. Bins of every geometry enlarged by its margin: of items ids[0, n) (all `items` if null), by
+    // a counting sort (kernels/Detection.cu, deme_bin_count): 4 bytes per entry and per bin.
     auto binItems = [&](DeviceBins& b, unsigned int items, const bodyID_t* ids, unsigned int n, auto&& boxes) {
         b.lo.resizeDiscarding(3 * (size_t)items);
         b.hi.resizeDiscarding(3 * (size_t)items);
-        b.count.resizeDiscarding(n + 1);
-        b.offset.resizeDiscarding(n + 1);
-        b.count.zeroAsync(stream);
-        if (n) boxes();
-        prim.exclusiveSum(b.count.data(), b.offset.data(), n + 1, stream);
-        const unsigned int entries = readCount(b.offset, n);
-        b.keys.resizeDiscarding(entries);
-        b.items.resizeDiscarding(entries);
-        b.sortedKeys.resizeDiscarding(entries);
-        b.sortedItems.resizeDiscarding(entries);
-        if (entries) {
-            launch(kBinEntries, blocksFor(n, THREADS), THREADS, 0, stream, args.grid, ids, n, (const int*)b.lo.data(),
-                   (const int*)b.hi.data(), (const unsigned int*)b.offset.data(), b.keys.data(), b.items.data());
-            prim.sortPairs(b.keys.data(), b.sortedKeys.data(), b.items.data(), b.sortedItems.data(), entries, stream, 0,
-                           bitsFor(numBins));
-        }
-        // Each bin's first entry in the sorted order: the entries per bin, summed (in place).
-        b.start.resizeDiscarding(numBins + 1);
+        b.start.resizeDiscarding(numBins + 2);
         b.start.zeroAsync(stream);
-        if (entries)
-            launch(kBinCounts, blocksFor(entries, THREADS), THREADS, 0, stream, (const unsigned int*)b.keys.data(),
-                   entries, b.start.data());
-        prim.exclusiveSum(b.start.data(), b.start.data(), numBins + 1, stream);
+        if (n) {
+            boxes();
+            launch(kBinCount, blocksFor(n, THREADS), THREADS, 0, stream, args.grid, ids, n, (const int*)b.lo.data(),
+                   (const int*)b.hi.data(), b.start.data());
+        }
+        prim.exclusiveSum(b.start.data(), b.start.data(), numBins + 2, stream);
+        const unsigned int entries = readCount(b.start, numBins + 1);
+        b.items.resizeDiscarding(entries);
+        if (entries) {
+            launch(kBinScatter, blocksFor(n, THREADS), THREADS, 0, stream, args.grid, ids, n, (const int*)b.lo.data(),
+                   (const int*)b.hi.data(), b.start.data(), b.items.data());
+            launch(kBinSort, blocksFor(numBins, THREADS), THREADS, 0, stream, (const unsigned int*)b.start.data(),
+                   (unsigned long long)numBins, b.items.data());
+        }
     };
     binItems(sphereBins, nS, ids, nSearched, [&] {
         launch(kSphereBoxes, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, ids, nSearched,
-               sphereBins.lo.data(), sphereBins.hi.data(), sphereBins.count.data());
+               sphereBins.lo.data(), sphereBins.hi.data());
     });
     triLo.resizeDiscarding(nT);
     triHi.resizeDiscarding(nT);
@@ -219,7 +215,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     if (nT)
         binItems(triBins, nT, (const bodyID_t*)nullptr, nT, [&] {
             launch(kTriBoxes, blocksFor(nT, THREADS), THREADS, 0, stream, v, args, triLo.data(), triHi.data(),
-                   triBins.lo.data(), triBins.hi.data(), triBins.count.data());
+                   triBins.lo.data(), triBins.hi.data());
         });
     synchronize(stream);
     const double t1 = now();
@@ -227,10 +223,10 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
 
     // 2. Pair search: count, offsets, fill.
     args.sphereBins =
-        BinsView{sphereBins.lo.data(), sphereBins.hi.data(), sphereBins.start.data(), sphereBins.sortedItems.data()};
+        BinsView{sphereBins.lo.data(), sphereBins.hi.data(), sphereBins.start.data(), sphereBins.items.data()};
     if (nT)
         args.triangleBins =
-            BinsView{triBins.lo.data(), triBins.hi.data(), triBins.start.data(), triBins.sortedItems.data()};
+            BinsView{triBins.lo.data(), triBins.hi.data(), triBins.start.data(), triBins.items.data()};
     args.triLo = triLo.data();
     args.triHi = triHi.data();
     pairCount.resizeDiscarding(nSearched + 1);
@@ -416,8 +412,9 @@ void CudaKinematics::run() {
         w->module = CudaModule("Initialize", c.image);
         w->kSphereBoxes = w->module.kernel("deme_sphere_bin_boxes");
         w->kTriBoxes = w->module.kernel("deme_triangle_bin_boxes");
-        w->kBinEntries = w->module.kernel("deme_bin_entries");
-        w->kBinCounts = w->module.kernel("deme_bin_counts");
+        w->kBinCount = w->module.kernel("deme_bin_count");
+        w->kBinScatter = w->module.kernel("deme_bin_scatter");
+        w->kBinSort = w->module.kernel("deme_bin_sort");
         w->kPairSearch = w->module.kernel("deme_pair_search");
         w->dormant.loadKernels(w->module);
         m_deviceName = info.name;

@@ -15,46 +15,67 @@ __device__ inline size_t globalIndex() { return (size_t)blockIdx.x * blockDim.x 
 
 }  // namespace
 
-// Sphere ids[k]'s box (at its sphere id) and its number of bins (at k).
+// Sphere ids[k]'s box (at its sphere id).
 extern "C" __global__ void deme_sphere_bin_boxes(StateView s, DetectionArgs a, const bodyID_t* ids, unsigned int n,
-                                                 int* binLo, int* binHi, unsigned int* count) {
+                                                 int* binLo, int* binHi) {
     const size_t k = globalIndex();
     if (k >= n) return;
     const size_t i = ids ? (size_t)ids[k] : k;
     double3 lo, hi;
     sphereBox(s, a, i, lo, hi);
-    const BinBox b = binBox(a.grid, lo, hi);
-    storeBinBox(b, i, binLo, binHi);
-    count[k] = binBoxEntries(a.grid, b);
+    storeBinBox(binBox(a.grid, lo, hi), i, binLo, binHi);
 }
 
 extern "C" __global__ void deme_triangle_bin_boxes(StateView s, DetectionArgs a, double3* triLo, double3* triHi,
-                                                   int* binLo, int* binHi, unsigned int* count) {
+                                                   int* binLo, int* binHi) {
     const size_t t = globalIndex();
     if (t >= s.numTriangles) return;
     triangleBox(s, a, t, triLo[t], triHi[t]);
-    const BinBox b = binBox(a.grid, triLo[t], triHi[t]);
-    storeBinBox(b, t, binLo, binHi);
-    count[t] = binBoxEntries(a.grid, b);
+    storeBinBox(binBox(a.grid, triLo[t], triHi[t]), t, binLo, binHi);
 }
 
-// (bin, item) entries of every item ids[k] in every bin of its box, at offset[k] (in item order, so a
-// stable sort by bin keeps each bin's items ascending).
-extern "C" __global__ void deme_bin_entries(BinGrid g, const bodyID_t* ids, unsigned int n, const int* binLo,
-                                            const int* binHi, const unsigned int* offset, unsigned int* keys,
-                                            unsigned int* items) {
-    const size_t k = globalIndex();
-    if (k >= n) return;
-    const size_t i = ids ? (size_t)ids[k] : k;
-    unsigned int at = offset[k];
+// The bins an item's box covers, in (z, y, x) order: f(bin) for each.
+template <class F>
+__device__ inline void forEachBinOfBox(const BinGrid& g, const int* binLo, const int* binHi, size_t i, F&& f) {
     int xa, xb;  // a layer's x bins (shifted in a sheared cell's image layers: layerXBins)
     for (int z = binLo[3 * i + 2]; z <= binHi[3 * i + 2]; z++)
         for (int y = binLo[3 * i + 1]; y <= binHi[3 * i + 1]; y++)
-            for (layerXBins(g, z, binLo[3 * i], binHi[3 * i], xa, xb); xa <= xb; xa++) {
-                keys[at] = (unsigned int)binIndex(g, xa, y, z);
-                items[at] = (unsigned int)i;
-                at++;
-            }
+            for (layerXBins(g, z, binLo[3 * i], binHi[3 * i], xa, xb); xa <= xb; xa++) f(binIndex(g, xa, y, z));
+}
+
+// The bins' item lists by a counting sort, with no per-entry keys (docs/memory.md): `start` has
+// numBins + 2 entries, zeroed. 1. deme_bin_count: every item ids[k] adds one at start[bin + 1] for
+// each bin of its box. 2. An exclusive sum over all numBins + 2: start[bin + 1] is then bin's first
+// entry and start[numBins + 1] the number of entries. 3. deme_bin_scatter: each item takes a slot in
+// each of its bins by an atomic add on start[bin + 1], which ends at the bin's end, the next bin's
+// first entry: start[0, numBins] are then every bin's first entry and the end. 4. deme_bin_sort:
+// each bin's items in increasing id (the scatter's order is the atomics'), as the searches expect.
+extern "C" __global__ void deme_bin_count(BinGrid g, const bodyID_t* ids, unsigned int n, const int* binLo,
+                                          const int* binHi, unsigned int* start) {
+    const size_t k = globalIndex();
+    if (k >= n) return;
+    forEachBinOfBox(g, binLo, binHi, ids ? (size_t)ids[k] : k, [&](uint64_t bin) { atomicAdd(&start[bin + 1], 1u); });
+}
+
+extern "C" __global__ void deme_bin_scatter(BinGrid g, const bodyID_t* ids, unsigned int n, const int* binLo,
+                                            const int* binHi, unsigned int* start, unsigned int* items) {
+    const size_t k = globalIndex();
+    if (k >= n) return;
+    const size_t i = ids ? (size_t)ids[k] : k;
+    forEachBinOfBox(g, binLo, binHi, i, [&](uint64_t bin) { items[atomicAdd(&start[bin + 1], 1u)] = (unsigned int)i; });
+}
+
+// One thread per bin: an insertion sort (bins hold a few items; the grid's sizing rule keeps them so).
+extern "C" __global__ void deme_bin_sort(const unsigned int* start, unsigned long long numBins, unsigned int* items) {
+    const size_t bin = globalIndex();
+    if (bin >= numBins) return;
+    const unsigned int first = start[bin], end = start[bin + 1];
+    for (unsigned int e = first + 1; e < end; e++) {
+        const unsigned int item = items[e];
+        unsigned int at = e;
+        for (; at > first && items[at - 1] > item; at--) items[at] = items[at - 1];
+        items[at] = item;
+    }
 }
 
 // count[key]++ for every (bin, item) entry. The exclusive sum of count[0, numBins] is then the first
