@@ -176,12 +176,12 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
             BinsView{r.triangles.lo.data(), r.triangles.hi.data(), r.triangles.start.data(), r.triangles.items.data()};
     args.triLo = triLo.data();
     args.triHi = triHi.data();
-    std::vector<unsigned int> count(nSearched + 1, 0);
+    // As on the GPU: counts, then their exclusive sum in place.
+    std::vector<unsigned int> offset(nSearched + 1, 0);
     runThreads(nSearched, [&] {
-        deme_pair_search(v, args, dormantBins, ids, nSearched, count.data(), (const unsigned int*)nullptr,
+        deme_pair_search(v, args, dormantBins, ids, nSearched, offset.data(), (const unsigned int*)nullptr,
                          (bodyID_t*)nullptr, (bodyID_t*)nullptr, (uint8_t*)nullptr);
     });
-    std::vector<unsigned int> offset = count;
     exclusiveSum(offset);
     const unsigned int total = offset[nSearched];
     DetectedContacts& c = r.contacts;
@@ -189,7 +189,7 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     c.geomB.assign(total, 0);
     c.type.assign(total, 0);
     runThreads(nSearched, [&] {
-        deme_pair_search(v, args, dormantBins, ids, nSearched, count.data(), offset.data(), c.geomA.data(),
+        deme_pair_search(v, args, dormantBins, ids, nSearched, (unsigned int*)nullptr, offset.data(), c.geomA.data(),
                          c.geomB.data(), c.type.data());
     });
     if (r.usedRegistry) {  // DeviceDormantRegistry::sortPairs

@@ -116,10 +116,10 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         // (backend/cuda/CudaDynamics, CudaContactSets, DeviceHistoryMapping).
         contacts = e.pairs * (bytesPerPair(s.contacts, W, false, true) + bytesPerPair(s.contacts, W, false, false) + 9);
         // kT's snapshot (sphere centres, owner families), the spheres' bin boxes (6 ints), pair
-        // counts and offsets; the bins' entries (an item id each) and starts, from the counting
+        // offsets; the bins' entries (an item id each) and starts, from the counting
         // sort (backend/cuda/CudaKinematics.cpp, Work::detect). (kT on a second GPU also copies the
         // spheres' owners and radii there, 8 B per sphere not counted.)
-        detection = nS * (24 + 24 + 8) + nO + (size_t)(4.0 * entries) + 4 * (bins + 1);
+        detection = nS * (24 + 24 + 4) + nO + (size_t)(4.0 * entries) + 4 * (bins + 1);
         // Triangles, where there are any: their global boxes (2 double3), bin boxes, entries and
         // their own bins' starts.
         if (nT) detection += nT * (48 + 24) + (size_t)(4.0 * triEntries) + 4 * (bins + 1);

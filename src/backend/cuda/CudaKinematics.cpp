@@ -80,7 +80,7 @@ struct CudaKinematics::Work {
     // Scratch.
     DeviceBins sphereBins, triBins;
     DeviceBuffer<double3> triLo, triHi;
-    DeviceBuffer<unsigned int> pairCount, pairOffset;
+    DeviceBuffer<unsigned int> pairOffset;  // each searched sphere's pair count, then (in place) offset
 
     ~Work() {
         if (stream && cudaStreamDestroy(toCuda(stream)) != cudaSuccess) cudaGetLastError();
@@ -229,14 +229,13 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
             BinsView{triBins.lo.data(), triBins.hi.data(), triBins.start.data(), triBins.items.data()};
     args.triLo = triLo.data();
     args.triHi = triHi.data();
-    pairCount.resizeDiscarding(nSearched + 1);
     pairOffset.resizeDiscarding(nSearched + 1);
-    pairCount.zeroAsync(stream);
+    pairOffset.zeroAsync(stream);
     if (nSearched)
         launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
-               pairCount.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr,
+               pairOffset.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr,
                (uint8_t*)nullptr);
-    prim.exclusiveSum(pairCount.data(), pairOffset.data(), nSearched + 1, stream);
+    prim.exclusiveSum(pairOffset.data(), pairOffset.data(), nSearched + 1, stream);
     const unsigned int total = readCount(pairOffset, nSearched);
     // The outbox is on dT's GPU: size it there.
     onDevice(dTDevice, device, [&] {
@@ -252,7 +251,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     }
     if (total)
         launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
-               pairCount.data(), (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data(),
+               (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data(),
                dst.type.data());
     // Pairs found from the moving side with a dormant sphere of lower id: into (A, B) order.
     if (useDormant)

@@ -91,8 +91,8 @@ extern "C" __global__ void deme_bin_counts(const unsigned int* keys, unsigned in
 
 // Per searched sphere A = ids[k]: its partners, then (with a dormant registry, d.start not null)
 // its dormant partners as (lower, higher) pairs, which deme_pairs_from_keys puts in order after a
-// sort. With `outB` null, counts them into count[k]; otherwise writes the count[k] of them from
-// offset[k] on.
+// sort. With `outB` null, counts them into count[k]; otherwise writes them from offset[k] to
+// offset[k + 1] (the exclusive sum of the counts, which may have been taken in place).
 extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, DormantBinsView d, const bodyID_t* ids,
                                             unsigned int n, unsigned int* count, const unsigned int* offset,
                                             bodyID_t* outA, bodyID_t* outB, uint8_t* outType) {
@@ -103,15 +103,15 @@ extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, Dorman
         count[k] = spherePartners(s, a, sa, nullptr, 0u) + (d.start ? dormantPartners(s, a, d, sa, nullptr, 0u) : 0u);
         return;
     }
-    const unsigned int base = offset[k];
-    const unsigned int own = spherePartners(s, a, sa, outB + base, count[k]);
+    const unsigned int base = offset[k], found = offset[k + 1] - base;
+    const unsigned int own = spherePartners(s, a, sa, outB + base, found);
     for (unsigned int j = 0; j < own; j++) {
         outA[base + j] = sa;
         outType[base + j] = contactTypeOf(s, outB[base + j]);
     }
     if (!d.start) return;
     bodyID_t* more = outB + base + own;
-    const unsigned int nd = dormantPartners(s, a, d, sa, more, count[k] - own);
+    const unsigned int nd = dormantPartners(s, a, d, sa, more, found - own);
     for (unsigned int j = 0; j < nd; j++) {
         const bodyID_t b = more[j];
         outA[base + own + j] = sa < b ? sa : b;
