@@ -82,8 +82,6 @@ class Simulation {
     std::string launchReport() const { return m_backends.dynamics ? m_backends.dynamics->launchReport() : ""; }
     // Host memory by group: the state's arrays and the backends' own (runtime/MemoryAccounting.cpp).
     MemoryStats hostMemory() const;
-    // What Initialize estimated the run would hold (runtime/MemoryEstimate.h).
-    const MemoryEstimate& memoryEstimate() const { return m_memoryEstimate; }
 
     // Host-side changes to the state (tracker setters, family changes) call this so that the next
     // step re-detects contacts instead of trusting the old margin.
