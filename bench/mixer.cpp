@@ -75,9 +75,10 @@ int main(int argc, char** argv) {
         spacing = 2.002f * (float)r;
     }
     HCPSampler sampler(spacing);
-    const auto xyz = sampler.SampleCylinderZ(make_float3(0, 0, -0.5f + 1.f / 3.f + 1.f / 6.f), 0.5f - 2.f * (float)r,
-                                             1.f / 6.f);
+    auto xyz = sampler.SampleCylinderZ(make_float3(0, 0, -0.5f + 1.f / 3.f + 1.f / 6.f), 0.5f - 2.f * (float)r,
+                                       1.f / 6.f);
     sim.AddClumps(grain, xyz);
+    std::vector<float3>().swap(xyz);  // the batch has its copy: the peak is the engine's alone
     sim.SetInitTimeStep(dt);
     sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
     sim.SetCDUpdateFreq(20);

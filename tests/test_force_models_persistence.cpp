@@ -21,6 +21,7 @@ namespace {
 SimState fourSpheres() {
     SimState s;
     s.spheres.owner = {0, 1, 2, 3};
+    s.owners.voxel.assign(4, 0);  // four owners (installing a set indexes each owner's contacts)
     s.owners.family = {0, 0, 1, 1};
     s.numWildcards = 1;
     return s;

@@ -1,7 +1,7 @@
-// The CPU's force pass and reduction: each contact's loads are stored per contact and each owner sums
-// its contacts in a fixed order. Checked on a compressed block of three-sphere clumps between walls,
-// with thousands of pairs so that the pass and the reduction split them among threads: every
-// owner's sums obey Newton's third law and the
+// The CPU's force reduction: A's owner takes its loads in the force pass itself (each thread owns
+// whole runs of owners' contacts), B's owner in the reduction from the per-contact force and torque.
+// Checked on a compressed block of three-sphere clumps between walls, with thousands of pairs so that
+// the pass splits them among threads and chunks: every owner's sums obey Newton's third law and the
 // balance of angular momentum (a pair's loads cancel, whatever owner takes them), and they are the
 // same bit for bit for 1, 2 and 3 threads.
 #include <gtest/gtest.h>
@@ -97,8 +97,8 @@ TEST(ForceReduction, OwnersSumsCancelAndDoNotDependOnTheThreadCount) {
     const Scene scene = compressedBlock();
     SimState s;
     const Loads one = passAndReduce(scene, 1, &s);
-    // Large enough that the pass and the reduction split their work among threads
-    // (parallel/Parallel.h).
+    // Large enough that the pass splits its contacts among threads and each thread's share among
+    // several chunks (parallel/Parallel.h, backend/cpu/ForcePassLoop.h).
     ASSERT_GT(s.contacts.size(), 8 * PARALLEL_MIN_ITEMS);
     size_t wallPairs = 0;
     for (uint8_t t : s.contacts.type) wallPairs += t == SPHERE_ANALYTICAL;

@@ -181,18 +181,23 @@ class DrumSet:
     """Drums of one grain kind and depth, one per (mu, Crr) point, settled, then turned."""
 
     def __init__(self, deme, grain, depth, points, settle=0.3, dt=2e-5, young=E, tilt=30.0, seed=1,
-                 max_cd_interval=20, verbose="WARNING", rolling="relative"):
+                 max_cd_interval=20, verbose="WARNING", rolling="relative", seeds=None):
         # rolling: "relative", the rolling resistance of rolling_model.py (a couple against the
-        # relative spin, as LIGGGHTS's cdt); "paper", the default model's (paper s. 3.1)
+        # relative spin, as LIGGGHTS's cdt); "paper", the default model's (paper s. 3.1).
+        # seeds: one per drum (its packing's jitter), where drums of one point are replicas; by
+        # default every drum starts from the packing of `seed`.
         self.grain, self.depth, self.points = grain, depth, list(points)
+        seeds = list(seeds) if seeds is not None else [seed] * len(self.points)
+        if len(seeds) != len(self.points):
+            raise ValueError(f"{len(seeds)} seeds for {len(self.points)} drums")
         self.dt = dt
         self.settle = settle
         n_d = len(self.points)
         if n_d > 120:
             raise ValueError("at most 120 drums per simulation (a family each for grains and drum)")
         self.centres = drum_centres(n_d)
-        pos0, q0 = loose_packing(grain, depth, seed, tilt)
-        self.n = len(pos0)
+        packings = {k: loose_packing(grain, depth, k, tilt) for k in sorted(set(seeds))}
+        self.n = len(packings[seeds[0]][0])
         sim = deme.DEMSolver()
         sim.SetVerbosity(verbose)
         lo = self.centres.min(axis=0) - R_DRUM - 0.01
@@ -220,6 +225,7 @@ class DrumSet:
             else:
                 tmpl = sim.LoadClumpType(grain.mass, grain.moi, [grain.radius] * len(grain.spheres),
                                          grain.spheres.tolist(), mat)
+            pos0, q0 = packings[seeds[k]]
             b = sim.AddClumps(tmpl, pos0 + self.centres[k])
             b.SetOriQ(q0)
             b.SetFamily(k)

@@ -40,8 +40,9 @@ size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host, bool with
         const void* f = &v;
         if (f == &c.wildcards) b += W * elementBytes(v);
         else if (f == &c.force) b += withForce ? elementBytes(v) : 0;
-        else if (f == &c.ownerEntries) b += host ? 2 * elementBytes(v) : 0;  // one entry per side
-        else if (f == &c.meshContacts || f == &c.meshContactGroups || f == &c.ownerStart) return;  // not per pair
+        else if (f == &c.meshContacts || f == &c.meshContactGroups || f == &c.ownerAStart ||
+                 f == &c.ownerBStart)
+            return;  // not per pair
         else if (role != FieldRole::HOST || host) b += elementBytes(v);
     });
     return b;
@@ -125,7 +126,7 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         if (nT) detection += nT * (48 + 24) + (size_t)(4.0 * triEntries) + 4 * (bins + 1);
         b[(int)MemoryGroup::STEP_SCRATCH] = 16 * nO;  // step subsets (CudaDynamics: 4 lists of 4 B)
     } else {
-        contacts = e.pairs * bytesPerPair(s.contacts, W, true, true) + 4 * (nO + 1);
+        contacts = e.pairs * bytesPerPair(s.contacts, W, true, true) + 8 * (nO + 1);  // + the owners' two starts
         // The bin boxes (6 ints) and the registry's entries and bins' starts, for spheres and for
         // triangles (whose global boxes, 2 double3, are kept too) (backend/cpu/ContactDetector).
         detection = nS * 24 + (size_t)(4.0 * entries) + 4 * bins;

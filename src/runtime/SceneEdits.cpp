@@ -52,8 +52,10 @@ void resizeDerived(SimState& s) {
     ContactArrays& c = s.contacts;
     c.meshContacts.clear();
     c.meshContactGroups.clear();
-    c.ownerStart.clear();
-    c.ownerEntries.clear();
+    c.torqueB.clear();
+    c.ownerAStart.clear();
+    c.ownerBStart.clear();
+    c.ownerBEntries.clear();
 }
 
 }  // namespace

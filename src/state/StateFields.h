@@ -84,11 +84,13 @@
     X(force, float3, EVOLVES)            /* on A, global (the GPU stores it in steps the host reads) */ \
     X(meshContacts, uint32_t, HOST)      /* indices of the sphere-triangle contacts */                  \
     X(meshContactGroups, uint32_t, HOST) /* where each sphere's run in meshContacts starts, + end */    \
-    X(torqueA, float3, HOST)             /* about each owner's centre, global */                        \
+    /* The CPU's force reduction. A's owner takes its loads in the force pass itself (the set is  */    \
+    /* sorted by A, and each thread owns whole owners' runs of contacts, from ownerAStart); what  */    \
+    /* B takes is stored per contact: the force (above) and torqueB, about B's centre, global.    */    \
     X(torqueB, float3, HOST)                                                                            \
-    /* For the CPU's force reduction: per owner the contacts it is in, as (contact << 1) | isB.   */    \
-    X(ownerStart, uint32_t, HOST)                                                                       \
-    X(ownerEntries, uint32_t, HOST)
+    X(ownerAStart, uint32_t, HOST) /* contacts [ownerAStart[o], ownerAStart[o + 1]) have A in o */      \
+    X(ownerBStart, uint32_t, HOST) /* owner o is B in contacts ownerBEntries[ownerBStart[o] ..] */      \
+    X(ownerBEntries, uint32_t, HOST)
 
 // Quantities derived from the owner state, refreshed after every integration step (and after any
 // host-side edit) so that the force pass and contact detection read them instead of recomputing

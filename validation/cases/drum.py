@@ -60,11 +60,18 @@ too large for one command runs in parts: DRUM_SHARD=i/n runs the maps' mu column
 DRUM_FROM=<dir1>,<dir2>,... then judges and draws the parts together (e.g. the paper's 13 x 5 PS map:
 DRUM_GRID=13x5 DRUM_RUNS=PS with DRUM_SHARD=1/2 and 2/2, two commands of about 6 minutes on one H200).
 
---quick (CI, one core, about 90 s idle): spheres only; a thin drum (0.02 m deep, 1,302 spheres),
+--quick (CI, one core, about 200 s idle): spheres only; a thin drum (0.02 m deep, 1,302 spheres),
 soft grains (E = 1 MPa, dt = 1e-4 s: 15 % of their Rayleigh time), four points, (mu, Crr) = (0, 0),
-(0.15, 0), (0.5, 0), (0.15, 0.08); 0.25 s of settling, 1.5 s to steady state, 30 samples over 1.5 s;
-LIGGGHTS (one process) at (0.15, 0) only, on the same drum: in so thin a drum the flow at higher
-friction is intermittent and its 1-1.5 s means scatter by up to 2 degrees between runs of either code.
+(0.15, 0), (0.5, 0), (0.15, 0.08), the last two of Crr's verdict as three replicas each (8 drums);
+0.25 s of settling, 1.5 s to steady state, 30 samples over 1.5 s; LIGGGHTS (one process) at (0.15, 0)
+only, on the same drum: in so thin a drum the flow at higher friction is intermittent and its 1-1.5 s
+means scatter by up to 2 degrees between runs of either code. Why the replicas: with one drum per
+point, six runs (packings of seeds 1-4, and 1-2 again with the CPU's force sums in another order)
+gave Crr's rise at mu = 0.15 as 1.9-4.9 degrees against 2 se of 1.2-4.2, and one of the six failed
+(one drum's mean at Crr = 0 came out at 30.2 +- 2.0 degrees where the others gave 27.5-28.9): a
+single thin drum cannot tell Crr's rise from its own scatter every time. A replica starts from the
+packing of the next seed (DRUM_SEED, default 1, sets the first); a point's angle is the mean of its
+replicas' means, its se theirs combined (sqrt of the sum of squares, over their number).
 """
 import json
 import math
@@ -94,8 +101,11 @@ if case.quick:
     peer_points = [(0.15, 0.0)]
     # one run: the map's drums, one of them also the LIGGGHTS point
     settle, steady, measure = 0.25, 1.5, 1.5
+    # Crr's two points as three replicas each (docstring: one thin drum's 1.5 s mean scatters by
+    # about a degree from one packing to the next, as much as Crr's rise over its 2 se)
     runs = [dict(name="PS", grain=ds.PS, depth=0.02, young=1e6, dt=1e-4, map=True, peer=True, steady=steady,
-                 points=[(0.0, 0.0), (0.15, 0.0), (0.5, 0.0), (0.15, 0.08)])]
+                 points=[(0.0, 0.0), (0.15, 0.0), (0.5, 0.0), (0.15, 0.08)],
+                 replicas={(0.15, 0.0): 3, (0.15, 0.08): 3})]
     processes, beside = 1, False
 else:
     mus, crrs = grid(os.environ.get("DRUM_GRID", "7x3"))
@@ -147,6 +157,15 @@ else:
 # The paper: 30 samples over the 3 s of measurement (DRUM_SAMPLES and DRUM_TIMES lengthen both, e.g.
 # 90 over 9 s, for a longer average at the same 0.1 s spacing).
 SAMPLES = int(os.environ.get("DRUM_SAMPLES", "30"))
+# The packings' seed (the lattice's jitter; replicas take the next ones).
+SEED = int(os.environ.get("DRUM_SEED", "1"))
+
+
+def combined(stats):
+    """One point from its replicas' (mean, se): the mean of their means, with the uncertainty that
+    their own ones carry into it."""
+    means, ses = np.array([m for m, _ in stats]), np.array([e for _, e in stats])
+    return float(means.mean()), float(math.sqrt(np.sum(ses ** 2)) / len(stats))
 
 
 def mean_se(a):
@@ -227,32 +246,48 @@ if rolling not in ("relative", "paper"):
 for run in runs:
     g = run["grain"]
     t0 = time.time()
-    drums = ds.DrumSet(deme, g, run["depth"], run["points"], settle=settle, dt=run["dt"], young=run["young"],
-                       max_cd_interval=20 if case.backend == "cpu" else 60, rolling=rolling)
-    print(f"{run['name']}: {len(run['points'])} drums of {drums.n} grains ({drums.sim.GetNumSpheres()} spheres), "
+    # a point's replicas start from packings of seeds DRUM_SEED, DRUM_SEED + 1, ...; the others
+    # (and the first replica, the one LIGGGHTS gets) from DRUM_SEED's
+    drum_points, drum_seeds = [], []
+    for p in run["points"]:
+        for r in range(run.get("replicas", {}).get(p, 1)):
+            drum_points.append(p)
+            drum_seeds.append(SEED + r)
+    drums = ds.DrumSet(deme, g, run["depth"], drum_points, settle=settle, dt=run["dt"], young=run["young"],
+                       max_cd_interval=20 if case.backend == "cpu" else 60, rolling=rolling, seeds=drum_seeds)
+    print(f"{run['name']}: {len(drum_points)} drums of {drums.n} grains ({drums.sim.GetNumSpheres()} spheres), "
           f"depth {run['depth']} m, dt {run['dt']} s", flush=True)
 
-    def settled(states, run=run):
+    def settled(states, run=run, drum_points=drum_points):
         global handle
         if not run["peer"]:
             return
-        idx = [run["points"].index(p) for p in peer_points]
+        idx = [drum_points.index(p) for p in peer_points]
         ds.write_peer_files(peer["folder"], run["grain"], run["depth"], peer_points, [states[i] for i in idx],
                             young=run["young"])
         peer.update(depth=run["depth"], dt=run["dt"], run=run["name"])
         if beside:
             handle = ds.start_liggghts(peer["folder"], peer_points, run["dt"], steady, measure, SAMPLES, processes)
 
-    angles = drums.run(run["steady"], measure, SAMPLES, on_settled=settled)
+    per_drum = drums.run(run["steady"], measure, SAMPLES, on_settled=settled)
     wall = time.time() - t0
     steps = int(round((settle + run["steady"] + measure) / run["dt"]))
-    stats = [mean_se(a) for a in angles]
+    angles, stats, replicas = [], [], []
+    for p in run["points"]:
+        ks = [k for k, q in enumerate(drum_points) if q == p]
+        st = [mean_se(per_drum[k]) for k in ks]
+        angles.append(per_drum[ks[0]])  # the samples drawn: the first replica's
+        stats.append(combined(st))
+        replicas.append([{"seed": drum_seeds[k], "angle_deg": round(m, 3), "se_deg": round(e, 3)}
+                         for k, (m, e) in zip(ks, st)])
     results[run["name"]] = dict(run=run, angles=angles, stats=stats, wall=wall, steps=steps,
-                                spheres=drums.sim.GetNumSpheres(), grains=drums.n)
+                                spheres=drums.sim.GetNumSpheres(), grains=drums.n, replicas=replicas)
     print(f"{run['name']}: {wall:.0f} s ({steps} steps, {drums.sim.GetNumSpheres() * steps / wall:.3g} sphere-steps/s)",
           flush=True)
-    for p, (m, se) in zip(run["points"], stats):
-        print(f"  mu {p[0]:.3f} Crr {p[1]:.3f}: {m:6.2f} +- {se:.2f} deg")
+    for p, (m, se), reps in zip(run["points"], stats, replicas):
+        each = (" (replicas " + ", ".join(f"{r['angle_deg']:.2f} +- {r['se_deg']:.2f}" for r in reps) + ")"
+                if len(reps) > 1 else "")
+        print(f"  mu {p[0]:.3f} Crr {p[1]:.3f}: {m:6.2f} +- {se:.2f} deg{each}")
     del drums
 
 if not beside and peer.get("run"):
@@ -355,9 +390,11 @@ for name, res in results.items():
         "depth_m": r["depth"], "E_Pa": r["young"], "dt_s": r["dt"], "steady_s": r["steady"],
         "grains_per_drum": res["grains"],
         "spheres": res["spheres"], "steps": res["steps"], "wall_s": round(res["wall"], 1),
-        "points": [{"mu": p[0], "Crr": p[1], "angle_deg": round(s[0], 3), "se_deg": round(s[1], 3),
-                    "samples_deg": [round(float(v), 3) for v in a]}
-                   for p, s, a in zip(r["points"], res["stats"], res["angles"])]}
+        "points": [dict({"mu": p[0], "Crr": p[1], "angle_deg": round(s[0], 3), "se_deg": round(s[1], 3),
+                         "samples_deg": [round(float(v), 3) for v in a]},
+                        **({"replicas": reps} if len(reps) > 1 else {}))
+                   for p, s, a, reps in zip(r["points"], res["stats"], res["angles"],
+                                            res.get("replicas", [[]] * len(r["points"])))]}
 if peer_result is not None:
     data["liggghts"] = {"wall_s": round(l_wall, 1), "processes": l_np, "depth_m": peer["depth"], "points": [
         {"mu": p[0], "Crr": p[1], "angle_deg": round(mean_se(a)[0], 3), "se_deg": round(mean_se(a)[1], 3),

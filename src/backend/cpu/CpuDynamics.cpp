@@ -86,7 +86,6 @@ double CpuDynamics::maxTravelSinceOrder() {
 void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
     PhaseTimer t(timing, Phase::HISTORY_MAPPING);
     installDetectedContacts(m_s, m_kinematics.takenPairs());
-    buildOwnerContactIndex(m_s);
     m_baseline.swap(m_orderBaseline);
     m_subsetStale = true;  // the reduction's list (owners stepped or in a contact) follows the set
 }
@@ -101,7 +100,6 @@ bool CpuDynamics::resumeContactSet(const SimState& s, const std::vector<double>&
     // The steps run on the host state, whose contact set is the restored one: only the bookkeeping
     // that an installation builds is missing.
     indexContactSet(m_s);
-    buildOwnerContactIndex(m_s);
     m_baseline = travel;
     m_orderBaseline = travel;
     return true;

@@ -1,5 +1,7 @@
 #include "backend/cpu/ForcePass.h"
 
+#include <deme/Error.h>
+
 #include "parallel/Parallel.h"
 #include "backend/cpu/ForcePassLoop.h"
 #include "physics/BuiltInForceModels.h"
@@ -30,23 +32,26 @@ void buildOwnerContactIndex(SimState& s) {
     ContactArrays& c = s.contacts;
     const size_t n = c.size();
     const size_t nOwners = s.owners.size();
-    std::vector<bodyID_t> ownerB(n);
-#pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < n; i++) ownerB[i] = contactOwnerB(s, i);
-    c.ownerStart.assign(nOwners + 1, 0);
+    // A's side: the set is sorted by A, and A is always a sphere, whose owners ascend with their
+    // ids (state/SimState.h), so each owner's contacts as A are one run.
+    c.ownerAStart.assign(nOwners + 1, 0);
+    bodyID_t prev = 0;
     for (size_t i = 0; i < n; i++) {
-        c.ownerStart[s.spheres.owner[c.geomA[i]] + 1]++;
-        c.ownerStart[ownerB[i] + 1]++;
+        const bodyID_t o = s.spheres.owner[c.geomA[i]];
+        if (o < prev) throwError("contact detection", "internal: the contact set is not sorted by A's owner");
+        prev = o;
+        c.ownerAStart[o + 1]++;
     }
-    for (size_t o = 0; o < nOwners; o++) c.ownerStart[o + 1] += c.ownerStart[o];
-    c.ownerEntries.resize(c.ownerStart[nOwners]);
-    std::vector<uint32_t> fill(c.ownerStart.begin(), c.ownerStart.end() - 1);
-    // Serial fill in contact order: each owner sums its contacts in a fixed order, so results do
-    // not depend on the thread count.
-    for (size_t i = 0; i < n; i++) {
-        c.ownerEntries[fill[s.spheres.owner[c.geomA[i]]]++] = (uint32_t)(i << 1);
-        c.ownerEntries[fill[ownerB[i]]++] = (uint32_t)((i << 1) | 1u);
-    }
+    for (size_t o = 0; o < nOwners; o++) c.ownerAStart[o + 1] += c.ownerAStart[o];
+    // B's side: per owner, its contacts as B in contact order (a fixed order for its sums). B's
+    // owner is looked up twice rather than kept: a list of them would be 4 B per pair more at the
+    // moment a new set's memory peaks.
+    c.ownerBStart.assign(nOwners + 1, 0);
+    for (size_t i = 0; i < n; i++) c.ownerBStart[contactOwnerB(s, i) + 1]++;
+    for (size_t o = 0; o < nOwners; o++) c.ownerBStart[o + 1] += c.ownerBStart[o];
+    c.ownerBEntries.resize(n);
+    std::vector<uint32_t> fill(c.ownerBStart.begin(), c.ownerBStart.end() - 1);
+    for (size_t i = 0; i < n; i++) c.ownerBEntries[fill[contactOwnerB(s, i)]++] = (uint32_t)i;
 }
 
 }  // namespace deme

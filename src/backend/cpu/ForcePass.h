@@ -1,5 +1,6 @@
 // The force pass (dynamics side): evaluates the contact force model on every pair of the
-// active-contact set and stores each pair's force and the torques about both owners.
+// active-contact set; A's owner takes its loads at once, each pair's force and the torque about B's
+// owner are stored for the reduction.
 #pragma once
 
 #include "backend/cpu/ForcePassResult.h"
@@ -14,7 +15,8 @@ using ForcePassFunction = ForcePassResult (*)(SimState& s, double time, double d
 ForcePassResult frictionalHertzForcePass(SimState& s, double time, double dt);
 ForcePassResult frictionlessHertzForcePass(SimState& s, double time, double dt);
 
-// For reduction: lists, per owner, the contacts it takes part in (rebuilt after each detection).
+// Per owner, the run of contacts it is A in and the list of those it is B in (rebuilt after each
+// detection): how the pass and the reduction share the loads.
 void buildOwnerContactIndex(SimState& s);
 
 }  // namespace deme

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "backend/cpu/ForcePass.h"
 #include "kinematics/HistoryRules.h"
 #include "parallel/Parallel.h"
 
@@ -95,8 +96,8 @@ void indexContactSet(SimState& s) {
     }
     c.meshContactGroups.push_back((uint32_t)c.meshContacts.size());
     c.force.resize(nNew, make_float3(0.f));
-    c.torqueA.assign(nNew, make_float3(0.f));
     c.torqueB.assign(nNew, make_float3(0.f));
+    buildOwnerContactIndex(s);
 }
 
 }  // namespace deme

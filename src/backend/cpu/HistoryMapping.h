@@ -13,7 +13,8 @@ namespace deme {
 void installDetectedContacts(SimState& s, DetectedContacts& fresh);
 
 // The per-set bookkeeping of s.contacts' pairs as they are (the sphere-triangle runs, per-contact
-// force and torque arrays): part of every installation, and of a restart that resumes a set.
+// force and torque arrays, the owners' index of the force pass and reduction): part of every
+// installation, and of a restart that resumes a set.
 void indexContactSet(SimState& s);
 
 }  // namespace deme

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <deme/Error.h>
+
 #include "parallel/Parallel.h"
 #include "dynamics/KinematicCache.h"
 #include "dynamics/OwnerStep.h"
@@ -15,20 +17,19 @@ void reduceContactForces(SimState& s, const IntegrationSubset& subset) {
     const ContactArrays& c = s.contacts;
     const bodyID_t* ids = subset.all ? nullptr : subset.reduced.data();
     const size_t n = subset.all ? ow.size() : subset.reduced.size();
+    if (c.ownerAStart.size() != ow.size() + 1 || c.ownerBStart.size() != ow.size() + 1)
+        throwError("DoDynamics", "internal: the contact set's owner index is missing");
 #pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
     for (size_t k = 0; k < n; k++) {
         const size_t o = ids ? (size_t)ids[k] : k;
-        float3 F = make_float3(0.f), tau = make_float3(0.f);
-        for (uint32_t e = c.ownerStart[o]; e < c.ownerStart[o + 1]; e++) {
-            const uint32_t entry = c.ownerEntries[e];
-            const size_t ci = entry >> 1;
-            if (entry & 1u) {
-                F -= c.force[ci];
-                tau += c.torqueB[ci];
-            } else {
-                F += c.force[ci];
-                tau += c.torqueA[ci];
-            }
+        // What the owner took as A in the force pass (runForcePass), then its contacts as B.
+        const bool asA = c.ownerAStart[o + 1] > c.ownerAStart[o];
+        float3 F = asA ? ow.contactForce[o] : make_float3(0.f);
+        float3 tau = asA ? ow.contactTorque[o] : make_float3(0.f);
+        for (uint32_t e = c.ownerBStart[o]; e < c.ownerBStart[o + 1]; e++) {
+            const uint32_t ci = c.ownerBEntries[e];
+            F -= c.force[ci];
+            tau += c.torqueB[ci];
         }
         ow.contactForce[o] = F;
         ow.contactTorque[o] = tau;
@@ -136,9 +137,12 @@ void IntegrationSubset::update(SimState& s, const std::array<FamilyStepMotion, N
         owners.clear();
         return;
     }
-    const std::vector<uint32_t>& start = s.contacts.ownerStart;
+    const std::vector<uint32_t>&a = s.contacts.ownerAStart, &b = s.contacts.ownerBStart;
+    auto inContact = [&](size_t o) {
+        return (a.size() > o + 1 && a[o + 1] > a[o]) || (b.size() > o + 1 && b[o + 1] > b[o]);
+    };
     for (size_t o = 0; o < n; o++) {
-        if (stepped[o] || (start.size() > o + 1 && start[o + 1] > start[o])) {
+        if (stepped[o] || inContact(o)) {
             reduced.push_back((bodyID_t)o);
         } else {
             ow.contactForce[o] = make_float3(0.f);

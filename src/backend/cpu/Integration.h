@@ -19,7 +19,8 @@ struct IntegrationResult {
 
 struct IntegrationSubset;
 
-// Sums each owner's contact forces and torques (in a fixed order) into contactForce/contactTorque:
+// Completes each owner's contact force and torque (contactForce/contactTorque): to what the force
+// pass gave it as A it adds its contacts as B, in a fixed order:
 // every owner, or those of subset.reduced (the others have no contacts and hold zeros).
 void reduceContactForces(SimState& s, const IntegrationSubset& subset);
 

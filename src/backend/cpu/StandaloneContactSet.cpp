@@ -1,7 +1,6 @@
 #include "backend/cpu/StandaloneContactSet.h"
 
 #include "backend/cpu/ContactDetector.h"
-#include "backend/cpu/ForcePass.h"
 #include "backend/cpu/HistoryMapping.h"
 #include "dynamics/KinematicCache.h"
 #include "kinematics/BinGridSizing.h"
@@ -19,7 +18,6 @@ void detectAndInstallContacts(SimState& s, double margin) {
     double binning = 0.0, search = 0.0;
     detector.detect(s, grid, margin, families.contactMask(), extra, pairs, binning, search);
     installDetectedContacts(s, pairs);
-    buildOwnerContactIndex(s);
 }
 
 }  // namespace deme
