@@ -166,3 +166,37 @@ TEST(ApiBatch, InitializeTakesTheBatchsArrays) {
     EXPECT_NE(demeErrorMessage([&] { b->GetOriQs(); }).find("DEMClumpBatch::GetOriQs"), std::string::npos);
     EXPECT_NEAR(sim.Track(b)->Pos().x, 0.3, 1e-6);
 }
+
+// A batch keeps each template once and an index per clump only where its clumps differ
+// (docs/memory.md): GetTypes() rebuilds the per-clump list as given, GetType(i) reads one, and both
+// survive Initialize (the templates stay with the batch); an index past the batch is an error.
+TEST(ApiBatch, TemplatesOnceEachWithAnIndexPerClump) {
+    DEMSolver sim;
+    sim.SetBackend("cpu");
+    sim.SetVerbosity("QUIET");
+    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.3));
+    sim.InstructBoxDomainDimension(1, 1, 1);
+    auto small = sim.LoadSphereType(1.f, 0.01f, mat);
+    auto large = sim.LoadSphereType(2.f, 0.02f, mat);
+    auto mixed = sim.AddClumps({large, small, large, small, small},
+                               {make_float3(0, 0, 0), make_float3(0.1f, 0, 0), make_float3(0.2f, 0, 0),
+                                make_float3(0.3f, 0, 0), make_float3(-0.1f, 0, 0)});
+    auto same = sim.AddClumps(small, {make_float3(0, 0.2f, 0), make_float3(0, 0.3f, 0)});
+    sim.SetInitTimeStep(1e-5);
+    sim.Initialize();
+    const std::vector<std::shared_ptr<DEMClumpTemplate>> given{large, small, large, small, small};
+    EXPECT_EQ(mixed->GetTypes(), given);
+    EXPECT_EQ(mixed->GetDistinctTypes(), (std::vector<std::shared_ptr<DEMClumpTemplate>>{large, small}));
+    for (size_t i = 0; i < given.size(); i++) EXPECT_EQ(mixed->GetType(i), given[i]) << i;
+    EXPECT_EQ(same->GetTypes(), (std::vector<std::shared_ptr<DEMClumpTemplate>>{small, small}));
+    EXPECT_EQ(same->GetDistinctTypes(), std::vector<std::shared_ptr<DEMClumpTemplate>>{small});
+    EXPECT_EQ(same->GetType(1), small);
+    EXPECT_NE(demeErrorMessage([&] { same->GetType(2); }).find("DEMClumpBatch::GetType: clump 2 of a batch of 2"),
+              std::string::npos);
+    // The solver assembled each clump from its own template: masses 2, 1, 2, 1, 1 and 1, 1.
+    EXPECT_EQ(sim.GetNumSpheres(), 7u);
+    auto tr = sim.Track(mixed);
+    EXPECT_FLOAT_EQ(tr->Mass(0), 2.f);
+    EXPECT_FLOAT_EQ(tr->Mass(1), 1.f);
+    EXPECT_FLOAT_EQ(tr->Mass(4), 1.f);
+}

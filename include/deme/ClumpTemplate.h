@@ -38,6 +38,8 @@ class DEMClumpTemplate {
 class DEMClumpBatch {
   public:
     DEMClumpBatch(std::vector<std::shared_ptr<DEMClumpTemplate>> types, std::vector<float3> positions);
+    // Every clump of one template.
+    DEMClumpBatch(std::shared_ptr<DEMClumpTemplate> type, std::vector<float3> positions);
 
     size_t GetNumClumps() const { return m_numClumps; }
     void SetVel(const float3& v);
@@ -49,7 +51,13 @@ class DEMClumpBatch {
     void SetFamily(unsigned int family);
     void SetFamily(const std::vector<unsigned int>& families);
 
-    const std::vector<std::shared_ptr<DEMClumpTemplate>>& GetTypes() const { return m_types; }
+    // The template of each clump, as a new list (the batch keeps one index per clump, none where
+    // all its clumps share one template: docs/memory.md).
+    std::vector<std::shared_ptr<DEMClumpTemplate>> GetTypes() const;
+    // Clump i's template (i < GetNumClumps()).
+    const std::shared_ptr<DEMClumpTemplate>& GetType(size_t i) const;
+    // The templates the batch uses, each once, in the order of their first clump.
+    const std::vector<std::shared_ptr<DEMClumpTemplate>>& GetDistinctTypes() const { return m_distinctTypes; }
     const std::vector<float3>& GetPositions() const;
     const std::vector<float3>& GetVelocities() const;
     const std::vector<float3>& GetAngVelocities() const;
@@ -60,7 +68,8 @@ class DEMClumpBatch {
 
   private:
     friend class DEMSolver;
-    std::vector<std::shared_ptr<DEMClumpTemplate>> m_types;
+    std::vector<std::shared_ptr<DEMClumpTemplate>> m_distinctTypes;
+    std::vector<uint32_t> m_typeIndex;  // per clump, into m_distinctTypes; empty if there is one
     std::vector<float3> m_pos, m_vel, m_angVel;
     std::vector<float4> m_oriQ;
     std::vector<family_t> m_family;

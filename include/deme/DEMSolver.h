@@ -359,6 +359,7 @@ class DEMSolver {
     void requireNotInitialized(const char* call) const;
     void requireInitialized(const char* call) const;
     void addClumpsDuringRun(const std::shared_ptr<DEMClumpBatch>& batch, const char* call);
+    std::shared_ptr<DEMClumpBatch> addClumpBatch(std::shared_ptr<DEMClumpBatch> batch, const char* call);
     std::shared_ptr<DEMForceModel> chooseForceModel(const char* call, std::shared_ptr<DEMForceModel> model);
     void attachProgressHooks();
     void rethrowCallbackError();

@@ -40,7 +40,10 @@ void export_templates(py::module_& m) {
              "One family for all clumps.")
         .def("SetFamily", py::overload_cast<const std::vector<unsigned int>&>(&B::SetFamily), py::arg("families"),
              "One family per clump.")
-        .def("GetTypes", &B::GetTypes, "The template of each clump.")
+        .def("GetTypes", &B::GetTypes, "The template of each clump (a new list).")
+        .def("GetType", &B::GetType, py::arg("i"), "Clump i's template.")
+        .def("GetDistinctTypes", &B::GetDistinctTypes,
+             "The templates the batch uses, each once, in the order of their first clump.")
         .def("GetPositions", &B::GetPositions, "Initial positions, (N, 3); an error once Initialize or UpdateClumps took the batch.")
         .def("GetVelocities", &B::GetVelocities, "Initial velocities, (N, 3); until Initialize or UpdateClumps.")
         .def("GetAngVelocities", &B::GetAngVelocities, "Initial angular velocities (local frame), (N, 3); until Initialize or UpdateClumps.")

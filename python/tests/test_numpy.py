@@ -146,6 +146,18 @@ def test_batch_arrays_go_to_the_solver_at_initialize(sim):
     np.testing.assert_allclose(sim.Track(batch).Positions()[1], [0.1, 0, 0], atol=1e-6)
 
 
+def test_batch_templates_once_each(sim):
+    """A batch keeps each template once (GetDistinctTypes) and gives each clump's (GetType, GetTypes)."""
+    mat = material(sim)
+    small, large = sim.LoadSphereType(1.0, 0.01, mat), sim.LoadSphereType(2.0, 0.02, mat)
+    batch = sim.AddClumps([large, small, large], [[0, 0, 0], [0.1, 0, 0], [0.2, 0, 0]])
+    assert [t.mass for t in batch.GetTypes()] == [2.0, 1.0, 2.0]
+    assert [t.mass for t in batch.GetDistinctTypes()] == [2.0, 1.0]
+    assert batch.GetType(1).mass == 1.0
+    with pytest.raises(deme.Error, match=r"^DEMClumpBatch::GetType: clump 3 of a batch of 3"):
+        batch.GetType(3)
+
+
 def test_clump_template_arrays(sim):
     mat = material(sim)
     radii = np.array([0.01, 0.02])

@@ -1,6 +1,8 @@
 #include <deme/ClumpTemplate.h>
 
 #include <algorithm>
+#include <string>
+#include <unordered_map>
 
 #include "api/Validate.h"
 
@@ -21,14 +23,47 @@ float DEMClumpTemplate::GetExtent() const {
     return e;
 }
 
-DEMClumpBatch::DEMClumpBatch(std::vector<std::shared_ptr<DEMClumpTemplate>> types, std::vector<float3> positions)
-    : m_types(std::move(types)),
-      m_pos(std::move(positions)),
+DEMClumpBatch::DEMClumpBatch(std::shared_ptr<DEMClumpTemplate> type, std::vector<float3> positions)
+    : m_pos(std::move(positions)),
       m_vel(m_pos.size(), make_float3(0.f)),
       m_angVel(m_pos.size(), make_float3(0.f)),
       m_oriQ(m_pos.size(), make_float4(0.f, 0.f, 0.f, 1.f)),
       m_family(m_pos.size(), 0),
-      m_numClumps(m_pos.size()) {}
+      m_numClumps(m_pos.size()) {
+    if (type) m_distinctTypes.push_back(std::move(type));
+}
+
+DEMClumpBatch::DEMClumpBatch(std::vector<std::shared_ptr<DEMClumpTemplate>> types, std::vector<float3> positions)
+    : DEMClumpBatch(std::shared_ptr<DEMClumpTemplate>(), std::move(positions)) {
+    if (types.size() != m_numClumps)
+        throwError("DEMClumpBatch", "got " + std::to_string(types.size()) + " templates for " +
+                                        std::to_string(m_numClumps) + " positions");
+    // A 16-byte pointer per clump would outweigh much of what the solver keeps per clump: the
+    // templates once each, and an index per clump only where they differ.
+    std::unordered_map<const DEMClumpTemplate*, uint32_t> index;
+    std::vector<uint32_t> perClump(types.size());
+    for (size_t i = 0; i < types.size(); i++) {
+        auto [it, added] = index.try_emplace(types[i].get(), (uint32_t)index.size());
+        if (added) m_distinctTypes.push_back(types[i]);
+        perClump[i] = it->second;
+    }
+    if (m_distinctTypes.size() > 1) m_typeIndex = std::move(perClump);
+}
+
+const std::shared_ptr<DEMClumpTemplate>& DEMClumpBatch::GetType(size_t i) const {
+    if (i >= m_numClumps || m_distinctTypes.empty())
+        throwError("DEMClumpBatch::GetType", "clump " + std::to_string(i) + " of a batch of " +
+                                                 std::to_string(m_numClumps) + " clumps" +
+                                                 (m_distinctTypes.empty() ? " without a template" : ""));
+    return m_distinctTypes[m_typeIndex.empty() ? 0 : m_typeIndex[i]];
+}
+
+std::vector<std::shared_ptr<DEMClumpTemplate>> DEMClumpBatch::GetTypes() const {
+    std::vector<std::shared_ptr<DEMClumpTemplate>> out;
+    out.reserve(m_numClumps);
+    for (size_t i = 0; i < m_numClumps; i++) out.push_back(GetType(i));
+    return out;
+}
 
 template <class T>
 const T& DEMClumpBatch::initialValues(const T& values, const char* call) const {

@@ -238,7 +238,7 @@ void DEMSolver::Initialize() {
     for (auto& b : m_scene->batches) {
         b->m_ownerOffset = offset;
         offset += b->GetNumClumps();
-        for (auto& t : b->GetTypes()) t->m_frozen = true;
+        for (auto& t : b->GetDistinctTypes()) t->m_frozen = true;
         b->handOver();
     }
     for (auto& o : m_scene->externObjs) {
@@ -298,7 +298,7 @@ size_t DEMSolver::GetNumSpheres() const {
     if (m_sim->initialized()) return m_sim->numSpheres();
     size_t n = 0;
     for (const auto& b : m_scene->batches)
-        for (const auto& t : b->GetTypes()) n += t->GetNumSpheres();
+        for (size_t i = 0; i < b->GetNumClumps(); i++) n += b->GetType(i)->GetNumSpheres();
     return n;
 }
 size_t DEMSolver::GetNumContacts() const { return m_sim->numRealContacts(); }

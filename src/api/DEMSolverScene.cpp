@@ -225,9 +225,21 @@ std::shared_ptr<DEMClumpTemplate> DEMSolver::LoadSphereType(float mass, float ra
                          mat);
 }
 
+namespace {
+
+void requireUsableTemplate(const char* call, const std::shared_ptr<DEMClumpTemplate>& t, const std::string& which) {
+    if (!t) throwError(call, which + " is null");
+    if (!(t->mass > 0.f) || t->radii.empty()) throwError(call, which + " has no mass or no spheres");
+}
+
+}  // namespace
+
 std::shared_ptr<DEMClumpBatch> DEMSolver::AddClumps(const std::shared_ptr<DEMClumpTemplate>& type,
                                                     const std::vector<float3>& positions) {
-    return AddClumps(std::vector<std::shared_ptr<DEMClumpTemplate>>(positions.size(), type), positions);
+    const char* call = "AddClumps";
+    requireUsableTemplate(call, type, "the template");
+    for (const float3& p : positions) requireFinite3(call, "clump position", p);
+    return addClumpBatch(std::make_shared<DEMClumpBatch>(type, positions), call);
 }
 
 std::shared_ptr<DEMClumpBatch> DEMSolver::AddClumps(const std::vector<std::shared_ptr<DEMClumpTemplate>>& types,
@@ -237,12 +249,13 @@ std::shared_ptr<DEMClumpBatch> DEMSolver::AddClumps(const std::vector<std::share
         throwError(call, "got " + std::to_string(types.size()) + " templates for " + std::to_string(positions.size()) +
                              " positions");
     for (size_t i = 0; i < types.size(); i++) {
-        if (!types[i]) throwError(call, "template of clump " + std::to_string(i) + " is null");
-        if (!(types[i]->mass > 0.f) || types[i]->radii.empty())
-            throwError(call, "template of clump " + std::to_string(i) + " has no mass or no spheres");
+        requireUsableTemplate(call, types[i], "template of clump " + std::to_string(i));
         requireFinite3(call, "clump position", positions[i]);
     }
-    auto batch = std::make_shared<DEMClumpBatch>(types, positions);
+    return addClumpBatch(std::make_shared<DEMClumpBatch>(types, positions), call);
+}
+
+std::shared_ptr<DEMClumpBatch> DEMSolver::addClumpBatch(std::shared_ptr<DEMClumpBatch> batch, const char* call) {
     if (m_sim->initialized()) addClumpsDuringRun(batch, call);  // api/DEMSolverSceneChanges.cpp
     m_scene->batches.push_back(batch);
     return batch;

@@ -23,7 +23,7 @@ void DEMSolver::addClumpsDuringRun(const std::shared_ptr<DEMClumpBatch>& batch, 
         if (!(p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z))
             throwError(call, "clump " + std::to_string(i) + " of the batch at " + formatVector(p) +
                                  " is outside the simulation domain (from " + formatVector(lo) + " to " + formatVector(hi) + ")");
-        for (const auto& m : batch->GetTypes()[i]->materials) {
+        for (const auto& m : batch->GetType(i)->materials) {
             const unsigned int k = m ? m->GetLoadOrder() : 0;
             if (!m || k >= sc.materials.size() || sc.materials[k] != m)
                 throwError(call, "a template of clump " + std::to_string(i) +
@@ -52,7 +52,7 @@ void DEMSolver::UpdateClumps() {
     const SimState rows = assembleScene(part, m_sim->forceModel());
     m_sim->insertClumps(rows);
     for (auto& b : m_scene->pendingBatches) {
-        for (auto& t : b->GetTypes()) t->m_frozen = true;
+        for (auto& t : b->GetDistinctTypes()) t->m_frozen = true;
         b->handOver();
     }
     m_scene->pendingBatches.clear();

@@ -114,7 +114,7 @@ template <typename PosOf>
 std::vector<size_t> spatialOrder(const Scene& scene, size_t n, PosOf posOf) {
     float extent = 0.f;
     for (const auto& b : scene.batches)
-        for (const auto& t : b->GetTypes()) extent = std::max(extent, t->GetExtent());
+        for (const auto& t : b->GetDistinctTypes()) extent = std::max(extent, t->GetExtent());
     const double cell = std::max(2.0 * extent, 1e-12);
     auto spread = [](uint64_t v) {  // 21 bits -> every third bit
         v &= 0x1FFFFF;
@@ -158,7 +158,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
     // Mass properties: one entry per template in use, then one per external object.
     std::map<const DEMClumpTemplate*, inertiaID_t> templateIndex;
     for (const auto& b : scene.batches)
-        for (const auto& t : b->GetTypes())
+        for (const auto& t : b->GetDistinctTypes())
             if (!templateIndex.count(t.get())) {
                 templateIndex[t.get()] = (inertiaID_t)s.massProps.mass.size();
                 s.massProps.mass.push_back(t->mass);
@@ -186,7 +186,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
     std::vector<uint32_t> userSphereStart(user.size() + 1, 0);
     for (size_t u = 0; u < user.size(); u++)
         userSphereStart[u + 1] =
-            userSphereStart[u] + (uint32_t)user[u].batch->GetTypes()[user[u].index]->GetNumSpheres();
+            userSphereStart[u] + (uint32_t)user[u].batch->GetType(user[u].index)->GetNumSpheres();
     // Every array to its final size at once: grown by doubling, the owner and sphere arrays would
     // keep up to half their bytes unused for the whole run (docs/memory.md).
     const size_t nOwnersTotal = user.size() + scene.externObjs.size() + scene.meshes.size();
@@ -200,7 +200,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
     for (size_t u : order) {
         const DEMClumpBatch* b = user[u].batch;
         const size_t i = user[u].index;
-        const DEMClumpTemplate& t = *b->GetTypes()[i];
+        const DEMClumpTemplate& t = *b->GetType(i);
         const size_t owner = s.owners.size();
         s.ownerUserToInternal[u] = (bodyID_t)owner;
         s.ownerInternalToUser[owner] = (bodyID_t)u;
