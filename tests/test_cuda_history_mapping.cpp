@@ -52,6 +52,7 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
             s.spheres.owner.push_back(i);
             s.owners.family.push_back((family_t)(i % 3));
         }
+        s.owners.voxel.assign(spheres, 0);  // one owner per sphere (installing a set indexes their contacts)
         s.numWildcards = 1;
         s.wildcards.contactInit.push_back({0, 1, 0, 7.f});
         const Pairs old = randomPairs(rng, spheres, std::uniform_int_distribution<size_t>(0, 60)(rng));

@@ -39,6 +39,7 @@ void buildOwnerContactIndex(SimState& s) {
     for (size_t i = 0; i < n; i++) {
         const bodyID_t o = s.spheres.owner[c.geomA[i]];
         if (o < prev) throwError("contact detection", "internal: the contact set is not sorted by A's owner");
+        if (o >= nOwners) throwError("contact detection", "internal: a contact's owner is not in the state");
         prev = o;
         c.ownerAStart[o + 1]++;
     }
@@ -47,7 +48,11 @@ void buildOwnerContactIndex(SimState& s) {
     // owner is looked up twice rather than kept: a list of them would be 4 B per pair more at the
     // moment a new set's memory peaks.
     c.ownerBStart.assign(nOwners + 1, 0);
-    for (size_t i = 0; i < n; i++) c.ownerBStart[contactOwnerB(s, i) + 1]++;
+    for (size_t i = 0; i < n; i++) {
+        const bodyID_t o = contactOwnerB(s, i);
+        if (o >= nOwners) throwError("contact detection", "internal: a contact's owner is not in the state");
+        c.ownerBStart[o + 1]++;
+    }
     for (size_t o = 0; o < nOwners; o++) c.ownerBStart[o + 1] += c.ownerBStart[o];
     c.ownerBEntries.resize(n);
     std::vector<uint32_t> fill(c.ownerBStart.begin(), c.ownerBStart.end() - 1);
