@@ -137,15 +137,22 @@ TEST(ApiTemplate, ScaleScalesMassAndInertia) {
     EXPECT_FLOAT_EQ(t->GetExtent(), 3.f);
 }
 
+namespace {
+// A quiet CPU solver in a 1 m box, and the material of the batch tests' spheres.
+std::shared_ptr<DEMMaterial> batchTestSolver(DEMSolver& sim) {
+    sim.SetBackend("cpu");
+    sim.SetVerbosity("QUIET");
+    sim.InstructBoxDomainDimension(1, 1, 1);
+    return sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.3));
+}
+}  // namespace
+
 // At Initialize the solver takes a batch's clumps into its state and the batch lets go of its
 // per-clump arrays (docs/memory.md): its getters of initial values are errors naming the call, its
 // count and owner offset stay, and trackers read the clumps. The same for UpdateClumps.
 TEST(ApiBatch, InitializeTakesTheBatchsArrays) {
     DEMSolver sim;
-    sim.SetBackend("cpu");
-    sim.SetVerbosity("QUIET");
-    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.3));
-    sim.InstructBoxDomainDimension(1, 1, 1);
+    auto mat = batchTestSolver(sim);
     auto t = sim.LoadSphereType(1.f, 0.01f, mat);
     auto a = sim.AddClumps(t, {make_float3(0, 0, 0), make_float3(0.1f, 0, 0)});
     EXPECT_EQ(a->GetPositions().size(), 2u);
@@ -172,10 +179,7 @@ TEST(ApiBatch, InitializeTakesTheBatchsArrays) {
 // survive Initialize (the templates stay with the batch); an index past the batch is an error.
 TEST(ApiBatch, TemplatesOnceEachWithAnIndexPerClump) {
     DEMSolver sim;
-    sim.SetBackend("cpu");
-    sim.SetVerbosity("QUIET");
-    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.3));
-    sim.InstructBoxDomainDimension(1, 1, 1);
+    auto mat = batchTestSolver(sim);
     auto small = sim.LoadSphereType(1.f, 0.01f, mat);
     auto large = sim.LoadSphereType(2.f, 0.02f, mat);
     auto mixed = sim.AddClumps({large, small, large, small, small},
