@@ -105,7 +105,6 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     const bool large = !(h2 < ORIENTATION_SERIES_MAX_H2);
     const float4 qStep = orientationStepSeries(q0, wMid, c.h, h2);
     const float4 q = (w2 > 0.f && !large) ? qStep : q0;
-    s.integrationScratch.midAngVel[o] = wMid;
     ow.angVel[o] = w;
     ow.oriQ[o] = q;
 
@@ -135,8 +134,20 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     const double travel = ow.travel[o] + (double)(r.speed * c.h);
     ow.travel[o] = travel;
     r.travelSinceDetection = travels ? travel - travelBaseline : -1.0;
-    k.ownerAngVelGlobal[o] = rotateToGlobal(q, w);
+    // An owner whose rotation is too large for the series leaves its midpoint angular velocity
+    // (local frame) in its cache slot, for the exact step that follows in the same sweep
+    // (finishLargeRotation), which puts the global angular velocity there: the one per-owner array
+    // of the step serves both, instead of a scratch array written by every owner every step.
+    k.ownerAngVelGlobal[o] = large ? wMid : rotateToGlobal(q, w);
     return r;
+}
+
+// The exact orientation step of an owner that stepOwner flagged STEP_LARGE_ROTATION (its midpoint
+// angular velocity in its ownerAngVelGlobal slot), then that slot's proper value.
+template <class S>
+DEME_HD_INLINE void finishLargeRotation(S& s, size_t o, float h) {
+    s.owners.oriQ[o] = integrateOrientation(s.owners.oriQ[o], s.cache.ownerAngVelGlobal[o], h);
+    s.cache.ownerAngVelGlobal[o] = rotateToGlobal(s.owners.oriQ[o], s.owners.angVel[o]);
 }
 
 // Sphere i's cached centre and arm from its owner's new pose. Most clumps are single spheres at

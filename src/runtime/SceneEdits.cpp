@@ -48,7 +48,6 @@ void rebuildOwnerRanges(SimState& s) {
 // rebuilt when the next detection installs its set (which an edit always causes).
 void resizeDerived(SimState& s) {
     s.integrationScratch.flags.assign(s.owners.size(), 0);
-    s.integrationScratch.midAngVel.assign(s.owners.size(), make_float3(0.f));
     ContactArrays& c = s.contacts;
     c.meshContacts.clear();
     c.meshContactGroups.clear();

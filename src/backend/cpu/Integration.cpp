@@ -53,7 +53,6 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
     const StepConstants consts{gravity, (float)dt, dt, errorOutVelocity * errorOutVelocity, s.frame, s.domainSize};
     IntegrationScratch& scratch = s.integrationScratch;
     scratch.flags.resize(n);
-    scratch.midAngVel.resize(n);
     uint8_t* flags = scratch.flags.data();
     const double* baseline = travelBaseline.data();
     const FamilyStepMotion* familyMotion = motion.data();
@@ -80,10 +79,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
 #pragma omp for schedule(static)
             for (size_t k = 0; k < nStepped; k++) {
                 const size_t o = ownerIds ? (size_t)ownerIds[k] : k;
-                if (flags[o] & STEP_LARGE_ROTATION) {
-                    ow.oriQ[o] = integrateOrientation(ow.oriQ[o], scratch.midAngVel[o], h);
-                    s.cache.ownerAngVelGlobal[o] = rotateToGlobal(ow.oriQ[o], ow.angVel[o]);
-                }
+                if (flags[o] & STEP_LARGE_ROTATION) finishLargeRotation(s, o, h);
             }
         }
 

@@ -150,10 +150,7 @@ extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, co
         speed = r.speed;
         if (r.flags & STEP_FAULTS) fault = (unsigned int)o;
         large = (r.flags & STEP_LARGE_ROTATION) ? 1u : 0u;
-        if (large) {
-            s.owners.oriQ[o] = integrateOrientation(s.owners.oriQ[o], s.integrationScratch.midAngVel[o], consts.h);
-            s.cache.ownerAngVelGlobal[o] = rotateToGlobal(s.owners.oriQ[o], s.owners.angVel[o]);
-        }
+        if (large) finishLargeRotation(s, o, consts.h);
     }
     for (int off = 16; off > 0; off >>= 1) {
         travel = fmax(travel, __shfl_down_sync(0xFFFFFFFFu, travel, off));
