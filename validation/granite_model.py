@@ -15,9 +15,9 @@ The law (paper s. 6.4, after Scholtes & Donze 2013, Int. J. Rock Mech. Min. Sci.
 - A_int = pi min(R_i, R_j)^2; sigma_t = 9.3 MPa and c = 200 MPa (the paper's listing), mu = 0.3.
 - A broken or never-bonded pair in contact follows Hertz-Mindlin (paper s. 3.1: E_eff, G_eff from
   E and nu, CoR-derived damping, Coulomb friction with mu of the pair); so do the spheres and plates.
-- The bending moment of the paper's bonds is left out: the model interface applies forces at the
-  contact point (and `torque_only_force`, the same-sense torque pair of rolling resistance), which
-  cannot express the opposite couples of a bent bond. The paper attaches no failure to it.
+- The bending moment of the paper's bonds is left out: the paper gives neither its stiffness nor a
+  failure for it. (A force model can express it as `couple_torque`, the opposite couples of a bent
+  bond; a force at the contact point or `torque_only_force` gives both spheres torques of one sense.)
 
 Each sphere's owner wildcard `cracked` turns 1 when one of its bonds breaks (for the rendering).
 """
