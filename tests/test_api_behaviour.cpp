@@ -204,3 +204,32 @@ TEST(ApiBatch, TemplatesOnceEachWithAnIndexPerClump) {
     EXPECT_FLOAT_EQ(tr->Mass(1), 1.f);
     EXPECT_FLOAT_EQ(tr->Mass(4), 1.f);
 }
+
+// A batch's initial values are freed when the solver takes its clumps (not only emptied: an
+// assignment of an empty list would keep their storage), and what it keeps is counted in the
+// memory table's owner state: nothing per clump for one template, a 4-byte index for several.
+TEST(ApiBatch, HandedOverBatchesFreeTheirInitialValues) {
+    DEMSolver sim;
+    auto mat = batchTestSolver(sim);
+    auto small = sim.LoadSphereType(1.f, 0.01f, mat);
+    auto large = sim.LoadSphereType(2.f, 0.02f, mat);
+    std::vector<float3> pos;
+    for (int i = 0; i < 30; i++) pos.push_back(make_float3(-0.4f + 0.025f * i, 0, 0));
+    auto same = sim.AddClumps(small, pos);
+    for (float3& p : pos) p.y = 0.2f;
+    auto mixed = sim.AddClumps(std::vector<std::shared_ptr<DEMClumpTemplate>>(30, small), pos);
+    auto two = sim.AddClumps({small, large}, {make_float3(0, -0.2f, 0), make_float3(0.1f, -0.2f, 0)});
+    // Positions, velocities, angular velocities (12 B each), orientations (16) and families (1).
+    EXPECT_GE(same->GetHostBytes(), 30u * 53);
+    sim.SetInitTimeStep(1e-5);
+    sim.Initialize();
+    EXPECT_EQ(same->GetHostBytes(), sizeof(std::shared_ptr<DEMClumpTemplate>));
+    EXPECT_EQ(mixed->GetHostBytes(), sizeof(std::shared_ptr<DEMClumpTemplate>));  // one template after all
+    EXPECT_EQ(two->GetHostBytes(), 2 * sizeof(std::shared_ptr<DEMClumpTemplate>) + 2 * sizeof(uint32_t));
+    // A batch added during the run holds its values until UpdateClumps, and the table counts them.
+    const size_t before = sim.GetMemoryStats().hostBytes[(int)MemoryGroup::OWNER_STATE];
+    auto late = sim.AddClumps(small, {make_float3(0, 0.4f, 0)});
+    EXPECT_EQ(sim.GetMemoryStats().hostBytes[(int)MemoryGroup::OWNER_STATE], before + late->GetHostBytes());
+    sim.UpdateClumps();
+    EXPECT_EQ(late->GetHostBytes(), sizeof(std::shared_ptr<DEMClumpTemplate>));
+}

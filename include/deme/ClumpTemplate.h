@@ -65,6 +65,9 @@ class DEMClumpBatch {
     const std::vector<family_t>& GetFamilies() const;
     // Index of the batch's first clump among all owners; valid after Initialize.
     size_t GetOwnerOffset() const { return m_ownerOffset; }
+    // Host bytes of the batch's own arrays: its initial values until Initialize (or UpdateClumps),
+    // then only its templates and their per-clump index (counted in GetMemoryStats' owner state).
+    size_t GetHostBytes() const;
 
   private:
     friend class DEMSolver;

@@ -57,6 +57,8 @@ void export_templates(py::module_& m) {
                 return out;
             },
             "Families, (N,) uint8; until Initialize or UpdateClumps.")
+        .def("GetHostBytes", &B::GetHostBytes,
+             "Host bytes of the batch's own arrays (initial values until Initialize, then its template index).")
         .def("GetOwnerOffset", &B::GetOwnerOffset,
              "Owner id of the batch's first clump (valid after Initialize).");
 }

@@ -138,9 +138,11 @@ def test_batch_arrays_go_to_the_solver_at_initialize(sim):
     sim.InstructBoxDomainDimension(1, 1, 1)
     tmpl = sim.LoadSphereType(1.0, 0.01, mat)
     batch = sim.AddClumps(tmpl, [[0, 0, 0], [0.1, 0, 0]])
+    assert batch.GetHostBytes() >= 2 * 53  # its initial values
     sim.SetInitTimeStep(1e-5)
     sim.Initialize()
     assert batch.GetNumClumps() == 2
+    assert batch.GetHostBytes() < 53  # freed: the template is all it keeps
     with pytest.raises(deme.Error, match=r"^DEMClumpBatch::GetPositions: the batch's clumps are in the solver's state"):
         batch.GetPositions()
     np.testing.assert_allclose(sim.Track(batch).Positions()[1], [0.1, 0, 0], atol=1e-6)

@@ -73,13 +73,33 @@ const T& DEMClumpBatch::initialValues(const T& values, const char* call) const {
     return values;
 }
 
+namespace {
+
+// Frees a vector's storage (`v = {}` would assign an empty list and keep the capacity).
+template <class T>
+void release(std::vector<T>& v) {
+    std::vector<T>().swap(v);
+}
+
+template <class T>
+size_t capacityBytes(const std::vector<T>& v) {
+    return v.capacity() * sizeof(T);
+}
+
+}  // namespace
+
 void DEMClumpBatch::handOver() {
     m_initialized = true;
-    m_pos = {};
-    m_vel = {};
-    m_angVel = {};
-    m_oriQ = {};
-    m_family = {};
+    release(m_pos);
+    release(m_vel);
+    release(m_angVel);
+    release(m_oriQ);
+    release(m_family);
+}
+
+size_t DEMClumpBatch::GetHostBytes() const {
+    return capacityBytes(m_pos) + capacityBytes(m_vel) + capacityBytes(m_angVel) + capacityBytes(m_oriQ) +
+           capacityBytes(m_family) + capacityBytes(m_typeIndex) + capacityBytes(m_distinctTypes);
 }
 
 const std::vector<float3>& DEMClumpBatch::GetPositions() const {

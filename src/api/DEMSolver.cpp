@@ -370,6 +370,9 @@ MemoryStats DEMSolver::GetMemoryStats() const {
     requireInitialized("GetMemoryStats");
     MemoryStats m = m_sim->hostMemory();
     m.hostBytes[(int)MemoryGroup::OUTPUT] += m_output->stagedBytes();
+    // The batches the scene keeps: their template indices, and the initial values of those waiting
+    // for UpdateClumps (docs/memory.md).
+    for (const auto& b : m_scene->batches) m.hostBytes[(int)MemoryGroup::OWNER_STATE] += b->GetHostBytes();
     if (m_sim->settings.onGpu)
         for (int g = 0; g < NUM_MEMORY_GROUPS; g++) m.deviceBytes[g] = cuda::deviceBytesInGroup((MemoryGroup)g);
     return m;
