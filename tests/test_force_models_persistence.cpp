@@ -67,6 +67,9 @@ TEST(PersistentHistoryMapping, KeepsPersistentPairsSorted) {
     EXPECT_EQ(c.wildcards, (std::vector<float>{1.f, 7.f, 2.f, 3.f, 7.f, 4.f}));
     EXPECT_EQ(c.persistent, (std::vector<uint8_t>{1, 0, 1, 0, 0, 1}));
     EXPECT_EQ(c.force.size(), 6u);
+    // The detection's arrays, which took the old set's ids in the swap, hold nothing afterwards (a
+    // copy of every pair kept between detections otherwise: docs/memory.md).
+    EXPECT_EQ(fresh.bytes(), 0u);
 
     // Released pairs are dropped at the next detection that does not find them.
     s.contacts.persistent = {0, 0, 1, 0, 0, 0};

@@ -79,6 +79,9 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     c.wildcards.swap(wildcards);
     c.meshState.swap(meshState);
     c.persistent.swap(persistent);
+    // `fresh` now holds the old set's ids (swapped out above): released, not kept until the next
+    // detection (9 B per pair of the set for the whole run, docs/memory.md).
+    fresh = DetectedContacts();
     c.force.assign(nNew, make_float3(0.f));
     indexContactSet(s);
 }
