@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "api/Validate.h"
+#include "runtime/MemoryAccounting.h"
 
 namespace deme {
 
@@ -73,33 +74,18 @@ const T& DEMClumpBatch::initialValues(const T& values, const char* call) const {
     return values;
 }
 
-namespace {
-
-// Frees a vector's storage (`v = {}` would assign an empty list and keep the capacity).
-template <class T>
-void release(std::vector<T>& v) {
-    std::vector<T>().swap(v);
-}
-
-template <class T>
-size_t capacityBytes(const std::vector<T>& v) {
-    return v.capacity() * sizeof(T);
-}
-
-}  // namespace
-
 void DEMClumpBatch::handOver() {
     m_initialized = true;
-    release(m_pos);
-    release(m_vel);
-    release(m_angVel);
-    release(m_oriQ);
-    release(m_family);
+    releaseVector(m_pos);
+    releaseVector(m_vel);
+    releaseVector(m_angVel);
+    releaseVector(m_oriQ);
+    releaseVector(m_family);
 }
 
 size_t DEMClumpBatch::GetHostBytes() const {
-    return capacityBytes(m_pos) + capacityBytes(m_vel) + capacityBytes(m_angVel) + capacityBytes(m_oriQ) +
-           capacityBytes(m_family) + capacityBytes(m_typeIndex) + capacityBytes(m_distinctTypes);
+    return vectorBytes(m_pos) + vectorBytes(m_vel) + vectorBytes(m_angVel) + vectorBytes(m_oriQ) +
+           vectorBytes(m_family) + vectorBytes(m_typeIndex) + vectorBytes(m_distinctTypes);
 }
 
 const std::vector<float3>& DEMClumpBatch::GetPositions() const {

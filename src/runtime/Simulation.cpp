@@ -14,6 +14,7 @@
 #include "dynamics/OwnerStep.h"
 #include "kinematics/BinGridSizing.h"
 #include "parallel/Parallel.h"
+#include "runtime/MemoryAccounting.h"
 #include "runtime/PeriodicLimits.h"
 
 namespace deme {
@@ -111,9 +112,8 @@ void Simulation::markHostBehind() {
     // Contacts the host edited and has not sent yet stay until the upload that sends them.
     if (m_backendContactsStale) return;
     m_hostContactsStale = true;
-    forEachContactField(m_state.contacts, m_state.contacts, [](auto& field, auto&, FieldRole) {
-        std::remove_reference_t<decltype(field)>().swap(field);
-    });
+    forEachContactField(m_state.contacts, m_state.contacts,
+                        [](auto& field, auto&, FieldRole) { releaseVector(field); });
 }
 
 void Simulation::uploadIfEdited() {
