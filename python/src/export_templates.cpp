@@ -24,6 +24,8 @@ void export_templates(py::module_& m) {
     py::class_<B, std::shared_ptr<B>>(m, "DEMClumpBatch", "The clumps added by one AddClumps call")
         .def(py::init<std::vector<std::shared_ptr<T>>, std::vector<deme::float3>>(), py::arg("types"),
              py::arg("positions"), "A batch not yet added to a solver (AddClumps makes the ones it runs).")
+        .def(py::init<std::shared_ptr<T>, std::vector<deme::float3>>(), py::arg("type"), py::arg("positions"),
+             "A batch of clumps of one template, not yet added to a solver.")
         .def("GetNumClumps", &B::GetNumClumps, "Number of clumps in the batch.")
         .def("SetVel", py::overload_cast<const deme::float3&>(&B::SetVel), py::arg("v"), "One velocity for all clumps.")
         .def("SetVel", py::overload_cast<const std::vector<deme::float3>&>(&B::SetVel), py::arg("v"),

@@ -158,6 +158,12 @@ def test_batch_templates_once_each(sim):
     assert batch.GetType(1).mass == 1.0
     with pytest.raises(deme.Error, match=r"^DEMClumpBatch::GetType: clump 3 of a batch of 3"):
         batch.GetType(3)
+    # A batch of one template made directly: no per-clump list of templates behind it.
+    one = deme.DEMClumpBatch(small, [[0, 0, 0], [0.1, 0, 0]])
+    assert one.GetNumClumps() == 2 and [t.mass for t in one.GetTypes()] == [1.0, 1.0]
+    assert len(one.GetDistinctTypes()) == 1
+    with pytest.raises(deme.Error, match=r"^DEMClumpBatch: got 1 templates for 2 positions"):
+        deme.DEMClumpBatch([small], [[0, 0, 0], [0.1, 0, 0]])
 
 
 def test_clump_template_arrays(sim):
