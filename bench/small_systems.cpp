@@ -118,6 +118,8 @@ void setUp(Run& run, bool drum, const std::string& backend, const std::string& m
         impact = setUpImpact(sim);
     sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
     if (mode != "auto") sim.SetSynchronousContactDetection(mode == "sync");
+    // DEME_BENCH_FORCE_THREADS: the force pass's block size (SetForceCalcThreadsPerBlock), for sweeps.
+    if (const char* t = std::getenv("DEME_BENCH_FORCE_THREADS")) sim.SetForceCalcThreadsPerBlock(std::atoi(t));
     sim.Initialize();
     run.dt = drum ? 0.8e-6 : 0.5e-6;
     run.ball = drum ? nullptr : sim.Track(impact.ball);

@@ -38,6 +38,13 @@ TEST(LaunchList, EqualExactlyWhenKernelsShapesAndArgumentsAre) {
     const LaunchList before = stepOf(moved, b, 1000, &x, 0.5);
     moved.handle = &y;
     EXPECT_TRUE(before != stepOf(moved, b, 1000, &x, 0.5));
+    // The same kernels launched to overlap the drain of the one before make another graph.
+    LaunchList overlapped = stepOf(a, b, 1000, &x, 0.5);
+    overlapped.overlapLaunches(true);
+    EXPECT_TRUE(base != overlapped);
+    // clear() keeps the choice: a step recorded again into the same list overlaps as before.
+    overlapped.clear();
+    EXPECT_TRUE(overlapped.overlapsLaunches());
 }
 
 TEST(LaunchList, AGridOfNoBlocksIsLeftOut) {

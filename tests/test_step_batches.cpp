@@ -180,6 +180,27 @@ TEST(CudaStepGraphs, ReplayEqualsDirectLaunchesBitForBit) {
     expectBitForBit(graphs, direct);
 }
 
+// GPU only: a step's kernels launched to overlap the drain of the kernel before them (programmatic
+// dependent launch, kernels/DependentLaunch.cuh; the default on GPUs of compute capability 9.0+)
+// give the trajectory of kernels that start only once the one before has ended, bit for bit; with
+// graphs and without. A kernel that read its predecessor's results before waiting would see some
+// of them stale and drift from it.
+TEST(CudaStepGraphs, OverlappedLaunchesEqualSerialLaunchesBitForBit) {
+    if (!cuda::cudaBackendBuilt() || cuda::usableDevices().empty()) GTEST_SKIP() << "needs a GPU";
+    ScopedEnvironmentVariable backend("DEME_BACKEND", "cuda");
+    for (const char* graphs : {"1", "0"}) {
+        SCOPED_TRACE(std::string("DEME_CUDA_GRAPHS=") + graphs);
+        ScopedEnvironmentVariable g("DEME_CUDA_GRAPHS", graphs);
+        Trajectory serial;
+        {
+            ScopedEnvironmentVariable off("DEME_CUDA_OVERLAP_LAUNCHES", "0");
+            serial = inOneCall(false);
+        }
+        ScopedEnvironmentVariable on("DEME_CUDA_OVERLAP_LAUNCHES", "1");
+        expectBitForBit(inOneCall(false), serial);
+    }
+}
+
 // GPU only: graphs of several steps (the default 8, and 7, whose batches of up to 30 steps leave
 // remainders, with batches ended early inside a graph) equal graphs of one step, bit for bit.
 TEST(CudaStepGraphs, GraphsOfSeveralStepsEqualOneStepGraphsBitForBit) {

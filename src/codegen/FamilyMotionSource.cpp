@@ -28,6 +28,7 @@ void writeFamily(std::ostringstream& o, unsigned int f, const FamilyMotion& m) {
 std::string familyMotionKernelSource(const std::array<FamilyMotion, NUM_FAMILIES>& motions) {
     std::ostringstream o;
     o << "// Generated: the families' prescribed motion (codegen/FamilyMotionSource.cpp).\n"
+         "#include \"backend/cuda/kernels/DependentLaunch.cuh\"\n"
          "#include \"dynamics/StepBatch.h\"\n"
          "#include \"state/FamilyStepMotion.h\"\n"
          "\n"
@@ -42,6 +43,7 @@ std::string familyMotionKernelSource(const std::array<FamilyMotion, NUM_FAMILIES
       << "(deme::StepBatchControl* ctl, deme::FamilyStepMotion* out, deme::float3* contactForce,\n"
          "        deme::float3* contactTorque, const deme::bodyID_t* clearIds, unsigned int numCleared) {\n"
          "    using namespace deme;\n"
+         "    beginDependentKernel();  // first, in every thread (DependentLaunch.cuh)\n"
          "    if (ctl->stop) return;\n"
          "    const unsigned int i = blockIdx.x * blockDim.x + threadIdx.x;\n"
          "    // The step's force phase starts here: its loads cleared, its start stamped.\n"

@@ -7,7 +7,8 @@
 namespace deme {
 
 void updateAnalyticalCache(SimState& s) {
-    for (size_t c = 0; c < s.analytical.size(); c++) placeAnalytical(s, c);
+    // The pose only: the speed bound it also returns is the steps' business.
+    for (size_t c = 0; c < s.analytical.size(); c++) placeAnalytical(s, c, 0.0);
 }
 
 void refreshKinematicCache(SimState& s) {

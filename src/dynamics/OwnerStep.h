@@ -70,24 +70,38 @@ DEME_HD_INLINE bool ownerAtRest(const S& s, const FamilyStepMotion* motion, size
 // Advances owner o by one step and refreshes its cached pose. Written without branches (every
 // path is computed, then selected) and as a function of its own, so that the owner sweep
 // vectorises: the vectoriser sees this function's locals only after inlining, whereas locals of an
-// `omp simd` body proper are privatised per lane.
+// `omp simd` body proper are privatised per lane. Every field it reads is read first, before any
+// store: a compiler may not move a load above a store to memory it cannot prove apart, so a load
+// written after a store waits for everything the store waits for. On a GPU each such wait is a
+// memory round trip in every thread's path, and at lab scale (one wave of threads) the sweep's
+// time is that path.
 template <class S>
 DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion& m, const StepConstants& c,
                                          double travelBaseline) {
     auto& ow = s.owners;
     auto& k = s.cache;
+    // The owner's fields.
     const bool fixed = m.fixed != 0;
     const bool dynamic = ow.dynamic[o] != 0 && !fixed;
     const float3 v0 = ow.vel[o], w0 = ow.angVel[o];
     const float4 q0 = ow.oriQ[o];
+    const inertiaID_t in = ow.inertia[o];
+    const float3 force = ow.contactForce[o], torque = ow.contactTorque[o];
+    // Tracker loads are zero unless set, and read unconditionally: a conditional load is control flow.
+    const float3 extraAcc = ow.extraAcc[o], extraAngAcc = ow.extraAngAcc[o];
+    const double3 x0 = k.ownerPos[o];
+    voxelID_t voxel = ow.voxel[o];
+    subVoxelPos_t subX = ow.subX[o], subY = ow.subY[o], subZ = ow.subZ[o];
+    const bool clump = ow.type[o] == OWNER_CLUMP, analytical = ow.type[o] == OWNER_ANALYTICAL;
+    const float extent = ow.extent[o];
+    const double travel0 = ow.travel[o];
+    const float3 moi = s.massProps.moi[in];
+    const float mass = s.massProps.mass[in];
 
     // Forces and torques (discarded below for owners they do not move).
-    const inertiaID_t in = ow.inertia[o];
-    const float3 moi = s.massProps.moi[in];
     const float3 invMoi = make_float3(1.f / moi.x, 1.f / moi.y, 1.f / moi.z);
-    // Tracker loads are zero unless set, and read unconditionally: a conditional load is control flow.
-    const float3 acc = ow.contactForce[o] * (1.f / s.massProps.mass[in]) + c.gravity + ow.extraAcc[o];
-    const float3 torqueLocal = rotateToLocal(q0, ow.contactTorque[o]) + ow.extraAngAcc[o] * moi;
+    const float3 acc = force * (1.f / mass) + c.gravity + extraAcc;
+    const float3 torqueLocal = rotateToLocal(q0, torque) + extraAngAcc * moi;
     const AngularStep rot = advanceAngularVelocity(w0, torqueLocal, moi, invMoi, c.h);
     float3 v = dynamic ? advanceVelocity(v0, acc, c.h) : v0;
     float3 w = dynamic ? rot.wEnd : w0;
@@ -105,35 +119,41 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     const bool large = !(h2 < ORIENTATION_SERIES_MAX_H2);
     const float4 qStep = orientationStepSeries(q0, wMid, c.h, h2);
     const float4 q = (w2 > 0.f && !large) ? qStep : q0;
-    ow.angVel[o] = w;
-    ow.oriQ[o] = q;
 
     // A fixed owner has v = 0, so x is its cached position and re-encodes to the same code. Along a
     // periodic axis an owner that left through one face enters through the other; in a sheared cell
     // (Lees–Edwards) one that left through a z face also changes its x velocity by the shear
-    // velocity, and is displaced by the offset at the step's end.
+    // velocity, and is displaced by the offset at the step's end. A position outside the code's
+    // range keeps the old code.
     float dvx;
-    const double3 x =
-        wrapIntoDomain(c.frame.periodic, advancePosition(k.ownerPos[o], v, c.dt), c.frame.origin, c.dt, dvx);
+    const double3 x = wrapIntoDomain(c.frame.periodic, advancePosition(x0, v, c.dt), c.frame.origin, c.dt, dvx);
     v.x += dvx;
-    ow.vel[o] = v;
-    const bool encoded = encodePosition(x, c.frame, ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o]);
-    k.ownerPos[o] = decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], c.frame);
+    const bool encoded = encodePosition(x, c.frame, voxel, subX, subY, subZ);
     const bool notFinite = !finite3(v) || !finite3(w) || !finiteFloat(q.w);
     const bool tooFast = dynamic && dot(v, v) > c.maxSpeed2;
-    const bool left = (ow.type[o] == OWNER_CLUMP && !insideBox(x, c.frame.origin, c.domainSize)) || !encoded;
+    const bool left = (clump && !insideBox(x, c.frame.origin, c.domainSize)) || !encoded;
     OwnerStepResult r;
     r.flags = notFinite ? STEP_NOT_FINITE : tooFast ? STEP_TOO_FAST : left ? STEP_LEFT_DOMAIN : 0;
     r.flags |= (dynamic || dot(v, v) > 0.f || dot(w, w) > 0.f) ? STEP_MOVED : 0;
     r.flags |= large ? STEP_LARGE_ROTATION : 0;
 
     // Travel bounds the motion of every point of the geometry (analytical owners: see below).
-    const bool travels = !fixed && ow.type[o] != OWNER_ANALYTICAL;
-    const float speed = length(v) + length(w) * ow.extent[o];
+    const bool travels = !fixed && !analytical;
+    const float speed = length(v) + length(w) * extent;
     r.speed = travels ? speed : 0.f;
-    const double travel = ow.travel[o] + (double)(r.speed * c.h);
-    ow.travel[o] = travel;
+    const double travel = travel0 + (double)(r.speed * c.h);
     r.travelSinceDetection = travels ? travel - travelBaseline : -1.0;
+
+    // The owner's new state.
+    ow.angVel[o] = w;
+    ow.oriQ[o] = q;
+    ow.vel[o] = v;
+    ow.voxel[o] = voxel;
+    ow.subX[o] = subX;
+    ow.subY[o] = subY;
+    ow.subZ[o] = subZ;
+    k.ownerPos[o] = decodePosition(voxel, subX, subY, subZ, c.frame);
+    ow.travel[o] = travel;
     // An owner whose rotation is too large for the series leaves its midpoint angular velocity
     // (local frame) in its cache slot, for the exact step that follows in the same sweep
     // (finishLargeRotation), which puts the global angular velocity there: the one per-owner array
@@ -173,26 +193,23 @@ DEME_HD_INLINE void placeTriangle(S& s, size_t t) {
     k.triVert[3 * t + 2] = localPointToGlobal(k.ownerPos[o], q, s.triangles.v2[t]);
 }
 
-// Upper bound on how fast any point of an analytical component moves, relative to points of the
-// domain: translation, the turning of its normal/axis over the domain's extent, and the swing of its
-// reference point about the owner centre.
+// Analytical component k's cached reference point and normal/axis from its owner's pose, and an
+// upper bound on how fast any point of it moves, relative to points of the domain: translation, the
+// turning of its normal/axis over the domain's extent, and the swing of its reference point about
+// the owner centre. Its fields are read before it stores (see stepOwner).
 template <class S>
-DEME_HD_INLINE float analyticalSurfaceSpeed(const S& s, size_t k, double domainDiagonal) {
+DEME_HD_INLINE float placeAnalytical(S& s, size_t k, double domainDiagonal) {
     const bodyID_t o = s.analytical.owner[k];
+    const float3 relPos = s.analytical.relPos[k], relDir = s.analytical.relDir[k];
     const float4 q = s.owners.oriQ[o];
-    const float3 wG = rotateToGlobal(q, s.owners.angVel[o]);
-    const float3 dir = rotateToGlobal(q, s.analytical.relDir[k]);
-    const float3 arm = rotateToGlobal(q, s.analytical.relPos[k]);
-    return length(s.owners.vel[o]) + length(cross(wG, dir)) * (float)domainDiagonal + length(cross(wG, arm));
-}
-
-// Analytical component k's cached reference point and normal/axis from its owner's pose.
-template <class S>
-DEME_HD_INLINE void placeAnalytical(S& s, size_t k) {
-    const bodyID_t o = s.analytical.owner[k];
-    const float4 q = s.owners.oriQ[o];
-    s.cache.analPos[k] = localPointToGlobal(s.cache.ownerPos[o], q, s.analytical.relPos[k]);
-    s.cache.analDir[k] = to_double3(rotateToGlobal(q, s.analytical.relDir[k]));
+    const double3 x = s.cache.ownerPos[o];
+    const float3 v = s.owners.vel[o], w = s.owners.angVel[o];
+    const float3 wG = rotateToGlobal(q, w);
+    const float3 dir = rotateToGlobal(q, relDir);
+    const float3 arm = rotateToGlobal(q, relPos);
+    s.cache.analPos[k] = localPointToGlobal(x, q, relPos);
+    s.cache.analDir[k] = to_double3(dir);
+    return length(v) + length(cross(wG, dir)) * (float)domainDiagonal + length(cross(wG, arm));
 }
 
 }  // namespace deme

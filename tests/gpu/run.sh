@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|graphsteps|profile-small|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|graphsteps|smallab|mixerab|profile-small|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -208,6 +208,30 @@ for step in "${steps[@]}"; do
         done
         grep -E "^\{" "$OUT/graphsteps.log" | cut -c1-330
         ;;
+    smallab)
+        # SMALL-SYSTEMS, asynchronous detection, each setting twice, alternating, in one command.
+        # SMALL_SETTINGS: one setting a word, its variables joined by commas; BIN=path picks the
+        # benchmark binary (a baseline's: `baseline` builds one), the rest are put in the environment
+        # (e.g. DEME_CUDA_OVERLAP_LAUNCHES=0, DEME_CUDA_OWNER_THREADS=128, DEME_BENCH_FORCE_THREADS=128).
+        for round in 1 2; do
+            for c in drum impact; do
+                for setting in ${SMALL_SETTINGS:-BIN=./build-gpu/bench/small_systems}; do
+                    bin=./build-gpu/bench/small_systems
+                    vars=()
+                    for kv in ${setting//,/ }; do
+                        case "$kv" in
+                        BIN=*) bin="${kv#BIN=}" ;;
+                        *) vars+=("$kv") ;;
+                        esac
+                    done
+                    echo "{\"setting\": \"$setting\", \"round\": $round}" >>"$OUT/smallab.log"
+                    env "${vars[@]}" DEME_BENCH_TIMING=1 timeout 200 "$bin" $c "" "" cuda async >>"$OUT/smallab.log" 2>&1
+                    echo "smallab $c $setting round $round: rc $?"
+                done
+            done
+        done
+        grep -E "^\{" "$OUT/smallab.log" | cut -c1-330
+        ;;
     sweep)
         # Many small runs on one GPU at once (a calibration sweep): 1, 2, 4 and 8 drum solvers, each
         # on its own thread, timed together (5,000 warm-up and 20,000 timed steps each).
@@ -227,6 +251,16 @@ for step in "${steps[@]}"; do
             done
         done
         grep -E '^\{' "$OUT/timing.log" | cut -c1-400
+        ;;
+    mixerab)
+        # MIXER-BENCH early, spheres at r = 2.5 mm (2.9 M), 2,000 warm-up and 2,000 timed steps, each
+        # binary of MIXERS (a baseline's and this build's) twice, alternating, in one command.
+        for round in 1 2; do
+            for bin in ${MIXERS:-./build-gpu/bench/mixer}; do
+                echo "{\"binary\": \"$bin\", \"round\": $round}" >>"$OUT/mixerab.jsonl"
+                timeout 200 "$bin" .benchdata/internal_mixer.obj 0.0025 spheres 2000 2000 2>&1 | tee -a "$OUT/mixerab.jsonl" | tail -n 1 | cut -c1-300
+            done
+        done
         ;;
     settled)
         # The settled variant: 0.25 s of mixing as 125000 warm-up steps of 2e-6 s (the grains land on

@@ -95,20 +95,15 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
     const OwnerFault fault = firstFault < n ? faultFromFlags(flags[firstFault]) : OwnerFault::NONE;
     IntegrationResult res;
 
-    // Kinematic analytical owners: few, so done serially.
-    if (s.analytical.size() > 0) {
-        updateAnalyticalCache(s);
-        const double diag = length(s.domainSize);
-        std::vector<float> rate(s.numAnalyticalOwners, 0.f);
-        for (size_t k = 0; k < s.analytical.size(); k++) {
-            const size_t o = s.analytical.owner[k];
-            rate[o - s.numClumps] = std::max(rate[o - s.numClumps], analyticalSurfaceSpeed(s, k, diag));
-        }
-        for (size_t o = s.numClumps; o < s.numClumps + s.numAnalyticalOwners; o++) {
-            ow.travel[o] += (double)(rate[o - s.numClumps] * h);
-            maxTravel = std::max(maxTravel, ow.travel[o] - travelBaseline[o]);
-            maxSpeed = std::max(maxSpeed, rate[o - s.numClumps]);
-        }
+    // Kinematic analytical owners: few, so done serially; each component is placed once, by its owner.
+    const double diag = length(s.domainSize);
+    for (size_t o = s.numClumps; o < s.numClumps + s.numAnalyticalOwners; o++) {
+        float rate = 0.f;
+        for (size_t k = 0; k < s.analytical.size(); k++)
+            if (s.analytical.owner[k] == o) rate = std::max(rate, placeAnalytical(s, k, diag));
+        ow.travel[o] += (double)(rate * h);
+        maxTravel = std::max(maxTravel, ow.travel[o] - travelBaseline[o]);
+        maxSpeed = std::max(maxSpeed, rate);
     }
     res.maxTravel = maxTravel;
     res.maxSurfaceSpeed = maxSpeed;

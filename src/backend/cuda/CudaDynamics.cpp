@@ -1,5 +1,6 @@
 #include "backend/cuda/CudaDynamics.h"
 
+#include <algorithm>
 #include <cstddef>
 
 #include <cuda_runtime_api.h>
@@ -31,6 +32,7 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
     }
     m_motion.resizeDiscarding(NUM_FAMILIES);
     m_reduction.resizeDiscarding(1);
+    m_componentSpeed.resizeDiscarding(std::max<size_t>(1, s.analytical.size()));
     m_maxTravelBits.resizeDiscarding(1);
     synchronize(st);
     // The model's tables and wildcards and the persistence rules (copied on the legacy stream and

@@ -95,12 +95,14 @@ class CudaDynamics : public DynamicsBackend {
     DeviceBuffer<StepBatchControl> m_control;
     StepBatchControl* m_controlHost = nullptr;
     DeviceBuffer<unsigned int> m_blocksDone;  // deme_place_and_finish's count of finished blocks
+    DeviceBuffer<float> m_componentSpeed;     // and its analytical components' surface speeds
     // One step's launches, without and with stored contact forces, and their graphs: plain steps
     // go in graphs of m_graphSteps steps (StepGraph.h), the rest of a batch one step a graph.
     LaunchList m_plainStep, m_storingStep;
     StepGraph m_plainGraph, m_plainGraphs, m_storingGraph;
     bool m_useGraphs = true;
     unsigned int m_graphSteps = 8;
+    bool m_overlapLaunches = false;  // programmatic dependent launch within a step's list
     // The families' prescriptions, compiled from the user's expressions (recompiled when they change).
     CudaModule m_familyModule;
     CudaKernel kFamilyMotion;

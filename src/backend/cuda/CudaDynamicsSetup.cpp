@@ -17,6 +17,7 @@ CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(devi
     compileKernels(model);
     if (const char* p = std::getenv("DEME_CUDA_PROFILE_FROM_STEP")) m_profileFromStep = std::strtoull(p, nullptr, 10);
     m_useGraphs = stepGraphsEnabled();
+    m_overlapLaunches = overlappedLaunchesEnabled() && useDevice("Initialize", m_device).major >= 9;
     m_graphSteps = stepsPerGraph();
     // Both contact sets' fields, their per-contact wildcards (the history) included.
     for (DeviceContacts& set : m_contacts)

@@ -49,16 +49,31 @@ CudaKernel CudaModule::kernel(const std::string& name) const {
     return CudaKernel{static_cast<void*>(k), name};
 }
 
-void launchKernel(const CudaKernel& kernel, Dim3 grid, Dim3 block, size_t sharedBytes, Stream stream, void** args) {
+void launchKernel(const CudaKernel& kernel, Dim3 grid, Dim3 block, size_t sharedBytes, Stream stream, void** args,
+                  bool overlapPrevious) {
     if (!kernel.handle) throwError("launchKernel", "no kernel to launch");
     // A grid over no items (a scene whose last clumps were removed, say) is no work; CUDA would call
     // a zero grid an invalid argument.
     if (grid.x == 0 || grid.y == 0 || grid.z == 0) return;
-    const std::string call = "launching kernel '" + kernel.name + "'";
-    // cudaLaunchKernel takes a cudaKernel_t cast to a function pointer (CUDA 12+).
-    DEME_CUDA_CHECK(call.c_str(), cudaLaunchKernel(static_cast<const void*>(kernel.handle),
-                                                   dim3(grid.x, grid.y, grid.z), dim3(block.x, block.y, block.z), args,
-                                                   sharedBytes, static_cast<cudaStream_t>(stream)));
+    cudaLaunchConfig_t config{};
+    config.gridDim = dim3(grid.x, grid.y, grid.z);
+    config.blockDim = dim3(block.x, block.y, block.z);
+    config.dynamicSmemBytes = sharedBytes;
+    config.stream = static_cast<cudaStream_t>(stream);
+    cudaLaunchAttribute overlap{};
+    overlap.id = cudaLaunchAttributeProgrammaticStreamSerialization;
+    overlap.val.programmaticStreamSerializationAllowed = 1;
+    if (overlapPrevious) {
+        config.attrs = &overlap;
+        config.numAttrs = 1;
+    }
+    // The launch takes a cudaKernel_t cast to a function pointer (CUDA 12+). The message is built
+    // only on failure: a step launches a handful of kernels, thousands of times a second.
+    const cudaError_t e = cudaLaunchKernelExC(&config, static_cast<const void*>(kernel.handle), args);
+    if (e != cudaSuccess) {
+        const std::string call = "launching kernel '" + kernel.name + "'";
+        throwCudaError(e, call.c_str(), "cudaLaunchKernelExC(&config, kernel, args)", __FILE__, __LINE__);
+    }
 }
 
 }  // namespace deme::cuda

@@ -42,8 +42,10 @@ class CudaModule {
 
 // Launches with an argument array as cudaLaunchKernel takes it (one pointer per kernel parameter).
 // Throws deme::Error naming the kernel if the launch is refused (the kernel's own faults show up at
-// the next synchronisation).
-void launchKernel(const CudaKernel& kernel, Dim3 grid, Dim3 block, size_t sharedBytes, Stream stream, void** args);
+// the next synchronisation). `overlapPrevious`: the kernel may start while the kernel before it on
+// the stream drains; it must begin with beginDependentKernel() (kernels/DependentLaunch.cuh).
+void launchKernel(const CudaKernel& kernel, Dim3 grid, Dim3 block, size_t sharedBytes, Stream stream, void** args,
+                  bool overlapPrevious = false);
 
 // launch(k, grid, block, shared, stream, a, b, c) runs k(a, b, c). The arguments must have exactly
 // the kernel parameters' types (pass `unsigned int(n)`, not a size_t, to an unsigned int parameter):

@@ -18,7 +18,10 @@ namespace deme::cuda {
 
 namespace {
 
-constexpr unsigned int THREADS = 256;
+// Blocks of the step's owner and sphere kernels: at lab scale (one wave of a few hundred blocks) 128
+// spreads a sweep over more multiprocessors than 256 (SMALL-SYSTEMS, BENCHMARKS.md: +1-3 % on the
+// drum, no change on the impact); large runs are indifferent.
+constexpr unsigned int THREADS = 128;
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
@@ -26,6 +29,7 @@ double now() { return std::chrono::duration<double>(std::chrono::steady_clock::n
 
 void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool storeContactForces) {
     list.clear();
+    list.overlapLaunches(m_overlapLaunches);
     const unsigned int nO = m_view.numOwners, nT = m_view.numTriangles;
     const StepConstants consts{settings.gravity, (float)settings.dt,
                                settings.dt,      settings.errorOutVelocity * settings.errorOutVelocity,
@@ -57,7 +61,7 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     const unsigned int placeBlocks = std::max(1u, blocksFor((unsigned long long)nPlaced + nT, THREADS));
     list.kernel(kPlaceAndFinish, placeBlocks, THREADS, 0, m_view, m_control.data(), sphereIds, nPlaced, nT, m_numClumps,
                 m_numAnalyticalOwners, (float)settings.dt, m_domainDiagonal, (const double*)m_baseline.data(), red,
-                m_blocksDone.data());
+                m_componentSpeed.data(), m_blocksDone.data());
 }
 
 StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules&,
@@ -114,12 +118,14 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
 }
 
 std::string CudaDynamics::launchReport() const {
-    if (!m_useGraphs) return "steps launched kernel by kernel (DEME_CUDA_GRAPHS=0)";
+    const std::string overlap = m_overlapLaunches ? ", each kernel overlapping the drain of the one before"
+                                                  : ", each kernel after the one before has ended";
+    if (!m_useGraphs) return "steps launched kernel by kernel (DEME_CUDA_GRAPHS=0)" + overlap;
     const unsigned long long made = m_plainGraph.captures() + m_plainGraphs.captures() + m_storingGraph.captures();
     const unsigned long long updated = m_plainGraph.updates() + m_plainGraphs.updates() + m_storingGraph.updates();
     return "steps replayed from CUDA graphs of up to " + std::to_string(m_graphSteps) +
            " steps: " + std::to_string(made) + " captured (" + std::to_string(updated) + " of them updated in place, " +
-           std::to_string(made - updated) + " instantiated)";
+           std::to_string(made - updated) + " instantiated)" + overlap;
 }
 
 }  // namespace deme::cuda

@@ -41,7 +41,7 @@ CudaModule& CudaModule::operator=(CudaModule&& other) noexcept {
     return *this;
 }
 CudaKernel CudaModule::kernel(const std::string&) const { notBuilt("CudaModule::kernel"); }
-void launchKernel(const CudaKernel&, Dim3, Dim3, size_t, Stream, void**) { notBuilt("launchKernel"); }
+void launchKernel(const CudaKernel&, Dim3, Dim3, size_t, Stream, void**, bool) { notBuilt("launchKernel"); }
 
 // ---- NvrtcCompiler.h
 std::string nvrtcVersionString() { return "none"; }

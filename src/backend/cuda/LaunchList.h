@@ -1,7 +1,8 @@
 // A recorded sequence of kernel launches, with copies of their arguments:
 // what one step of the dynamics side queues, written down first so that it can be queued directly or
 // captured once into a CUDA graph and replayed (StepGraph.h), and compared with the sequence a
-// graph was made from (two lists are the same when every kernel, shape and argument byte is).
+// graph was made from (two lists are the same when every kernel, shape and argument byte is, and
+// both overlap their launches or neither does).
 #pragma once
 
 #include <cstddef>
@@ -22,6 +23,11 @@ class LaunchList {
         m_bytes.clear();
     }
     bool empty() const { return m_items.empty(); }
+    // Each kernel of the list may start while the one before it drains (programmatic dependent
+    // launch, kernels/DependentLaunch.cuh): every kernel in the list must then begin with
+    // beginDependentKernel(). Kept by clear().
+    void overlapLaunches(bool on) { m_overlap = on; }
+    bool overlapsLaunches() const { return m_overlap; }
     size_t size() const { return m_items.size(); }
 
     // kernel(args...) on `grid` blocks of `block` threads, as launch() in CudaModule.h takes it
@@ -48,7 +54,8 @@ class LaunchList {
 
     // The same kernels in the same order, with the same shapes and argument bytes.
     bool operator==(const LaunchList& o) const {
-        if (m_items.size() != o.m_items.size() || m_args.size() != o.m_args.size() || m_bytes != o.m_bytes)
+        if (m_overlap != o.m_overlap || m_items.size() != o.m_items.size() || m_args.size() != o.m_args.size() ||
+            m_bytes != o.m_bytes)
             return false;
         for (size_t i = 0; i < m_items.size(); i++) {
             const Item &a = m_items[i], &b = o.m_items[i];
@@ -85,6 +92,7 @@ class LaunchList {
     std::vector<Item> m_items;
     std::vector<Arg> m_args;
     std::vector<unsigned char> m_bytes;
+    bool m_overlap = false;
 };
 
 }  // namespace deme::cuda

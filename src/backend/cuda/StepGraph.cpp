@@ -18,6 +18,11 @@ bool stepGraphsEnabled() {
     return !(v && std::strcmp(v, "0") == 0);
 }
 
+bool overlappedLaunchesEnabled() {
+    const char* v = std::getenv("DEME_CUDA_OVERLAP_LAUNCHES");
+    return !(v && std::strcmp(v, "0") == 0);
+}
+
 StepGraph::~StepGraph() {
     if (m_exec && cudaGraphExecDestroy(static_cast<cudaGraphExec_t>(m_exec)) != cudaSuccess) cudaGetLastError();
 }

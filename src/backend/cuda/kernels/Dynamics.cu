@@ -1,6 +1,7 @@
 // The dynamics side on the GPU: mesh contact rule, the built-in models' force passes, integration
 // and pose caches. Compiled at run time by NVRTC together with the physics headers; every per-item
 // function here is the one the CPU sweeps call.
+#include "backend/cuda/kernels/DependentLaunch.cuh"
 #include "backend/cuda/kernels/ForceModelParams.cuh"
 #include "backend/cuda/kernels/ForcePassKernel.cuh"
 #include "backend/cuda/kernels/KernelArgs.cuh"
@@ -50,28 +51,33 @@ extern "C" __global__ void deme_begin_batch(StepBatchControl* ctl, double time, 
     clearReduction(red);
 }
 
-// The end of a step, run by one block once everything else of the step is done: the analytical
-// owners' step (cached components; travel bounded by the fastest surface point), then, in one
-// thread, the step's tally into the control block (the rule that may end the batch) and a clear
-// reduction for the next step.
-__device__ inline void finishStep(StateView& s, StepBatchControl* ctl, unsigned int firstAnalyticalOwner,
-                                  unsigned int numAnalyticalOwners, float h, double domainDiagonal,
-                                  const double* travelBaseline, StepReduction* red) {
+// The analytical owners' step, by one block: its threads place the components, one each, with
+// their surface speeds (placeAnalytical), then step each owner's travel by its fastest component
+// (the CPU's sweep does the same serially, backend/cpu/Integration.cpp). In parallel over the
+// components, because every component's loads wait for its owner's pose: one after the other, a
+// handful of walls cost as much as the rest of the step.
+__device__ inline void stepAnalyticalOwners(StateView& s, float* componentSpeed, unsigned int firstAnalyticalOwner,
+                                            unsigned int numAnalyticalOwners, float h, double domainDiagonal,
+                                            const double* travelBaseline, StepReduction* red) {
+    for (unsigned int k = threadIdx.x; k < s.numAnalytical; k += blockDim.x)
+        componentSpeed[k] = placeAnalytical(s, k, domainDiagonal);
+    __syncthreads();  // the block's global writes are visible to the block after it
     for (unsigned int j = threadIdx.x; j < numAnalyticalOwners; j += blockDim.x) {
         const unsigned int o = firstAnalyticalOwner + j;
         float rate = 0.f;
-        for (unsigned int k = 0; k < s.numAnalytical; k++) {
-            if (s.analytical.owner[k] != o) continue;
-            placeAnalytical(s, k);
-            rate = fmaxf(rate, analyticalSurfaceSpeed(s, k, domainDiagonal));
-        }
-        s.owners.travel[o] += (double)(rate * h);
-        const double since = s.owners.travel[o] - travelBaseline[o];
+        for (unsigned int k = 0; k < s.numAnalytical; k++)
+            if (s.analytical.owner[k] == o) rate = fmaxf(rate, componentSpeed[k]);
+        const double travel = s.owners.travel[o] + (double)(rate * h);
+        s.owners.travel[o] = travel;
+        const double since = travel - travelBaseline[o];
         if (since > 0.0) atomicMax(&red->maxTravelBits, (unsigned long long)__double_as_longlong(since));
         if (rate > 0.f) atomicMax(&red->maxSpeedBits, __float_as_uint(rate));
     }
-    __syncthreads();
-    if (threadIdx.x != 0) return;
+}
+
+// The end of a step, run by one thread once everything else of the step is done: the step's tally
+// into the control block (the rule that may end the batch) and a clear reduction for the next.
+__device__ inline void finishStep(StepBatchControl* ctl, StepReduction* red) {
     StepTally t;
     t.maxTravel = __longlong_as_double((long long)red->maxTravelBits);
     t.maxSpeed = __uint_as_float(red->maxSpeedBits);
@@ -92,6 +98,7 @@ extern "C" __global__ void deme_copy_doubles(double* dst, const double* src, uns
 // One thread per sphere-triangle contact that opens its sphere's run (contacts are sorted by
 // sphere, a sphere's triangle contacts last).
 extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBatchControl* ctl, StepReduction* red) {
+    beginDependentKernel();
     if (ctl->stop) return;
     const size_t i = globalIndex();
     const ContactView& c = s.contacts;
@@ -135,6 +142,7 @@ DEME_BUILT_IN_FORCE_PASSES(_r64, __maxnreg__(64))
 extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, const FamilyStepMotion* motion,
                                           StepConstants consts, const double* travelBaseline, const bodyID_t* ids,
                                           unsigned int n, StepReduction* red) {
+    beginDependentKernel();
     if (ctl->stop) return;
     const size_t k = globalIndex();
     // The force phase has ended (the kernels of a stream run one after the other).
@@ -168,14 +176,16 @@ extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, co
 
 // A step's last kernel: the cached poses after integration -- spheres ids[0, numSpheres) of the owners
 // stepped (every sphere if ids is null), then every triangle of an owner that moved, one thread per
-// item -- and the end of the step (finishStep), by the block that finishes last (`blocksDone`
-// counts them, and is zero again after the kernel). The end needs nothing of the poses, so one
-// kernel does both; the block that sets ctl->stop is the last one to read it.
+// item; block 0 also steps the analytical owners (stepAnalyticalOwners, `componentSpeed` one float
+// per analytical component) -- and the end of the step (finishStep), by the block that finishes
+// last (`blocksDone` counts them, and is zero again after the kernel). The end needs nothing of the
+// poses, so one kernel does both; the block that sets ctl->stop is the last one to read it.
 extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* ctl, const bodyID_t* ids,
                                                  unsigned int numSpheres, unsigned int numTriangles,
                                                  unsigned int firstAnalyticalOwner, unsigned int numAnalyticalOwners,
                                                  float h, double domainDiagonal, const double* travelBaseline,
-                                                 StepReduction* red, unsigned int* blocksDone) {
+                                                 StepReduction* red, float* componentSpeed, unsigned int* blocksDone) {
+    beginDependentKernel();
     if (ctl->stop) return;
     const size_t k = globalIndex();
     if (k < numSpheres) {
@@ -184,6 +194,9 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
         const size_t t = k - numSpheres;
         if (t < numTriangles && (s.integrationScratch.flags[s.triangles.owner[t]] & STEP_MOVED)) placeTriangle(s, t);
     }
+    if (blockIdx.x == 0)
+        stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, h, domainDiagonal,
+                             travelBaseline, red);
     __shared__ bool lastBlock;
     __syncthreads();
     if (threadIdx.x == 0) {
@@ -191,9 +204,10 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
         lastBlock = atomicAdd(blocksDone, 1u) == gridDim.x - 1;
     }
     __syncthreads();
-    if (!lastBlock) return;
-    if (threadIdx.x == 0) *blocksDone = 0u;
-    finishStep(s, ctl, firstAnalyticalOwner, numAnalyticalOwners, h, domainDiagonal, travelBaseline, red);
+    if (!lastBlock || threadIdx.x != 0) return;
+    *blocksDone = 0u;
+    __threadfence();  // the other blocks' reductions, counted above, are read below
+    finishStep(ctl, red);
 }
 
 // Which owners and spheres a step integrates and places (backend/cpu/Integration.h,

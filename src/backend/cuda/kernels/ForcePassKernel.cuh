@@ -7,6 +7,7 @@
 // every contact of a floor lands on one owner, and per-contact atomics on one address serialise.
 #pragma once
 
+#include "backend/cuda/kernels/DependentLaunch.cuh"
 #include "backend/cuda/kernels/KernelArgs.cuh"
 #include "dynamics/ContactStep.h"
 #include "state/StateView.h"
@@ -29,6 +30,7 @@ template <class Model>
 __device__ inline void forcePassKernel(const StateView& s, const Model& model, const StepBatchControl* ctl,
                                        unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red) {
     using force_pass_detail::atomicAdd3;
+    beginDependentKernel();
     if (ctl->stop) return;  // the same for every thread: no barrier is left waiting
     const float time = (float)ctl->time, dt = (float)ctl->dt;
     __shared__ float3 blockForce[SHARED_LOAD_SLOTS], blockTorque[SHARED_LOAD_SLOTS];
