@@ -58,3 +58,14 @@ TEST(LaunchList, AGridOfNoBlocksIsLeftOut) {
     l.clear();
     EXPECT_TRUE(l.empty());
 }
+
+// The step kernels' block size (CudaTypes.h): 128 threads for sweeps of lab scale, 256 for large
+// ones, the boundary at 2^18 items; the force pass takes it too unless SetForceCalcThreadsPerBlock
+// chose one.
+TEST(StepThreads, SmallSweepsIn128LargeIn256) {
+    EXPECT_EQ(stepThreadsFor(0), 128u);
+    EXPECT_EQ(stepThreadsFor(38001), 128u);              // the small drum's owners
+    EXPECT_EQ(stepThreadsFor((1ull << 18) - 1), 128u);  // the drum's 195,000 pairs are below too
+    EXPECT_EQ(stepThreadsFor(1ull << 18), 256u);
+    EXPECT_EQ(stepThreadsFor(2909520), 256u);  // the early mixer's spheres at r = 2.5 mm
+}

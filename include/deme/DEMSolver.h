@@ -254,7 +254,8 @@ class DEMSolver {
     // Extra margin for the geometries of a family's owners: pairs within reach enter the contact set.
     void SetFamilyExtraMargin(unsigned int family, float margin);
     void SetInitBinSize(double size);
-    // The block size of the GPU's force-pass kernel (1..1024, default 256); no effect on the CPU.
+    // The block size of the GPU's force-pass kernel (1..1024). By default it follows the contact set:
+    // 128 below 2^18 contacts, 256 above (docs/cuda-backend.md). No effect on the CPU.
     void SetForceCalcThreadsPerBlock(unsigned int n);
     // CPU threads for the parallel loops (default: OpenMP's default).
     void SetCPUThreads(unsigned int n);

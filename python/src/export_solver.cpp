@@ -96,7 +96,8 @@ void exportTimeStepping(py::class_<S>& c) {
              "Extra contact margin for the geometries of a family's owners.")
         .def("SetInitBinSize", &D::SetInitBinSize, py::arg("size"), "Bin size of contact detection.")
         .def("SetForceCalcThreadsPerBlock", &D::SetForceCalcThreadsPerBlock, py::arg("n"),
-             "Block size of the GPU force kernel, 1..1024 (no effect on the CPU).")
+             "Block size of the GPU force kernel, 1..1024; by default 128 below 2^18 contacts, 256 above "
+             "(no effect on the CPU).")
         .def("SetCPUThreads", &D::SetCPUThreads, py::arg("n"), "CPU threads of the parallel loops.")
         .def("SetBackend", &D::SetBackend, py::arg("backend"),
              "\"cpu\", \"cuda\" or \"auto\" (default: $DEME_BACKEND, else auto).")

@@ -31,7 +31,7 @@ struct Settings {
     int kinematicsThreads = 1;          // OpenMP threads of the kinematics thread's loops
     float familyExtraMargin[256] = {};  // added to the margin of each family's geometries
     double binSize = 0.0;               // 0: chosen at Initialize
-    unsigned int threadsPerBlock = 256;
+    unsigned int threadsPerBlock = 0;  // the GPU force pass's blocks; 0: by the set's size (stepThreadsFor)
     unsigned int cpuThreads = 0;  // 0: OpenMP default
     // Where the step loop runs: "cpu", "cuda" or "auto" (CUDA where a usable GPU is present); the
     // DEME_BACKEND environment variable, if set, is the default. deviceIds: the GPUs to use.

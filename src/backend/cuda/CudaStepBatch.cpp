@@ -18,12 +18,6 @@ namespace deme::cuda {
 
 namespace {
 
-// Threads per block of a step kernel over n owners or spheres: at lab scale (a sweep of one wave
-// of a few hundred blocks) 128 spreads it over more multiprocessors than 256; large sweeps run
-// faster in blocks of 256 (one H200, BENCHMARKS.md SMALL-SYSTEMS: 128 against 256 was +1-3 % on the
-// 38,000-sphere drum, -1.7 % on the 2.9 M-sphere early mixer).
-unsigned int threadsFor(unsigned long long n) { return n < (1ull << 18) ? 128u : 256u; }
-
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 }  // namespace
@@ -48,21 +42,22 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     // to integration (which adds the phase's length to the control block).
     const bodyID_t* clearIds = m_subsetAll ? nullptr : m_loadOwners.data();
     const unsigned int nCleared = m_subsetAll ? nO : m_numLoadOwners;
-    const unsigned int tCleared = threadsFor(nCleared);
+    const unsigned int tCleared = stepThreadsFor(nCleared);
     list.kernel(kFamilyMotion, blocksFor(std::max<unsigned int>(nCleared, NUM_FAMILIES), tCleared), tCleared, 0,
                 m_control.data(), m_motion.data(), m_state.owners.contactForce.data(),
                 m_state.owners.contactTorque.data(), clearIds, nCleared);
-    const unsigned int tMesh = threadsFor(m_numContacts);
+    const unsigned int tMesh = stepThreadsFor(m_numContacts);
     if (nT && m_numContacts) list.kernel(kResolveMesh, blocksFor(m_numContacts, tMesh), tMesh, 0, m_view, ctl, red);
-    m_model.record(list, stepView, ctl, m_numClumps, nO - m_numClumps, red, settings.threadsPerBlock);
+    const unsigned int tForce = settings.threadsPerBlock ? settings.threadsPerBlock : stepThreadsFor(m_numContacts);
+    m_model.record(list, stepView, ctl, m_numClumps, nO - m_numClumps, red, tForce);
     // Contact forces were summed onto every owner (dormant ones too: trackers read them); only the
     // stepped owners are integrated and placed.
-    const unsigned int tStepped = threadsFor(nStepped);
+    const unsigned int tStepped = stepThreadsFor(nStepped);
     list.kernel(kIntegrate, blocksFor(nStepped, tStepped), tStepped, 0, m_view, m_control.data(),
                 (const FamilyStepMotion*)m_motion.data(), consts, (const double*)m_baseline.data(), ownerIds, nStepped,
                 red);
     // At least one block: it also ends the step.
-    const unsigned int tPlaced = threadsFor((unsigned long long)nPlaced + nT);
+    const unsigned int tPlaced = stepThreadsFor((unsigned long long)nPlaced + nT);
     const unsigned int placeBlocks = std::max(1u, blocksFor((unsigned long long)nPlaced + nT, tPlaced));
     list.kernel(kPlaceAndFinish, placeBlocks, tPlaced, 0, m_view, m_control.data(), sphereIds, nPlaced, nT, m_numClumps,
                 m_numAnalyticalOwners, (float)settings.dt, m_domainDiagonal, (const double*)m_baseline.data(), red,

@@ -20,6 +20,13 @@ inline unsigned int blocksFor(unsigned long long n, unsigned int threads) {
     return (unsigned int)((n + threads - 1) / threads);
 }
 
+// Threads per block of a step kernel over n items (owners, spheres, contacts): at lab scale (a
+// sweep of one wave of a few hundred blocks) 128 spreads it over more multiprocessors than 256;
+// large sweeps run faster in blocks of 256. Measured on one H200 (BENCHMARKS.md, SMALL-SYSTEMS):
+// 128 against 256 was +1-3 % on the 38,000-sphere drum for the owner kernels and +3-4 % on the drum
+// and the impact for the force pass, -1.7 % on the 2.9 M-sphere early mixer for the owner kernels.
+inline unsigned int stepThreadsFor(unsigned long long n) { return n < (1ull << 18) ? 128u : 256u; }
+
 // Key bits a radix sort must look at for keys below n (at least 1).
 inline int bitsFor(unsigned long long n) {
     int b = 1;
