@@ -8,7 +8,7 @@
 
 namespace deme {
 
-// Per-step results that kernels combine with atomics; the step's last kernel (deme_finish_step)
+// Per-step results that kernels combine with atomics; the step's last kernel (deme_place_and_finish)
 // tallies them into the batch's control block (dynamics/StepBatch.h) and clears them for the next.
 struct StepReduction {
     unsigned long long maxTravelBits;  // largest travel since detection (a non-negative double's bits)
