@@ -92,7 +92,8 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     const double3 x0 = k.ownerPos[o];
     voxelID_t voxel = ow.voxel[o];
     subVoxelPos_t subX = ow.subX[o], subY = ow.subY[o], subZ = ow.subZ[o];
-    const bool clump = ow.type[o] == OWNER_CLUMP, analytical = ow.type[o] == OWNER_ANALYTICAL;
+    const uint8_t type = ow.type[o];
+    const bool clump = type == OWNER_CLUMP, analytical = type == OWNER_ANALYTICAL;
     const float extent = ow.extent[o];
     const double travel0 = ow.travel[o];
     const float3 moi = s.massProps.moi[in];

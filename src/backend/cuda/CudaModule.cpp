@@ -61,9 +61,9 @@ void launchKernel(const CudaKernel& kernel, Dim3 grid, Dim3 block, size_t shared
     config.dynamicSmemBytes = sharedBytes;
     config.stream = static_cast<cudaStream_t>(stream);
     cudaLaunchAttribute overlap{};
-    overlap.id = cudaLaunchAttributeProgrammaticStreamSerialization;
-    overlap.val.programmaticStreamSerializationAllowed = 1;
     if (overlapPrevious) {
+        overlap.id = cudaLaunchAttributeProgrammaticStreamSerialization;
+        overlap.val.programmaticStreamSerializationAllowed = 1;
         config.attrs = &overlap;
         config.numAttrs = 1;
     }

@@ -206,7 +206,7 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
     __syncthreads();
     if (!lastBlock || threadIdx.x != 0) return;
     *blocksDone = 0u;
-    __threadfence();  // the other blocks' reductions, counted above, are read below
+    __threadfence();  // between seeing the count and reading the sums (each block fenced its own before counting)
     finishStep(ctl, red);
 }
 
