@@ -264,8 +264,6 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
     for (size_t o = 0; o < nOwners; o++) s.ownerSphereStart[o + 1] += s.ownerSphereStart[o];
     s.owners.contactForce.assign(nOwners, make_float3(0.f));
     s.owners.contactTorque.assign(nOwners, make_float3(0.f));
-    s.owners.extraAcc.assign(nOwners, make_float3(0.f));
-    s.owners.extraAngAcc.assign(nOwners, make_float3(0.f));
     s.owners.travel.assign(nOwners, 0.0);
     s.sphereUserToInternal.assign(s.spheres.size(), 0);
     for (size_t i = 0; i < s.spheres.size(); i++) s.sphereUserToInternal[s.sphereInternalToUser[i]] = (bodyID_t)i;

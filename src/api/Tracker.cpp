@@ -69,13 +69,13 @@ void DEMTracker::SetOriQ(const float4& q, size_t offset) {
 }
 void DEMTracker::AddAcc(const float3& acc, size_t offset) {
     requireFinite3("DEMTracker::AddAcc", "acceleration", acc);
-    sim().trackerLoadState().owners.extraAcc[internalID(offset)] += acc;
-    sim().trackerLoadState().hasTrackerLoads = true;
+    const size_t o = internalID(offset);
+    sim().trackerLoads().extraAcc[o] += acc;
 }
 void DEMTracker::AddAngAcc(const float3& angAcc, size_t offset) {
     requireFinite3("DEMTracker::AddAngAcc", "angular acceleration", angAcc);
-    sim().trackerLoadState().owners.extraAngAcc[internalID(offset)] += angAcc;
-    sim().trackerLoadState().hasTrackerLoads = true;
+    const size_t o = internalID(offset);
+    sim().trackerLoads().extraAngAcc[o] += angAcc;
 }
 
 void DEMTracker::SetOwnerWildcardValue(const std::string& name, float value, size_t offset) {

@@ -51,6 +51,9 @@ struct StepConstants {
     float maxSpeed2;  // error-out speed, squared
     DomainFrame frame;
     double3 domainSize;
+    // Tracker loads per owner (state/StateFields.h), or null in a call without any.
+    const float3* extraAcc;
+    const float3* extraAngAcc;
 };
 
 struct OwnerStepResult {
@@ -87,8 +90,10 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     const float4 q0 = ow.oriQ[o];
     const inertiaID_t in = ow.inertia[o];
     const float3 force = ow.contactForce[o], torque = ow.contactTorque[o];
-    // Tracker loads are zero unless set, and read unconditionally: a conditional load is control flow.
-    const float3 extraAcc = ow.extraAcc[o], extraAngAcc = ow.extraAngAcc[o];
+    // Tracker loads: the test is the same for every owner of a call (no divergence on a GPU).
+    const bool loads = c.extraAcc != nullptr;
+    const float3 extraAcc = loads ? c.extraAcc[o] : make_float3(0.f);
+    const float3 extraAngAcc = loads ? c.extraAngAcc[o] : make_float3(0.f);
     const double3 x0 = k.ownerPos[o];
     voxelID_t voxel = ow.voxel[o];
     subVoxelPos_t subX = ow.subX[o], subY = ow.subY[o], subZ = ow.subZ[o];

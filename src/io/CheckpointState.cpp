@@ -17,6 +17,7 @@ namespace {
         LIST(DEME_NAMED_FIELD)                \
     }
 DEME_NAMED_VISITOR(namedOwnerFields, DEME_OWNER_FIELDS)
+DEME_NAMED_VISITOR(namedTrackerLoadFields, DEME_TRACKER_LOAD_FIELDS)
 DEME_NAMED_VISITOR(namedMassFields, DEME_MASS_FIELDS)
 DEME_NAMED_VISITOR(namedSphereFields, DEME_SPHERE_FIELDS)
 DEME_NAMED_VISITOR(namedAnalyticalFields, DEME_ANALYTICAL_FIELDS)
@@ -39,6 +40,7 @@ void forEachStoredArray(S& s, F&& f) {
         };
     };
     namedOwnerFields(s.owners, group("owners"));
+    namedTrackerLoadFields(s.trackerLoads, group("trackerLoads"));  // empty unless loads are pending
     namedMassFields(s.massProps, group("massProps"));
     namedSphereFields(s.spheres, group("spheres"));
     namedAnalyticalFields(s.analytical, group("analytical"));
@@ -65,7 +67,7 @@ void writeStateSection(const SimState& s, ByteWriter& out) {
     out.value((uint64_t)s.numClumps);
     out.value((uint64_t)s.numAnalyticalOwners);
     out.value((uint32_t)s.numWildcards);
-    out.value((uint8_t)s.hasTrackerLoads);
+    out.value((uint8_t)!s.trackerLoads.empty());
     out.value((uint64_t)s.numRemovedClumps);  // RemoveClumpsInFamily and the "remove" exit policy
     out.value(s.removedMass);
     uint64_t records = 0;
@@ -103,7 +105,7 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
     s.numClumps = (size_t)in.value<uint64_t>("the clump count");
     s.numAnalyticalOwners = (size_t)in.value<uint64_t>("the analytical owner count");
     s.numWildcards = in.value<uint32_t>("the contact wildcard count");
-    s.hasTrackerLoads = in.value<uint8_t>("the tracker load flag") != 0;
+    const bool trackerLoads = in.value<uint8_t>("the tracker load flag") != 0;
     s.numRemovedClumps = (size_t)in.value<uint64_t>("the removed clump count");
     s.removedMass = in.value<double>("the removed mass");
     const uint64_t n = in.value<uint64_t>("the record count");
@@ -155,6 +157,9 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
     };
     namedOwnerFields(s.owners, [&](const char* name, const auto& v, FieldRole) {
         require(v.size() == nO, std::string("owners.") + name + " is not one value per owner");
+    });
+    namedTrackerLoadFields(s.trackerLoads, [&](const char* name, const auto& v, FieldRole) {
+        require(v.size() == (trackerLoads ? nO : 0), std::string("trackerLoads.") + name + " does not fit its flag");
     });
     namedSphereFields(s.spheres, [&](const char* name, const auto& v, FieldRole) {
         require(v.size() == nS, std::string("spheres.") + name + " is not one value per sphere");

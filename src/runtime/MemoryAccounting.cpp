@@ -35,6 +35,7 @@ struct CountTo {
 void countStateMemory(const SimState& s, MemoryStats& m) {
     const CountTo owners{m, MemoryGroup::OWNER_STATE}, geometry{m, MemoryGroup::GEOMETRY};
     forEachOwnerField(s.owners, s.owners, owners);
+    forEachTrackerLoadField(s.trackerLoads, s.trackerLoads, owners);
     forEachMassField(s.massProps, s.massProps, owners);
     forEachScratchField(s.integrationScratch, s.integrationScratch, owners);
     forEachSphereField(s.spheres, s.spheres, geometry);

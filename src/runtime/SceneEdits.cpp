@@ -73,6 +73,11 @@ void insertClumps(SimState& s, const SimState& part) {
     forEachOwnerField(s.owners, part.owners, [at](auto& mine, const auto& theirs, FieldRole) {
         mine.insert(mine.begin() + at, theirs.begin(), theirs.end());
     });
+    // Loads added before the edit stay with their owners; the new owners have none.
+    if (!s.trackerLoads.empty())
+        forEachTrackerLoadField(s.trackerLoads, s.trackerLoads, [at, k](auto& mine, auto&, FieldRole) {
+            mine.insert(mine.begin() + at, k, typename std::decay_t<decltype(mine)>::value_type{});
+        });
     for (size_t j = 0; j < k; j++) s.owners.inertia[at + j] += massBase;
     forEachMassField(s.massProps, part.massProps,
                      [](auto& mine, const auto& theirs, FieldRole) { mine.insert(mine.end(), theirs.begin(), theirs.end()); });
@@ -151,6 +156,9 @@ RemovedClumps removeClumps(SimState& s, const std::vector<uint8_t>& remove) {
 
     // Owners, spheres, and the references between them.
     forEachOwnerField(s.owners, s.owners, [&](auto& field, auto&, FieldRole) { compact(field, keepOwner); });
+    if (!s.trackerLoads.empty())
+        forEachTrackerLoadField(s.trackerLoads, s.trackerLoads,
+                                [&](auto& field, auto&, FieldRole) { compact(field, keepOwner); });
     forEachSphereField(s.spheres, s.spheres, [&](auto& field, auto&, FieldRole) { compact(field, keepSphere); });
     for (bodyID_t& o : s.spheres.owner) o = newOwner[o];
     for (bodyID_t& o : s.analytical.owner) o = newOwner[o];

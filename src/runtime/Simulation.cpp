@@ -155,7 +155,7 @@ void Simulation::advance(unsigned long long n) {
     DynamicsBackend& dynamics = *m_backends.dynamics;
     const auto t0 = std::chrono::steady_clock::now();
     uploadIfEdited();
-    const bool loads = m_state.hasTrackerLoads;
+    const bool loads = !m_state.trackerLoads.empty();
     if (loads) dynamics.uploadTrackerLoads(m_state);
     dynamics.beginRun(settings, families);
     for (unsigned long long k = 0; k < n;) {
@@ -244,12 +244,7 @@ void Simulation::reportFault(const StepOutcome& r) const {
                                  std::to_string(v.z) + ")");
 }
 
-void Simulation::clearTrackerLoads() {
-    if (!m_state.hasTrackerLoads) return;
-    std::fill(m_state.owners.extraAcc.begin(), m_state.owners.extraAcc.end(), make_float3(0.f));
-    std::fill(m_state.owners.extraAngAcc.begin(), m_state.owners.extraAngAcc.end(), make_float3(0.f));
-    m_state.hasTrackerLoads = false;
-}
+void Simulation::clearTrackerLoads() { m_state.trackerLoads.release(); }
 
 void Simulation::invalidateContacts() {
     m_resume.reset();  // an edit after ReadCheckpoint: the restored set may serve no longer

@@ -50,11 +50,11 @@ class Simulation {
     // For edits of the contact set itself (scene edits, contact wildcards and persistence): the
     // backend's set is replaced by the host's too.
     SimState& editStateWithContacts();
-    // The state for adding tracker loads (AddAcc): they go to the backend with the next call by
-    // themselves, without replacing its state.
-    SimState& trackerLoadState() {
-        state();
-        return m_state;
+    // The tracker loads for adding to (AddAcc), made on the first: they go to the backend with the
+    // next call by themselves, without replacing its state.
+    TrackerLoadArrays& trackerLoads() {
+        m_state.trackerLoads.prepare(m_state.owners.size());
+        return m_state.trackerLoads;
     }
     // Counts the host keeps itself (scene edits happen on the host): no download.
     size_t numSpheres() const { return m_state.spheres.size(); }

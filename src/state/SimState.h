@@ -21,6 +21,21 @@ using HostArray = std::vector<T>;
 struct OwnerArrays : OwnerFields<HostArray> {
     size_t size() const { return voxel.size(); }
 };
+// Empty unless some owner has a tracker load for the coming call (state/StateFields.h).
+struct TrackerLoadArrays : TrackerLoadFields<HostArray> {
+    bool empty() const { return extraAcc.empty(); }
+    // Zero loads for every owner, made on the first load of a call.
+    void prepare(size_t numOwners) {
+        if (!empty()) return;
+        extraAcc.assign(numOwners, make_float3(0.f));
+        extraAngAcc.assign(numOwners, make_float3(0.f));
+    }
+    // Releases the arrays' storage (an assignment of an empty vector would keep it).
+    void release() {
+        HostArray<float3>().swap(extraAcc);
+        HostArray<float3>().swap(extraAngAcc);
+    }
+};
 using MassProperties = MassFields<HostArray>;
 struct SphereArrays : SphereFields<HostArray> {
     size_t size() const { return owner.size(); }
@@ -69,6 +84,7 @@ struct SimState {
     DomainFrame frame;
     double3 domainSize;
     OwnerArrays owners;
+    TrackerLoadArrays trackerLoads;
     MassProperties massProps;
     SphereArrays spheres;
     AnalyticalArrays analytical;
@@ -94,7 +110,6 @@ struct SimState {
     // their total mass.
     size_t numRemovedClumps = 0;
     double removedMass = 0.0;
-    bool hasTrackerLoads = false;  // some owner has extraAcc/extraAngAcc for the coming call
     // First geometry id of each kind in the unified id space of contacts.
     bodyID_t analyticalIdBase() const { return (bodyID_t)spheres.size(); }
     bodyID_t triangleIdBase() const { return (bodyID_t)(spheres.size() + analytical.size()); }

@@ -29,11 +29,16 @@
     X(extent, float, INPUT)           /* largest distance from the owner centre to its geometry */         \
     X(contactForce, float3, EVOLVES)  /* contact force of the last step (global), for trackers */          \
     X(contactTorque, float3, EVOLVES) /* contact torque of the last step (global) */                       \
-    X(extraAcc, float3, INPUT)        /* tracker loads (AddAcc) applied during the next DoDynamics call */ \
-    X(extraAngAcc, float3, INPUT)                                                                          \
     /* Path length travelled since the start (bounds every point of its geometry); the travel     */       \
     /* since a contact detection is the difference to a snapshot taken then.                      */       \
     X(travel, double, EVOLVES)
+
+// Tracker loads (DEMTracker::AddAcc, AddAngAcc) for the coming DoDynamics call, per owner. They
+// exist only from the first load to the end of the call that applies it, and are empty otherwise:
+// most runs never add one, and two arrays of zeros would cost every owner 24 bytes.
+#define DEME_TRACKER_LOAD_FIELDS(X) \
+    X(extraAcc, float3, INPUT)      \
+    X(extraAngAcc, float3, INPUT) /* owner frame */
 
 // Mass properties, shared by owners of one template.
 #define DEME_MASS_FIELDS(X) \
@@ -120,6 +125,10 @@ struct OwnerFields {
     DEME_OWNER_FIELDS(DEME_DECLARE_FIELD)
 };
 template <template <class> class A>
+struct TrackerLoadFields {
+    DEME_TRACKER_LOAD_FIELDS(DEME_DECLARE_FIELD)
+};
+template <template <class> class A>
 struct MassFields {
     DEME_MASS_FIELDS(DEME_DECLARE_FIELD)
 };
@@ -158,6 +167,7 @@ struct ScratchFields {
         LIST(DEME_VISIT_FIELD)                               \
     }
 DEME_FIELD_VISITOR(Owner, DEME_OWNER_FIELDS)
+DEME_FIELD_VISITOR(TrackerLoad, DEME_TRACKER_LOAD_FIELDS)
 DEME_FIELD_VISITOR(Mass, DEME_MASS_FIELDS)
 DEME_FIELD_VISITOR(Sphere, DEME_SPHERE_FIELDS)
 DEME_FIELD_VISITOR(Analytical, DEME_ANALYTICAL_FIELDS)

@@ -50,7 +50,15 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
     const size_t nSpheres = subset.all ? s.spheres.size() : subset.spheres.size();
     const size_t nTris = s.triangles.size();
     const float h = (float)dt;
-    const StepConstants consts{gravity, (float)dt, dt, errorOutVelocity * errorOutVelocity, s.frame, s.domainSize};
+    const TrackerLoadArrays& loads = s.trackerLoads;
+    const StepConstants consts{gravity,
+                               (float)dt,
+                               dt,
+                               errorOutVelocity * errorOutVelocity,
+                               s.frame,
+                               s.domainSize,
+                               loads.empty() ? nullptr : loads.extraAcc.data(),
+                               loads.empty() ? nullptr : loads.extraAngAcc.data()};
     IntegrationScratch& scratch = s.integrationScratch;
     scratch.flags.resize(n);
     uint8_t* flags = scratch.flags.data();

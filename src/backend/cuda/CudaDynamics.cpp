@@ -75,9 +75,8 @@ void CudaDynamics::downloadContacts(SimState& s) {
 
 void CudaDynamics::uploadTrackerLoads(const SimState& s) {
     select();
-    m_state.owners.extraAcc.uploadAsync(s.owners.extraAcc.data(), s.owners.extraAcc.size(), m_stream);
-    m_state.owners.extraAngAcc.uploadAsync(s.owners.extraAngAcc.data(), s.owners.extraAngAcc.size(), m_stream);
-    // The host vectors may change before the next step reads them.
+    m_state.uploadTrackerLoads(s, m_stream);
+    // The host vectors may change (or go) before the next step reads them.
     synchronize(m_stream);
 }
 

@@ -26,9 +26,16 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     list.clear();
     list.overlapLaunches(m_overlapLaunches);
     const unsigned int nO = m_view.numOwners, nT = m_view.numTriangles;
-    const StepConstants consts{settings.gravity, (float)settings.dt,
-                               settings.dt,      settings.errorOutVelocity * settings.errorOutVelocity,
-                               m_view.frame,     m_view.domainSize};
+    const auto& loads = m_state.trackerLoads;
+    const bool withLoads = loads.extraAcc.size() == nO;
+    const StepConstants consts{settings.gravity,
+                               (float)settings.dt,
+                               settings.dt,
+                               settings.errorOutVelocity * settings.errorOutVelocity,
+                               m_view.frame,
+                               m_view.domainSize,
+                               withLoads ? loads.extraAcc.data() : nullptr,
+                               withLoads ? loads.extraAngAcc.data() : nullptr};
     const StepBatchControl* ctl = m_control.data();
     const bodyID_t* ownerIds = m_subsetAll ? nullptr : m_steppedOwners.data();
     const bodyID_t* sphereIds = m_subsetAll ? nullptr : m_steppedSpheres.data();

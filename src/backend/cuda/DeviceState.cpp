@@ -51,6 +51,7 @@ void DeviceState::upload(const SimState& s, Stream stream) {
     {
         const MemoryGroupScope group(MemoryGroup::OWNER_STATE);
         forEachOwnerField(owners, s.owners, up);
+        forEachTrackerLoadField(trackerLoads, s.trackerLoads, up);
         forEachMassField(massProps, s.massProps, up);
         forEachScratchField(integrationScratch, s.integrationScratch, up);
     }
@@ -60,6 +61,11 @@ void DeviceState::upload(const SimState& s, Stream stream) {
     forEachAnalyticalField(analytical, s.analytical, up);
     forEachTriangleField(triangles, s.triangles, up);
     forEachCacheField(cache, s.cache, up);
+}
+
+void DeviceState::uploadTrackerLoads(const SimState& s, Stream stream) {
+    const MemoryGroupScope group(MemoryGroup::OWNER_STATE);
+    forEachTrackerLoadField(trackerLoads, s.trackerLoads, Upload{stream, 0});
 }
 
 void DeviceState::download(SimState& s, Stream stream) const {

@@ -15,6 +15,9 @@ using DeviceContacts = ContactFields<DeviceBuffer>;
 
 struct DeviceState {
     OwnerFields<DeviceBuffer> owners;
+    // Sized to the owners while a call has tracker loads, else empty; their storage is kept once
+    // made, so a run that adds loads call after call allocates it once.
+    TrackerLoadFields<DeviceBuffer> trackerLoads;
     MassFields<DeviceBuffer> massProps;
     SphereFields<DeviceBuffer> spheres;
     AnalyticalFields<DeviceBuffer> analytical;
@@ -27,6 +30,8 @@ struct DeviceState {
     void upload(const SimState& s, Stream stream);
     // Queues the copies of every evolving field into `s` on `stream`.
     void download(SimState& s, Stream stream) const;
+    // Sends the host's tracker loads (none: the steps read none).
+    void uploadTrackerLoads(const SimState& s, Stream stream);
     // Points `v`'s arrays (all but its contacts) at these buffers.
     void viewInto(StateView& v);
 };
