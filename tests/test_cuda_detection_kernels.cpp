@@ -1,7 +1,7 @@
 // The GPU's contact-detection kernels (src/backend/cuda/kernels/Detection.cu) checked without a GPU:
 // the kernel file is compiled here for the host, each kernel run as a loop over its threads in the
-// order CudaKinematics::detect launches them (bin boxes, entries, a stable sort by bin, entries per
-// bin summed into bin starts, pair count, offsets, pair fill), and the result compared with the CPU's
+// order CudaKinematics::detect launches them (bin counts from each item's box, their sum into bin
+// starts, the entries scattered and sorted per bin, pair count, offsets, pair fill), and the result compared with the CPU's
 // detector (backend/cpu/ContactDetector.h), which is itself checked against brute force: the same
 // bin registry and the same contact list, pair for pair and in the same order. The kernels use
 // nothing of CUDA but the thread index and one atomic add (tests/HostKernelEmulation.h).
@@ -56,25 +56,21 @@ void stableSortPairs(const std::vector<Key>& keys, const std::vector<unsigned in
 // What the kernels leave for one kind of item (spheres or triangles): start has numBins + 2 entries
 // (the first numBins + 1 are each bin's first entry and the end).
 struct EmulatedBins {
-    std::vector<int> lo, hi;
     std::vector<unsigned int> start, items;
     std::vector<unsigned int> starts(size_t numBins) const { return {start.begin(), start.begin() + numBins + 1}; }
 };
 
-// The counting sort of CudaKinematics::detect, for items ids[0, n) (all `items` if null) whose boxes
-// `boxes()` sets. The scatter's threads run from the last to the first: on a GPU their order is the
-// atomics', and the per-bin sort must put each bin's items in increasing order whatever it was.
-template <class Boxes>
-void emulateBinning(EmulatedBins& b, unsigned int items, const bodyID_t* ids, unsigned int n, const BinGrid& g,
-                    size_t numBins, Boxes&& boxes) {
-    b.lo.assign(3 * (size_t)items, 0);
-    b.hi.assign(3 * (size_t)items, 0);
+// The counting sort of CudaKinematics::detect, for items ids[0, n) (all of them if null) of a kind,
+// whose boxes the kernels compute from `v` and `args`. The scatter's threads run from the last to the
+// first: on a GPU their order is the atomics', and the per-bin sort must put each bin's items in
+// increasing order whatever it was.
+void emulateBinning(EmulatedBins& b, const StateView& v, const DetectionArgs& args, BinnedKind kind,
+                    const bodyID_t* ids, unsigned int n, size_t numBins) {
     b.start.assign(numBins + 2, 0);
-    boxes();
-    runThreads(n, [&] { deme_bin_count(g, ids, n, b.lo.data(), b.hi.data(), b.start.data()); });
+    runThreads(n, [&] { deme_bin_count(v, args, kind, ids, n, b.start.data()); });
     exclusiveSum(b.start);
     b.items.assign(b.start[numBins + 1], 0);
-    runThreadsReversed(n, [&] { deme_bin_scatter(g, ids, n, b.lo.data(), b.hi.data(), b.start.data(), b.items.data()); });
+    runThreadsReversed(n, [&] { deme_bin_scatter(v, args, kind, ids, n, b.start.data(), b.items.data()); });
     runThreads(numBins, [&] { deme_bin_sort(b.start.data(), numBins, b.items.data()); });
 }
 
@@ -158,24 +154,14 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     }
     const bodyID_t* ids = r.usedRegistry ? r.registry.moving.data() : nullptr;
     const unsigned int nSearched = r.usedRegistry ? (unsigned int)r.registry.moving.size() : nS;
-    emulateBinning(r.spheres, nS, ids, nSearched, grid, grid.numBins(), [&] {
-        runThreads(nSearched, [&] {
-            deme_sphere_bin_boxes(v, args, ids, nSearched, r.spheres.lo.data(), r.spheres.hi.data());
-        });
-    });
+    emulateBinning(r.spheres, v, args, BINNED_SPHERES, ids, nSearched, grid.numBins());
     std::vector<double3> triLo(nT), triHi(nT);
-    emulateBinning(r.triangles, nT, nullptr, nT, grid, grid.numBins(), [&] {
-        runThreads(nT, [&] {
-            deme_triangle_bin_boxes(v, args, triLo.data(), triHi.data(), r.triangles.lo.data(), r.triangles.hi.data());
-        });
-    });
-    args.sphereBins =
-        BinsView{r.spheres.lo.data(), r.spheres.hi.data(), r.spheres.start.data(), r.spheres.items.data()};
-    if (nT)
-        args.triangleBins =
-            BinsView{r.triangles.lo.data(), r.triangles.hi.data(), r.triangles.start.data(), r.triangles.items.data()};
     args.triLo = triLo.data();
     args.triHi = triHi.data();
+    runThreads(nT, [&] { deme_triangle_boxes(v, args, triLo.data(), triHi.data()); });
+    emulateBinning(r.triangles, v, args, BINNED_TRIANGLES, nullptr, nT, grid.numBins());
+    args.sphereBins = BinsView{r.spheres.start.data(), r.spheres.items.data()};
+    if (nT) args.triangleBins = BinsView{r.triangles.start.data(), r.triangles.items.data()};
     // As on the GPU: counts, then their exclusive sum in place.
     std::vector<unsigned int> offset(nSearched + 1, 0);
     runThreads(nSearched, [&] {
@@ -212,15 +198,11 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
 // bin order; the boxes are the shared rule's, with the margin written out here.
 BinRegistry cpuSphereBins(const SimState& s, const BinGrid& grid, double margin, const float* extra) {
     BinRegistry reg;
-    const size_t n = s.spheres.size();
-    reg.resize(n);
-    for (size_t i = 0; i < n; i++) {
+    reg.build(grid, nullptr, s.spheres.size(), [&](size_t i) {
         const double e = (double)s.spheres.radius[i] + margin + (double)extra[s.owners.family[s.spheres.owner[i]]];
         const double3 p = s.cache.spherePos[i];
-        const BinBox b = binBox(grid, make_double3(p.x - e, p.y - e, p.z - e), make_double3(p.x + e, p.y + e, p.z + e));
-        storeBinBox(b, i, reg.lo.data(), reg.hi.data());
-    }
-    reg.build(grid, n);
+        return binBox(grid, make_double3(p.x - e, p.y - e, p.z - e), make_double3(p.x + e, p.y + e, p.z + e));
+    });
     return reg;
 }
 
@@ -405,8 +387,19 @@ TEST(CudaDetectionKernels, DormantRegistryMatchesTheCpuCachedDetectorExactly) {
 TEST(CudaDetectionKernels, BinStartsOfAMostlyEmptyGrid) {
     const BinGrid g{make_double3(0, 0, 0), 1.0, make_double3(1, 1, 1), 4, 4, 50, 0u};
     const size_t numBins = 4 * 4 * 50;
-    // Three boxes at z in [20, 22): items 0 and 1 share bins.
+    // Three boxes at z in [20, 22): items 0 and 1 share bins. As bin ranges, and as the boxes
+    // (triangles' boxes here, read from DetectionArgs) that cover them.
     std::vector<int> lo = {0, 0, 20, 1, 1, 20, 3, 3, 21}, hi = {1, 1, 21, 2, 2, 21, 3, 3, 21};
+    std::vector<double3> boxLo(3), boxHi(3);
+    for (unsigned int i = 0; i < 3; i++) {
+        boxLo[i] = make_double3(lo[3 * i] + 0.25, lo[3 * i + 1] + 0.25, lo[3 * i + 2] + 0.25);
+        boxHi[i] = make_double3(hi[3 * i] + 0.75, hi[3 * i + 1] + 0.75, hi[3 * i + 2] + 0.75);
+    }
+    DetectionArgs args{};
+    args.grid = g;
+    args.triLo = boxLo.data();
+    args.triHi = boxHi.data();
+    const StateView none{};
     std::vector<std::pair<unsigned int, unsigned int>> entries;  // (bin, item), from the boxes by hand
     for (unsigned int i = 0; i < 3; i++)
         for (int z = lo[3 * i + 2]; z <= hi[3 * i + 2]; z++)
@@ -414,11 +407,11 @@ TEST(CudaDetectionKernels, BinStartsOfAMostlyEmptyGrid) {
                 for (int x = lo[3 * i]; x <= hi[3 * i]; x++) entries.push_back({(unsigned int)binIndex(g, x, y, z), i});
     std::sort(entries.begin(), entries.end());
     std::vector<unsigned int> start(numBins + 2, 0);
-    runThreads(3, [&] { deme_bin_count(g, nullptr, 3, lo.data(), hi.data(), start.data()); });
+    runThreads(3, [&] { deme_bin_count(none, args, BINNED_TRIANGLES, nullptr, 3, start.data()); });
     exclusiveSum(start);
     ASSERT_EQ(start[numBins + 1], 17u);
     std::vector<unsigned int> items(17, 99);
-    runThreadsReversed(3, [&] { deme_bin_scatter(g, nullptr, 3, lo.data(), hi.data(), start.data(), items.data()); });
+    runThreadsReversed(3, [&] { deme_bin_scatter(none, args, BINNED_TRIANGLES, nullptr, 3, start.data(), items.data()); });
     runThreads(numBins, [&] { deme_bin_sort(start.data(), numBins, items.data()); });
     for (size_t b = 0; b <= numBins; b++) {
         const auto first = std::lower_bound(entries.begin(), entries.end(), std::make_pair((unsigned int)b, 0u));

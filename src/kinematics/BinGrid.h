@@ -103,12 +103,14 @@ DEME_HD inline void layerXBins(const BinGrid& g, int z, int x0, int x1, int& xa,
     while (xa >= g.nx) xa -= g.nx, xb -= g.nx;
 }
 
-// Stores box b of item i as three lows and three highs (the layout both backends' bins use).
-DEME_HD inline void storeBinBox(const BinBox& b, size_t i, int* lo, int* hi) {
-    for (int a = 0; a < 3; a++) {
-        lo[3 * i + a] = b.lo[a];
-        hi[3 * i + a] = b.hi[a];
-    }
+// The bins box b covers, in (z, y, x) order: f(bin) for each. Registration and search walk the same
+// bins this way on both backends.
+template <class F>
+DEME_HD inline void forEachBinOf(const BinGrid& g, const BinBox& b, F&& f) {
+    int xa, xb;  // a layer's x bins (shifted in a sheared cell's image layers: layerXBins)
+    for (int z = b.lo[2]; z <= b.hi[2]; z++)
+        for (int y = b.lo[1]; y <= b.hi[1]; y++)
+            for (layerXBins(g, z, b.lo[0], b.hi[0], xa, xb); xa <= xb; xa++) f(xa, y, z);
 }
 
 }  // namespace deme

@@ -21,10 +21,10 @@
 
 namespace deme {
 
-// Items registered in bins: each item's bin box, and the items of each bin (bin b's are
-// items[start[b] .. start[b + 1]), ascending).
+// Items registered in bins: the items of each bin (bin b's are items[start[b] .. start[b + 1]),
+// ascending). Which bins an item covers is not stored: it follows from the item's box (sphereBinBox,
+// triangleBinBox), computed where it is needed (24 bytes per sphere less than keeping it).
 struct BinsView {
-    const int *lo, *hi;
     const uint32_t *start, *items;
 };
 
@@ -72,6 +72,14 @@ DEME_HD_INLINE void sphereBox(const S& s, const DetectionArgs& a, size_t i, doub
     hi = make_double3(p.x + e, p.y + e, p.z + e);
 }
 
+// The bins sphere i's enlarged box covers: registration and search compute them alike.
+template <class S>
+DEME_HD_INLINE BinBox sphereBinBox(const S& s, const DetectionArgs& a, size_t i) {
+    double3 lo, hi;
+    sphereBox(s, a, i, lo, hi);
+    return binBox(a.grid, lo, hi);
+}
+
 // Triangle t's box, enlarged by its margin.
 template <class S>
 DEME_HD_INLINE void triangleBox(const S& s, const DetectionArgs& a, size_t t, double3& lo, double3& hi) {
@@ -82,6 +90,12 @@ DEME_HD_INLINE void triangleBox(const S& s, const DetectionArgs& a, size_t t, do
     hi = make_double3(fmax(fmax(v[0].x, v[1].x), v[2].x) + e, fmax(fmax(v[0].y, v[1].y), v[2].y) + e,
                       fmax(fmax(v[0].z, v[1].z), v[2].z) + e);
 }
+
+// Which items a bin registry holds (the GPU's binning kernels take it as an argument).
+enum BinnedKind : unsigned int { BINNED_SPHERES = 0u, BINNED_TRIANGLES = 1u };
+
+// The bins triangle t's enlarged box covers (its box stored in a.triLo, a.triHi).
+DEME_HD_INLINE BinBox triangleBinBox(const DetectionArgs& a, size_t t) { return binBox(a.grid, a.triLo[t], a.triHi[t]); }
 
 // Whether bin (x, y, z) holds the lower corner of the intersection of boxes starting at loA and lo.
 // In a sheared cell, x of a layer beyond a z face is a bin of the image layer (layerXBins), where the
@@ -155,70 +169,63 @@ DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, b
     const double3 pA = s.cache.spherePos[sa];
     const bodyID_t oA = s.spheres.owner[sa];
     const double eA = (double)s.spheres.radius[sa] + marginOf(s, a, oA);
-    const double3 loA = make_double3(pA.x - eA, pA.y - eA, pA.z - eA);
+    // A's box and its bins, as its registration computed them (sphereBox's expression).
+    double3 loA, hiA;
+    sphereBox(s, a, sa, loA, hiA);
+    const BinBox boxA = binBox(g, loA, hiA);
     const uint8_t* maskRow = a.familyMask + (size_t)s.owners.family[oA] * NUM_FAMILIES;
-    const int* bLo = a.sphereBins.lo + 3 * (size_t)sa;
-    const int* bHi = a.sphereBins.hi + 3 * (size_t)sa;
     // 1. Sphere partners: spheres b > a of another owner (each pair once, from its lower sphere).
     unsigned int nSph = 0;
-    int xa, xb;  // a layer's x bins (shifted in a sheared cell's image layers: layerXBins)
-    for (int z = bLo[2]; z <= bHi[2]; z++)
-        for (int y = bLo[1]; y <= bHi[1]; y++)
-            for (layerXBins(g, z, bLo[0], bHi[0], xa, xb); xa <= xb; xa++) {
-                const int x = xa;
-                const uint64_t bin = binIndex(g, x, y, z);
-                const uint32_t e1 = a.sphereBins.start[bin + 1];
-                for (uint32_t e = firstEntryAbove(a.sphereBins, a.sphereBins.start[bin], e1, sa); e < e1; e++) {
-                    // The geometric tests first: most entries fail them (spheres out of reach, or
-                    // pairs another bin reports), and they need only b's position and radius, read
-                    // side by side; b's owner and family are looked up for the rest.
-                    const bodyID_t b = a.sphereBins.items[e];
-                    // Across a periodic face: b's image nearest to a, in a's frame (the bins the loop
-                    // visits are a's box's, unwrapped).
-                    const double3 pB = nearestImage(period, pA, s.cache.spherePos[b]);
-                    const double rB = (double)s.spheres.radius[b];
-                    const bool shared = a.sharedExtraMargin >= 0.0;
-                    const bodyID_t oB0 = shared ? 0 : s.spheres.owner[b];
-                    const double eB = rB + (shared ? a.margin + a.sharedExtraMargin : marginOf(s, a, oB0));
-                    const double reach = eA + eB;
-                    const double3 d = pA - pB;
-                    if (fabs(d.x) > reach || fabs(d.y) > reach || fabs(d.z) > reach) continue;
-                    if (!binOwnsPair(g, loA, make_double3(pB.x - eB, pB.y - eB, pB.z - eB), x, y, z)) continue;
-                    if (dot(d, d) >= reach * reach) continue;
-                    const bodyID_t oB = shared ? s.spheres.owner[b] : oB0;
-                    if (oB == oA || !maskRow[s.owners.family[oB]]) continue;
-                    if (nSph < capacity) out[nSph] = b;
-                    nSph++;
-                }
-            }
+    forEachBinOf(g, boxA, [&](int x, int y, int z) {
+        const uint64_t bin = binIndex(g, x, y, z);
+        const uint32_t e1 = a.sphereBins.start[bin + 1];
+        for (uint32_t e = firstEntryAbove(a.sphereBins, a.sphereBins.start[bin], e1, sa); e < e1; e++) {
+            // The geometric tests first: most entries fail them (spheres out of reach, or pairs
+            // another bin reports), and they need only b's position and radius, read side by side;
+            // b's owner and family are looked up for the rest.
+            const bodyID_t b = a.sphereBins.items[e];
+            // Across a periodic face: b's image nearest to a, in a's frame (the bins the loop visits
+            // are a's box's, unwrapped).
+            const double3 pB = nearestImage(period, pA, s.cache.spherePos[b]);
+            const double rB = (double)s.spheres.radius[b];
+            const bool shared = a.sharedExtraMargin >= 0.0;
+            const bodyID_t oB0 = shared ? 0 : s.spheres.owner[b];
+            const double eB = rB + (shared ? a.margin + a.sharedExtraMargin : marginOf(s, a, oB0));
+            const double reach = eA + eB;
+            const double3 d = pA - pB;
+            if (fabs(d.x) > reach || fabs(d.y) > reach || fabs(d.z) > reach) continue;
+            if (!binOwnsPair(g, loA, make_double3(pB.x - eB, pB.y - eB, pB.z - eB), x, y, z)) continue;
+            if (dot(d, d) >= reach * reach) continue;
+            const bodyID_t oB = shared ? s.spheres.owner[b] : oB0;
+            if (oB == oA || !maskRow[s.owners.family[oB]]) continue;
+            if (nSph < capacity) out[nSph] = b;
+            nSph++;
+        }
+    });
     // 2. Triangle partners, kept behind the spheres for now.
     unsigned int nTri = 0;
     const bodyID_t triBase = s.triangleIdBase();
     if (a.triangleBins.start != nullptr) {  // null without triangles
-        for (int z = bLo[2]; z <= bHi[2]; z++)
-            for (int y = bLo[1]; y <= bHi[1]; y++)
-                for (layerXBins(g, z, bLo[0], bHi[0], xa, xb); xa <= xb; xa++) {
-                    const int x = xa;
-                    const uint64_t bin = binIndex(g, x, y, z);
-                    for (uint32_t e = a.triangleBins.start[bin]; e < a.triangleBins.start[bin + 1]; e++) {
-                        const uint32_t tri = a.triangleBins.items[e];
-                        const bodyID_t oT = s.triangles.owner[tri];
-                        if (!maskRow[s.owners.family[oT]]) continue;
-                        // The triangle's image nearest to a (across a periodic face), in a's frame.
-                        const double3* v0 = &s.cache.triVert[3 * (size_t)tri];
-                        const double3 shift = imageShift(period, pA - v0[0]);
-                        const double3 lo = a.triLo[tri] + shift, hi = a.triHi[tri] + shift;
-                        if (lo.x > pA.x + eA || lo.y > pA.y + eA || lo.z > pA.z + eA || hi.x < loA.x || hi.y < loA.y ||
-                            hi.z < loA.z)
-                            continue;
-                        if (!binOwnsPair(g, loA, lo, x, y, z)) continue;
-                        double3 bary;
-                        const double3 c = closestPointOnTriangle(pA, v0[0] + shift, v0[1] + shift, v0[2] + shift, bary);
-                        if (length(pA - c) >= eA + marginOf(s, a, oT)) continue;
-                        if (nSph + nTri < capacity) out[nSph + nTri] = triBase + tri;
-                        nTri++;
-                    }
-                }
+        forEachBinOf(g, boxA, [&](int x, int y, int z) {
+            const uint64_t bin = binIndex(g, x, y, z);
+            for (uint32_t e = a.triangleBins.start[bin]; e < a.triangleBins.start[bin + 1]; e++) {
+                const uint32_t tri = a.triangleBins.items[e];
+                const bodyID_t oT = s.triangles.owner[tri];
+                if (!maskRow[s.owners.family[oT]]) continue;
+                // The triangle's image nearest to a (across a periodic face), in a's frame.
+                const double3* v0 = &s.cache.triVert[3 * (size_t)tri];
+                const double3 shift = imageShift(period, pA - v0[0]);
+                const double3 lo = a.triLo[tri] + shift, hi = a.triHi[tri] + shift;
+                if (lo.x > hiA.x || lo.y > hiA.y || lo.z > hiA.z || hi.x < loA.x || hi.y < loA.y || hi.z < loA.z)
+                    continue;
+                if (!binOwnsPair(g, loA, lo, x, y, z)) continue;
+                double3 bary;
+                const double3 c = closestPointOnTriangle(pA, v0[0] + shift, v0[1] + shift, v0[2] + shift, bary);
+                if (length(pA - c) >= eA + marginOf(s, a, oT)) continue;
+                if (nSph + nTri < capacity) out[nSph + nTri] = triBase + tri;
+                nTri++;
+            }
+        });
     }
     // 3. Analytical components (few: every one is checked).
     const unsigned int nA = (unsigned int)(s.triangleIdBase() - s.analyticalIdBase());

@@ -116,21 +116,21 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         // the one in use, and the pairs (ids, type) of the outbox kT fills
         // (backend/cuda/CudaDynamics, CudaContactSets, DeviceHistoryMapping).
         contacts = e.pairs * (bytesPerPair(s.contacts, W, false, true) + bytesPerPair(s.contacts, W, false, false) + 9);
-        // kT's snapshot (sphere centres, owner families), the spheres' bin boxes (6 ints), pair
-        // offsets; the bins' entries (an item id each) and starts, from the counting
-        // sort (backend/cuda/CudaKinematics.cpp, Work::detect). (kT on a second GPU also copies the
-        // spheres' owners and radii there, 8 B per sphere not counted.)
-        detection = nS * (24 + 24 + 4) + nO + (size_t)(4.0 * entries) + 4 * (bins + 1);
-        // Triangles, where there are any: their global boxes (2 double3), bin boxes, entries and
-        // their own bins' starts.
-        if (nT) detection += nT * (48 + 24) + (size_t)(4.0 * triEntries) + 4 * (bins + 1);
+        // kT's snapshot (sphere centres, owner families), pair offsets; the bins' entries (an item
+        // id each) and starts, from the counting sort (backend/cuda/CudaKinematics.cpp,
+        // Work::detect; the bins an item covers are computed from its box, not stored). (kT on a
+        // second GPU also copies the spheres' owners and radii there, 8 B per sphere not counted.)
+        detection = nS * (24 + 4) + nO + (size_t)(4.0 * entries) + 4 * (bins + 1);
+        // Triangles, where there are any: their global boxes (2 double3), entries and their own
+        // bins' starts.
+        if (nT) detection += nT * 48 + (size_t)(4.0 * triEntries) + 4 * (bins + 1);
         b[(int)MemoryGroup::STEP_SCRATCH] = 16 * nO;  // step subsets (CudaDynamics: 4 lists of 4 B)
     } else {
         contacts = e.pairs * bytesPerPair(s.contacts, W, true, true) + 8 * (nO + 1);  // + the owners' two starts
-        // The bin boxes (6 ints) and the registry's entries and bins' starts, for spheres and for
-        // triangles (whose global boxes, 2 double3, are kept too) (backend/cpu/ContactDetector).
-        detection = nS * 24 + (size_t)(4.0 * entries) + 4 * bins;
-        if (nT) detection += nT * (48 + 24) + (size_t)(4.0 * triEntries) + 4 * bins;
+        // The registry's entries and bins' starts, for spheres and for triangles (whose global
+        // boxes, 2 double3, are kept too) (backend/cpu/ContactDetector).
+        detection = (size_t)(4.0 * entries) + 4 * bins;
+        if (nT) detection += nT * 48 + (size_t)(4.0 * triEntries) + 4 * bins;
     }
     return e;
 }

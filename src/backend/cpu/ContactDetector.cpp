@@ -7,37 +7,6 @@
 
 namespace deme {
 
-namespace {
-
-// Counting sort of items id(0) .. id(n - 1) into the bins their boxes touch.
-template <class Id>
-void buildBins(BinRegistry& r, const BinGrid& grid, size_t n, Id id) {
-    const size_t nBins = (size_t)grid.numBins();
-    r.start.assign(nBins + 1, 0);
-    auto forEachBin = [&](size_t i, auto&& fn) {
-        int xa, xb;  // a layer's x bins (shifted in a sheared cell's image layers: layerXBins)
-        for (int32_t z = r.lo[3 * i + 2]; z <= r.hi[3 * i + 2]; z++)
-            for (int32_t y = r.lo[3 * i + 1]; y <= r.hi[3 * i + 1]; y++)
-                for (layerXBins(grid, z, r.lo[3 * i + 0], r.hi[3 * i + 0], xa, xb); xa <= xb; xa++)
-                    fn((size_t)binIndex(grid, xa, y, z));
-    };
-    for (size_t k = 0; k < n; k++) forEachBin(id(k), [&](size_t b) { r.start[b + 1]++; });
-    for (size_t b = 0; b < nBins; b++) r.start[b + 1] += r.start[b];
-    r.entries.resize(r.start[nBins]);
-    std::vector<uint32_t> fill(r.start.begin(), r.start.end() - 1);
-    for (size_t k = 0; k < n; k++) forEachBin(id(k), [&](size_t b) { r.entries[fill[b]++] = (uint32_t)id(k); });
-}
-
-}  // namespace
-
-void BinRegistry::build(const BinGrid& grid, size_t n) {
-    buildBins(*this, grid, n, [](size_t k) { return k; });
-}
-
-void BinRegistry::build(const BinGrid& grid, const bodyID_t* ids, size_t n) {
-    buildBins(*this, grid, n, [ids](size_t k) { return (size_t)ids[k]; });
-}
-
 void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double margin, const uint8_t* familyMask,
                              const float* familyExtraMargin, DetectedContacts& out, double& binningSeconds,
                              double& searchSeconds) {
@@ -54,30 +23,15 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
     auto sphereAt = [searched](size_t k) { return searched ? (size_t)searched[k] : k; };
 
     // 1. Every geometry, enlarged by its margin, is registered in each bin its box touches.
-    m_spheres.resize(nS);
-#pragma omp parallel for schedule(static) if (nSearched > PARALLEL_MIN_ITEMS)
-    for (size_t k = 0; k < nSearched; k++) {
-        const size_t i = sphereAt(k);
-        double3 lo, hi;
-        sphereBox(s, args, i, lo, hi);
-        storeBinBox(binBox(grid, lo, hi), i, m_spheres.lo.data(), m_spheres.hi.data());
-    }
-    if (dormant)
-        m_spheres.build(grid, searched, nSearched);
-    else
-        m_spheres.build(grid, nS);
+    m_spheres.build(grid, searched, nSearched, [&](size_t i) { return sphereBinBox(s, args, i); });
     m_triLo.resize(nT);
     m_triHi.resize(nT);
-    m_triangles.resize(nT);
-    for (size_t t = 0; t < nT; t++) {
-        triangleBox(s, args, t, m_triLo[t], m_triHi[t]);
-        storeBinBox(binBox(grid, m_triLo[t], m_triHi[t]), t, m_triangles.lo.data(), m_triangles.hi.data());
-    }
-    m_triangles.build(grid, nT);
-    args.sphereBins = m_spheres.view();
-    if (nT) args.triangleBins = m_triangles.view();
+    for (size_t t = 0; t < nT; t++) triangleBox(s, args, t, m_triLo[t], m_triHi[t]);
     args.triLo = m_triLo.data();
     args.triHi = m_triHi.data();
+    m_triangles.build(grid, nullptr, nT, [&](size_t t) { return triangleBinBox(args, t); });
+    args.sphereBins = m_spheres.view();
+    if (nT) args.triangleBins = m_triangles.view();
     const DormantBinsView dormantBins = m_dormant.view();
     const auto t1 = std::chrono::steady_clock::now();
     binningSeconds += std::chrono::duration<double>(t1 - t0).count();

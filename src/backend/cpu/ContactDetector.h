@@ -22,19 +22,31 @@ struct DetectedContacts {
 
 // Items registered in the bins their boxes touch (counting sort by bin).
 struct BinRegistry {
-    std::vector<int32_t> lo, hi;  // 3 bin coordinates per item
     std::vector<uint32_t> start, entries;
-    void resize(size_t n) {
-        lo.resize(3 * n);
-        hi.resize(3 * n);
-    }
-    // Stable in item order, so each bin lists its items in increasing id.
-    void build(const BinGrid& grid, size_t n);
-    // The same for the items ids[0, n) only (their lo/hi at their own ids).
-    void build(const BinGrid& grid, const bodyID_t* ids, size_t n);
-    BinsView view() const { return BinsView{lo.data(), hi.data(), start.data(), entries.data()}; }
-    size_t bytes() const { return vectorBytes(lo) + vectorBytes(hi) + vectorBytes(start) + vectorBytes(entries); }
+    // Items ids[0, n) (0 .. n - 1 if ids is null), each in the bins of box(i) (a BinBox), stable in
+    // item order, so each bin lists its items in increasing id. The boxes are computed twice (count,
+    // then fill) rather than stored.
+    template <class Box>
+    void build(const BinGrid& grid, const bodyID_t* ids, size_t n, Box&& box);
+    BinsView view() const { return BinsView{start.data(), entries.data()}; }
+    size_t bytes() const { return vectorBytes(start) + vectorBytes(entries); }
 };
+
+template <class Box>
+void BinRegistry::build(const BinGrid& grid, const bodyID_t* ids, size_t n, Box&& box) {
+    const size_t nBins = (size_t)grid.numBins();
+    start.assign(nBins + 1, 0);
+    auto id = [ids](size_t k) { return ids ? (size_t)ids[k] : k; };
+    for (size_t k = 0; k < n; k++)
+        forEachBinOf(grid, box(id(k)), [&](int x, int y, int z) { start[binIndex(grid, x, y, z) + 1]++; });
+    for (size_t b = 0; b < nBins; b++) start[b + 1] += start[b];
+    entries.resize(start[nBins]);
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t k = 0; k < n; k++) {
+        const size_t i = id(k);
+        forEachBinOf(grid, box(i), [&](int x, int y, int z) { entries[fill[binIndex(grid, x, y, z)]++] = (uint32_t)i; });
+    }
+}
 
 class ContactDetector {
   public:

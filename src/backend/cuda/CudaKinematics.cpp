@@ -48,7 +48,6 @@ void onDevice(int device, int back, F&& f) {
 // A kind of items' bins (deme_bin_count and what follows it in kernels/Detection.cu): per item its
 // box of bins; per bin its first entry (numBins + 2, the last the entries' count); the entries.
 struct DeviceBins {
-    DeviceBuffer<int> lo, hi;
     DeviceBuffer<unsigned int> start, items;
 };
 
@@ -63,7 +62,7 @@ struct CudaKinematics::Work {
     const DeviceState* shared = nullptr;
     Stream stream = nullptr;
     CudaModule module;
-    CudaKernel kSphereBoxes, kTriBoxes, kBinCount, kBinScatter, kBinSort, kPairSearch;
+    CudaKernel kTriBoxes, kBinCount, kBinScatter, kBinSort, kPairSearch;
     DevicePrimitives prim;
     DeviceDormantRegistry dormant;  // the active box: dormant spheres registered once
     // Static geometry (a copy of Geometry).
@@ -185,50 +184,39 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
 
     // 1. Bins of every geometry enlarged by its margin: of items ids[0, n) (all `items` if null), by
     // a counting sort (kernels/Detection.cu, deme_bin_count): 4 bytes per entry and per bin.
-    auto binItems = [&](DeviceBins& b, unsigned int items, const bodyID_t* ids, unsigned int n, auto&& boxes) {
-        b.lo.resizeDiscarding(3 * (size_t)items);
-        b.hi.resizeDiscarding(3 * (size_t)items);
+    auto binItems = [&](DeviceBins& b, BinnedKind kind, const bodyID_t* ids, unsigned int n) {
         b.start.resizeDiscarding(numBins + 2);
         b.start.zeroAsync(stream);
-        if (n) {
-            boxes();
-            launch(kBinCount, blocksFor(n, THREADS), THREADS, 0, stream, args.grid, ids, n, (const int*)b.lo.data(),
-                   (const int*)b.hi.data(), b.start.data());
-        }
+        if (n)
+            launch(kBinCount, blocksFor(n, THREADS), THREADS, 0, stream, v, args, (unsigned int)kind, ids, n,
+                   b.start.data());
         prim.exclusiveSum(b.start.data(), b.start.data(), numBins + 2, stream);
         const unsigned int entries = readCount(b.start, numBins + 1);
         b.items.resizeDiscarding(entries);
         if (entries) {
-            launch(kBinScatter, blocksFor(n, THREADS), THREADS, 0, stream, args.grid, ids, n, (const int*)b.lo.data(),
-                   (const int*)b.hi.data(), b.start.data(), b.items.data());
+            launch(kBinScatter, blocksFor(n, THREADS), THREADS, 0, stream, v, args, (unsigned int)kind, ids, n,
+                   b.start.data(), b.items.data());
             launch(kBinSort, blocksFor(numBins, THREADS), THREADS, 0, stream, (const unsigned int*)b.start.data(),
                    (unsigned long long)numBins, b.items.data());
         }
     };
-    binItems(sphereBins, nS, ids, nSearched, [&] {
-        launch(kSphereBoxes, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, ids, nSearched,
-               sphereBins.lo.data(), sphereBins.hi.data());
-    });
+    binItems(sphereBins, BINNED_SPHERES, ids, nSearched);
     triLo.resizeDiscarding(nT);
     triHi.resizeDiscarding(nT);
+    args.triLo = triLo.data();
+    args.triHi = triHi.data();
     // No triangles, no bins for them (and no host round trip to size them).
-    if (nT)
-        binItems(triBins, nT, (const bodyID_t*)nullptr, nT, [&] {
-            launch(kTriBoxes, blocksFor(nT, THREADS), THREADS, 0, stream, v, args, triLo.data(), triHi.data(),
-                   triBins.lo.data(), triBins.hi.data());
-        });
+    if (nT) {
+        launch(kTriBoxes, blocksFor(nT, THREADS), THREADS, 0, stream, v, args, triLo.data(), triHi.data());
+        binItems(triBins, BINNED_TRIANGLES, (const bodyID_t*)nullptr, nT);
+    }
     synchronize(stream);
     const double t1 = now();
     r.binningSeconds = t1 - t0;
 
     // 2. Pair search: count, offsets, fill.
-    args.sphereBins =
-        BinsView{sphereBins.lo.data(), sphereBins.hi.data(), sphereBins.start.data(), sphereBins.items.data()};
-    if (nT)
-        args.triangleBins =
-            BinsView{triBins.lo.data(), triBins.hi.data(), triBins.start.data(), triBins.items.data()};
-    args.triLo = triLo.data();
-    args.triHi = triHi.data();
+    args.sphereBins = BinsView{sphereBins.start.data(), sphereBins.items.data()};
+    if (nT) args.triangleBins = BinsView{triBins.start.data(), triBins.items.data()};
     pairOffset.resizeDiscarding(nSearched + 1);
     pairOffset.zeroAsync(stream);
     if (nSearched)
@@ -409,8 +397,7 @@ void CudaKinematics::run() {
         const CudaCompileResult c = compileCudaSource("Initialize", path, embeddedKernelText(path), opt);
         // A module is loaded per GPU: this one is kT's.
         w->module = CudaModule("Initialize", c.image);
-        w->kSphereBoxes = w->module.kernel("deme_sphere_bin_boxes");
-        w->kTriBoxes = w->module.kernel("deme_triangle_bin_boxes");
+        w->kTriBoxes = w->module.kernel("deme_triangle_boxes");
         w->kBinCount = w->module.kernel("deme_bin_count");
         w->kBinScatter = w->module.kernel("deme_bin_scatter");
         w->kBinSort = w->module.kernel("deme_bin_sort");

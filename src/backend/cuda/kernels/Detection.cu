@@ -15,32 +15,17 @@ __device__ inline size_t globalIndex() { return (size_t)blockIdx.x * blockDim.x 
 
 }  // namespace
 
-// Sphere ids[k]'s box (at its sphere id).
-extern "C" __global__ void deme_sphere_bin_boxes(StateView s, DetectionArgs a, const bodyID_t* ids, unsigned int n,
-                                                 int* binLo, int* binHi) {
-    const size_t k = globalIndex();
-    if (k >= n) return;
-    const size_t i = ids ? (size_t)ids[k] : k;
-    double3 lo, hi;
-    sphereBox(s, a, i, lo, hi);
-    storeBinBox(binBox(a.grid, lo, hi), i, binLo, binHi);
-}
-
-extern "C" __global__ void deme_triangle_bin_boxes(StateView s, DetectionArgs a, double3* triLo, double3* triHi,
-                                                   int* binLo, int* binHi) {
+// Triangle t's enlarged box (its bins follow from it: triangleBinBox).
+extern "C" __global__ void deme_triangle_boxes(StateView s, DetectionArgs a, double3* triLo, double3* triHi) {
     const size_t t = globalIndex();
     if (t >= s.numTriangles) return;
     triangleBox(s, a, t, triLo[t], triHi[t]);
-    storeBinBox(binBox(a.grid, triLo[t], triHi[t]), t, binLo, binHi);
 }
 
-// The bins an item's box covers, in (z, y, x) order: f(bin) for each.
-template <class F>
-__device__ inline void forEachBinOfBox(const BinGrid& g, const int* binLo, const int* binHi, size_t i, F&& f) {
-    int xa, xb;  // a layer's x bins (shifted in a sheared cell's image layers: layerXBins)
-    for (int z = binLo[3 * i + 2]; z <= binHi[3 * i + 2]; z++)
-        for (int y = binLo[3 * i + 1]; y <= binHi[3 * i + 1]; y++)
-            for (layerXBins(g, z, binLo[3 * i], binHi[3 * i], xa, xb); xa <= xb; xa++) f(binIndex(g, xa, y, z));
+// The bins item i of a kind covers: spheres' from their boxes, computed (not stored: 24 bytes per
+// sphere), triangles' from the boxes deme_triangle_boxes stored in a.triLo, a.triHi.
+__device__ inline BinBox binnedBox(const StateView& s, const DetectionArgs& a, unsigned int kind, size_t i) {
+    return kind == BINNED_SPHERES ? sphereBinBox(s, a, i) : triangleBinBox(a, i);
 }
 
 // The bins' item lists by a counting sort, with no per-entry keys (docs/memory.md): `start` has
@@ -50,19 +35,24 @@ __device__ inline void forEachBinOfBox(const BinGrid& g, const int* binLo, const
 // each of its bins by an atomic add on start[bin + 1], which ends at the bin's end, the next bin's
 // first entry: start[0, numBins] are then every bin's first entry and the end. 4. deme_bin_sort:
 // each bin's items in increasing id (the scatter's order is the atomics'), as the searches expect.
-extern "C" __global__ void deme_bin_count(BinGrid g, const bodyID_t* ids, unsigned int n, const int* binLo,
-                                          const int* binHi, unsigned int* start) {
+extern "C" __global__ void deme_bin_count(StateView s, DetectionArgs a, unsigned int kind, const bodyID_t* ids,
+                                          unsigned int n, unsigned int* start) {
     const size_t k = globalIndex();
     if (k >= n) return;
-    forEachBinOfBox(g, binLo, binHi, ids ? (size_t)ids[k] : k, [&](uint64_t bin) { atomicAdd(&start[bin + 1], 1u); });
+    const BinGrid& g = a.grid;
+    forEachBinOf(g, binnedBox(s, a, kind, ids ? (size_t)ids[k] : k),
+                 [&](int x, int y, int z) { atomicAdd(&start[binIndex(g, x, y, z) + 1], 1u); });
 }
 
-extern "C" __global__ void deme_bin_scatter(BinGrid g, const bodyID_t* ids, unsigned int n, const int* binLo,
-                                            const int* binHi, unsigned int* start, unsigned int* items) {
+extern "C" __global__ void deme_bin_scatter(StateView s, DetectionArgs a, unsigned int kind, const bodyID_t* ids,
+                                            unsigned int n, unsigned int* start, unsigned int* items) {
     const size_t k = globalIndex();
     if (k >= n) return;
+    const BinGrid& g = a.grid;
     const size_t i = ids ? (size_t)ids[k] : k;
-    forEachBinOfBox(g, binLo, binHi, i, [&](uint64_t bin) { items[atomicAdd(&start[bin + 1], 1u)] = (unsigned int)i; });
+    forEachBinOf(g, binnedBox(s, a, kind, i), [&](int x, int y, int z) {
+        items[atomicAdd(&start[binIndex(g, x, y, z) + 1], 1u)] = (unsigned int)i;
+    });
 }
 
 // One thread per bin: an insertion sort (bins hold a few items; the grid's sizing rule keeps them so).
