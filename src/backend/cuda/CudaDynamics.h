@@ -89,13 +89,17 @@ class CudaDynamics : public DynamicsBackend {
     std::string m_name;
     Stream m_stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
     CudaModule m_dynamicsModule, m_exchangeModule;
-    CudaKernel kBeginBatch, kCopyDoubles, kResolveMesh, kIntegrate, kPlaceAndFinish, kMaxTravelSince, kSteppedFlags,
-        kSteppedScatter, kMarkContactOwners, kScatterFlagged, kFlagListed;
+    CudaKernel kBeginBatch, kCopyDoubles, kResolveMesh, kIntegrate, kPlaceAndFinish, kIntegrateAndPlace,
+        kMaxTravelSince, kSteppedFlags, kSteppedScatter, kMarkContactOwners, kScatterFlagged, kFlagListed;
     // The batch's control block (dynamics/StepBatch.h) on the device, and its pinned host copy.
     DeviceBuffer<StepBatchControl> m_control;
     StepBatchControl* m_controlHost = nullptr;
-    DeviceBuffer<unsigned int> m_blocksDone;  // deme_place_and_finish's count of finished blocks
+    DeviceBuffer<unsigned int> m_blocksDone;  // the step's last kernel's count of finished blocks
     DeviceBuffer<float> m_componentSpeed;     // and its analytical components' surface speeds
+    // Owner o's spheres are [start[o], start[o + 1]): for deme_integrate_and_place, which a step of
+    // a scene without triangles uses unless DEME_CUDA_FUSED_STEP is "0" (m_fusedStep).
+    DeviceBuffer<uint32_t> m_ownerSphereStart;
+    bool m_fusedStep = true;
     // One step's launches, without and with stored contact forces, and their graphs: plain steps
     // go in graphs of m_graphSteps steps (StepGraph.h), the rest of a batch one step a graph.
     LaunchList m_plainStep, m_storingStep;

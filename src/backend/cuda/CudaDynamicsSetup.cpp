@@ -18,11 +18,13 @@ CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(devi
     if (const char* p = std::getenv("DEME_CUDA_PROFILE_FROM_STEP")) m_profileFromStep = std::strtoull(p, nullptr, 10);
     m_useGraphs = stepGraphsEnabled();
     m_overlapLaunches = overlappedLaunchesEnabled() && useDevice("Initialize", m_device).major >= 9;
+    m_fusedStep = fusedStepEnabled();
     m_graphSteps = stepsPerGraph();
     // Both contact sets' fields, their per-contact wildcards (the history) included.
     for (DeviceContacts& set : m_contacts)
         forEachContactField(set, set, [](auto& field, auto&, FieldRole) { field.setGroup(MemoryGroup::CONTACTS); });
     m_baseline.setGroup(MemoryGroup::OWNER_STATE);
+    m_ownerSphereStart.setGroup(MemoryGroup::GEOMETRY);
     m_orderBaseline.setGroup(MemoryGroup::OWNER_STATE);
 }
 
@@ -50,6 +52,7 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     kResolveMesh = m_dynamicsModule.kernel("deme_resolve_mesh_contacts");
     kIntegrate = m_dynamicsModule.kernel("deme_integrate");
     kPlaceAndFinish = m_dynamicsModule.kernel("deme_place_and_finish");
+    kIntegrateAndPlace = m_dynamicsModule.kernel("deme_integrate_and_place");
     kSteppedFlags = m_dynamicsModule.kernel("deme_stepped_flags");
     kSteppedScatter = m_dynamicsModule.kernel("deme_stepped_scatter");
     kMarkContactOwners = m_dynamicsModule.kernel("deme_mark_contact_owners");

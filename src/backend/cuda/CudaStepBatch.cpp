@@ -60,6 +60,15 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     // Contact forces were summed onto every owner (dormant ones too: trackers read them); only the
     // stepped owners are integrated and placed.
     const unsigned int tStepped = stepThreadsFor(nStepped);
+    if (m_fusedStep && nT == 0) {
+        // At least one block: it also ends the step.
+        list.kernel(kIntegrateAndPlace, std::max(1u, blocksFor(nStepped, tStepped)), tStepped, 0, m_view,
+                    m_control.data(), (const FamilyStepMotion*)m_motion.data(), consts,
+                    (const double*)m_baseline.data(), ownerIds, nStepped, (const uint32_t*)m_ownerSphereStart.data(),
+                    m_numClumps, m_numAnalyticalOwners, m_domainDiagonal, red, m_componentSpeed.data(),
+                    m_blocksDone.data());
+        return;
+    }
     list.kernel(kIntegrate, blocksFor(nStepped, tStepped), tStepped, 0, m_view, m_control.data(),
                 (const FamilyStepMotion*)m_motion.data(), consts, (const double*)m_baseline.data(), ownerIds, nStepped,
                 red);
@@ -125,8 +134,10 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
 }
 
 std::string CudaDynamics::launchReport() const {
-    const std::string overlap = m_overlapLaunches ? ", each kernel overlapping the drain of the one before"
-                                                  : ", each kernel after the one before has ended";
+    const std::string overlap =
+        std::string(m_overlapLaunches ? ", each kernel overlapping the drain of the one before"
+                                      : ", each kernel after the one before has ended") +
+        (m_fusedStep && m_view.numTriangles == 0 ? ", integration and placement in one kernel" : "");
     if (!m_useGraphs) return "steps launched kernel by kernel (DEME_CUDA_GRAPHS=0)" + overlap;
     const unsigned long long made = m_plainGraph.captures() + m_plainGraphs.captures() + m_storingGraph.captures();
     const unsigned long long updated = m_plainGraph.updates() + m_plainGraphs.updates() + m_storingGraph.updates();

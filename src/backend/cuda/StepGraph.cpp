@@ -23,6 +23,11 @@ bool overlappedLaunchesEnabled() {
     return !(v && std::strcmp(v, "0") == 0);
 }
 
+bool fusedStepEnabled() {
+    const char* v = std::getenv("DEME_CUDA_FUSED_STEP");
+    return !(v && std::strcmp(v, "0") == 0);
+}
+
 StepGraph::~StepGraph() {
     if (m_exec && cudaGraphExecDestroy(static_cast<cudaGraphExec_t>(m_exec)) != cudaSuccess) cudaGetLastError();
 }

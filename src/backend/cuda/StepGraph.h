@@ -48,6 +48,9 @@ bool stepGraphsEnabled();
 // Whether a step's kernels may overlap the drain of the kernel before them where the GPU allows it
 // (compute capability 9.0+; LaunchList::overlapLaunches): DEME_CUDA_OVERLAP_LAUNCHES unset or not "0".
 bool overlappedLaunchesEnabled();
+// Whether a step of a scene without triangles integrates and places in one kernel
+// (deme_integrate_and_place): DEME_CUDA_FUSED_STEP unset or not "0".
+bool fusedStepEnabled();
 // How many steps one graph launch queues (DEME_CUDA_GRAPH_STEPS, default 8; 1 is a graph per step).
 // Inline, without CUDA: a library built without the backend parses (and tests) it the same way.
 inline unsigned int stepsPerGraph() {

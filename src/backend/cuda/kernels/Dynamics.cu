@@ -135,21 +135,21 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
 DEME_BUILT_IN_FORCE_PASSES(, )
 DEME_BUILT_IN_FORCE_PASSES(_r64, __maxnreg__(64))
 
-// Integration of owners ids[0, n) (every owner if ids is null; the active box leaves fixed owners at
-// rest out, deme_stepped_flags), with the step's maxima and first fault combined per warp. An owner
-// whose rotation this step was too large for the series step takes the exact (scalar) step at once
-// (rare; the CPU does these in a sweep of their own so that its main sweep vectorises).
-extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, const FamilyStepMotion* motion,
-                                          StepConstants consts, const double* travelBaseline, const bodyID_t* ids,
-                                          unsigned int n, StepReduction* red) {
-    beginDependentKernel();
-    if (ctl->stop) return;
+// Owner ids[k]'s step (every owner if ids is null; the active box leaves fixed owners at rest out,
+// deme_stepped_flags), the first part of the two integration kernels below, with the step's maxima
+// and first fault combined per warp. An owner whose rotation this step was too large for the series
+// step takes the exact (scalar) step at once (rare; the CPU does these in a sweep of their own so
+// that its main sweep vectorises). Returns the owner stepped, or -1 for a thread past the end.
+__device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, const FamilyStepMotion* motion,
+                                           const StepConstants& consts, const double* travelBaseline,
+                                           const bodyID_t* ids, unsigned int n, StepReduction* red) {
     const size_t k = globalIndex();
     // The force phase has ended (the kernels of a stream run one after the other).
     if (k == 0) ctl->forcePhaseNs += deviceClockNs() - ctl->forcePhaseStartNs;
     double travel = 0.0;
     float speed = 0.f;
     unsigned int fault = NO_FAULT, large = 0u;
+    long long stepped = -1;
     if (k < n) {
         const size_t o = ids ? (size_t)ids[k] : k;
         const OwnerStepResult r = stepOwner(s, o, motion[s.owners.family[o]], consts, travelBaseline[o]);
@@ -159,6 +159,7 @@ extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, co
         if (r.flags & STEP_FAULTS) fault = (unsigned int)o;
         large = (r.flags & STEP_LARGE_ROTATION) ? 1u : 0u;
         if (large) finishLargeRotation(s, o, consts.h);
+        stepped = (long long)o;
     }
     for (int off = 16; off > 0; off >>= 1) {
         travel = fmax(travel, __shfl_down_sync(0xFFFFFFFFu, travel, off));
@@ -172,14 +173,42 @@ extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, co
         if (fault != NO_FAULT) atomicMin(&red->firstFault, fault);
         if (large) red->anyLargeRotation = 1u;
     }
+    return stepped;
 }
 
-// A step's last kernel: the cached poses after integration -- spheres ids[0, numSpheres) of the owners
-// stepped (every sphere if ids is null), then every triangle of an owner that moved, one thread per
-// item; block 0 also steps the analytical owners (stepAnalyticalOwners, `componentSpeed` one float
-// per analytical component) -- and the end of the step (finishStep), by the block that finishes
-// last (`blocksDone` counts them, and is zero again after the kernel). The end needs nothing of the
-// poses, so one kernel does both; the block that sets ctl->stop is the last one to read it.
+// Whether this block is the grid's last to get here (`blocksDone` counts them, and is zero again
+// once the last has). Called by every thread of the block; each block's global writes before it are
+// visible to the last block after it.
+__device__ inline bool lastBlockToFinish(unsigned int* blocksDone) {
+    __shared__ bool lastBlock;
+    __syncthreads();
+    if (threadIdx.x == 0) {
+        __threadfence();
+        lastBlock = atomicAdd(blocksDone, 1u) == gridDim.x - 1;
+    }
+    __syncthreads();
+    if (!lastBlock) return false;
+    if (threadIdx.x == 0) *blocksDone = 0u;
+    __threadfence();  // between seeing the count and reading what the other blocks wrote
+    return true;
+}
+
+// Integration of the stepped owners, one thread each (integrateOwner); the spheres are placed by
+// deme_place_and_finish after it.
+extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, const FamilyStepMotion* motion,
+                                          StepConstants consts, const double* travelBaseline, const bodyID_t* ids,
+                                          unsigned int n, StepReduction* red) {
+    beginDependentKernel();
+    if (ctl->stop) return;
+    integrateOwner(s, ctl, motion, consts, travelBaseline, ids, n, red);
+}
+
+// A step's last kernel after deme_integrate: the cached poses after integration -- spheres ids[0,
+// numSpheres) of the owners stepped (every sphere if ids is null), then every triangle of an owner
+// that moved, one thread per item; block 0 also steps the analytical owners (stepAnalyticalOwners,
+// `componentSpeed` one float per analytical component) -- and the end of the step (finishStep), by
+// the block that finishes last. The end needs nothing of the poses, so one kernel does both; the
+// block that sets ctl->stop is the last one to read it.
 extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* ctl, const bodyID_t* ids,
                                                  unsigned int numSpheres, unsigned int numTriangles,
                                                  unsigned int firstAnalyticalOwner, unsigned int numAnalyticalOwners,
@@ -197,17 +226,32 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
     if (blockIdx.x == 0)
         stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, h, domainDiagonal,
                              travelBaseline, red);
-    __shared__ bool lastBlock;
-    __syncthreads();
-    if (threadIdx.x == 0) {
-        __threadfence();
-        lastBlock = atomicAdd(blocksDone, 1u) == gridDim.x - 1;
-    }
-    __syncthreads();
-    if (!lastBlock || threadIdx.x != 0) return;
-    *blocksDone = 0u;
-    __threadfence();  // between seeing the count and reading the sums (each block fenced its own before counting)
-    finishStep(ctl, red);
+    if (lastBlockToFinish(blocksDone) && threadIdx.x == 0) finishStep(ctl, red);
+}
+
+// Integration and placement in one kernel, for scenes without triangles (whose placement waits for
+// every owner): the thread that steps an owner places its spheres (ownerSphereStart: owner o's are
+// [start[o], start[o + 1])), and the block that finishes last steps the analytical owners' components
+// (every owner's pose is then in place) and ends the step. One kernel boundary fewer than
+// deme_integrate and deme_place_and_finish, and the spheres read their owner's new pose where it was
+// just written.
+extern "C" __global__ void deme_integrate_and_place(StateView s, StepBatchControl* ctl,
+                                                    const FamilyStepMotion* motion, StepConstants consts,
+                                                    const double* travelBaseline, const bodyID_t* ids, unsigned int n,
+                                                    const uint32_t* ownerSphereStart, unsigned int firstAnalyticalOwner,
+                                                    unsigned int numAnalyticalOwners, double domainDiagonal,
+                                                    StepReduction* red, float* componentSpeed,
+                                                    unsigned int* blocksDone) {
+    beginDependentKernel();
+    if (ctl->stop) return;
+    const long long o = integrateOwner(s, ctl, motion, consts, travelBaseline, ids, n, red);
+    if (o >= 0)
+        for (uint32_t i = ownerSphereStart[o], end = ownerSphereStart[o + 1]; i < end; i++) placeSphere(s, i);
+    if (!lastBlockToFinish(blocksDone)) return;
+    stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h, domainDiagonal,
+                         travelBaseline, red);
+    __syncthreads();  // the analytical owners' travel in the reduction before the tally
+    if (threadIdx.x == 0) finishStep(ctl, red);
 }
 
 // Which owners and spheres a step integrates and places (backend/cpu/Integration.h,
