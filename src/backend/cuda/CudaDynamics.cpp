@@ -33,7 +33,11 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
     m_motion.resizeDiscarding(NUM_FAMILIES);
     m_reduction.resizeDiscarding(1);
     m_componentSpeed.resizeDiscarding(std::max<size_t>(1, s.analytical.size()));
-    uploadResized(m_ownerSphereStart, s.ownerSphereStart, st);
+    // Only the fused step reads the owners' sphere ranges (4 B per owner).
+    if (m_fusedStep && s.triangles.empty())
+        uploadResized(m_ownerSphereStart, s.ownerSphereStart, st);
+    else
+        m_ownerSphereStart.release();
     m_maxTravelBits.resizeDiscarding(1);
     synchronize(st);
     // The model's tables and wildcards and the persistence rules (copied on the legacy stream and
