@@ -34,7 +34,7 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
     m_reduction.resizeDiscarding(1);
     m_componentSpeed.resizeDiscarding(std::max<size_t>(1, s.analytical.size()));
     // Only the fused step reads the owners' sphere ranges (4 B per owner).
-    if (m_fusedStep && s.triangles.empty())
+    if (m_fusedStep && s.triangles.size() == 0)
         uploadResized(m_ownerSphereStart, s.ownerSphereStart, st);
     else
         m_ownerSphereStart.release();
