@@ -161,6 +161,7 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
     namedTrackerLoadFields(s.trackerLoads, [&](const char* name, const auto& v, FieldRole) {
         require(v.size() == (trackerLoads ? nO : 0), std::string("trackerLoads.") + name + " does not fit its flag");
     });
+    if (!trackerLoads) s.trackerLoads.release();  // loads pending before the read held storage
     namedSphereFields(s.spheres, [&](const char* name, const auto& v, FieldRole) {
         require(v.size() == nS, std::string("spheres.") + name + " is not one value per sphere");
     });

@@ -63,13 +63,16 @@ DEME_HD_INLINE double marginOf(const S& s, const DetectionArgs& a, bodyID_t owne
     return a.margin + (double)a.familyExtraMargin[s.owners.family[owner]];
 }
 
+// The box of half-width e about p: a sphere's, enlarged radius e, as registration and search take it.
+DEME_HD_INLINE void boxAround(const double3& p, double e, double3& lo, double3& hi) {
+    lo = make_double3(p.x - e, p.y - e, p.z - e);
+    hi = make_double3(p.x + e, p.y + e, p.z + e);
+}
+
 // Sphere i's box, enlarged by its margin.
 template <class S>
 DEME_HD_INLINE void sphereBox(const S& s, const DetectionArgs& a, size_t i, double3& lo, double3& hi) {
-    const double e = (double)s.spheres.radius[i] + marginOf(s, a, s.spheres.owner[i]);
-    const double3 p = s.cache.spherePos[i];
-    lo = make_double3(p.x - e, p.y - e, p.z - e);
-    hi = make_double3(p.x + e, p.y + e, p.z + e);
+    boxAround(s.cache.spherePos[i], (double)s.spheres.radius[i] + marginOf(s, a, s.spheres.owner[i]), lo, hi);
 }
 
 // The bins sphere i's enlarged box covers: registration and search compute them alike.
@@ -169,9 +172,9 @@ DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, b
     const double3 pA = s.cache.spherePos[sa];
     const bodyID_t oA = s.spheres.owner[sa];
     const double eA = (double)s.spheres.radius[sa] + marginOf(s, a, oA);
-    // A's box and its bins, as its registration computed them (sphereBox's expression).
+    // A's box and its bins, as its registration computed them (sphereBox).
     double3 loA, hiA;
-    sphereBox(s, a, sa, loA, hiA);
+    boxAround(pA, eA, loA, hiA);
     const BinBox boxA = binBox(g, loA, hiA);
     const uint8_t* maskRow = a.familyMask + (size_t)s.owners.family[oA] * NUM_FAMILIES;
     // 1. Sphere partners: spheres b > a of another owner (each pair once, from its lower sphere).

@@ -45,8 +45,9 @@ void onDevice(int device, int back, F&& f) {
 }
 
 // Items registered in bins (spheres or triangles).
-// A kind of items' bins (deme_bin_count and what follows it in kernels/Detection.cu): per item its
-// box of bins; per bin its first entry (numBins + 2, the last the entries' count); the entries.
+// A kind of items' bins (deme_bin_count and what follows it in kernels/Detection.cu): per bin its
+// first entry (numBins + 2, the last the entries' count); the entries. (Which bins an item covers
+// is computed from its box where needed, not stored.)
 struct DeviceBins {
     DeviceBuffer<unsigned int> start, items;
 };
