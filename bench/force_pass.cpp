@@ -17,6 +17,7 @@
 #include "parallel/Parallel.h"
 #include "backend/cpu/CpuForceModel.h"
 #include "backend/cpu/StandaloneContactSet.h"
+#include "state/SphereLayoutChoice.h"
 
 using namespace deme;
 using namespace deme_bench;
@@ -79,6 +80,7 @@ std::shared_ptr<DEMForceModel> hertzMindlinAsSnippet() {
 void timeModel(const Scene& scene, const DEMForceModel& model, const char* name, int passes) {
     const ModelLayout layout = resolveModelLayout(model, scene, "force_pass");
     SimState s = assembleScene(scene, layout);
+    chooseSphereLayout(s);  // as Initialize does (DEME_FULL_SPHERE_LAYOUT=1: the full arrays)
     const CpuForceModel active = loadCpuForceModel(layout, "force_pass");
     // The contact set of a detection with a 20 um margin (about a fifth of its pairs apart).
     detectAndInstallContacts(s, 2e-5);

@@ -8,6 +8,7 @@
 #include "physics/ContactInputs.h"
 #include "physics/Periodic.h"
 #include "physics/RigidBody.h"
+#include "state/SphereLayout.h"
 
 namespace deme {
 
@@ -36,7 +37,7 @@ template <class S>
 DEME_HD_INLINE ContactPoint sphereTriangleGeometry(const S& s, bodyID_t a, size_t tri, double3& onTri,
                                                    double3& bary) {
     const double3* v = &s.cache.triVert[3 * tri];
-    const double3 x = s.cache.spherePos[a];
+    const double3 x = sphereCentre(s, a);
     const double3 shift = triangleImageShift(s, tri, x);
     onTri = closestPointOnTriangle(x, v[0] + shift, v[1] + shift, v[2] + shift, bary);
     const double3 nrm = cross(v[1] - v[0], v[2] - v[0]);
@@ -60,7 +61,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type
     const bodyID_t oA = s.spheres.owner[a];
     const bodyID_t oB = geometryOwner(s, type, b);
 
-    in.bodyAPos = k.spherePos[a];
+    in.bodyAPos = sphereCentre(s, a);
     in.ARadius = s.spheres.radius[a];
     in.bodyAMatType = s.spheres.material[a];
     ContactPoint cp;
@@ -70,11 +71,12 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type
     // shifts leave as they are), and in a sheared cell its velocity by imageVelocity.
     double3 shiftB = make_double3(0.0, 0.0, 0.0);
     if (type == SPHERE_SPHERE) {
-        shiftB = imageShift(s.frame.periodic, in.bodyAPos - k.spherePos[b]);
-        in.bodyBPos = k.spherePos[b] + shiftB;
+        const double3 centreB = sphereCentre(s, b);
+        shiftB = imageShift(s.frame.periodic, in.bodyAPos - centreB);
+        in.bodyBPos = centreB + shiftB;
         in.BRadius = s.spheres.radius[b];
         in.bodyBMatType = s.spheres.material[b];
-        offB = k.sphereArm[b];
+        offB = sphereArmOf(s, b);
         cp = sphereSphereContact(in.bodyAPos, in.ARadius, in.bodyBPos, in.BRadius);
     } else if (type == SPHERE_TRIANGLE) {
         const size_t t = b - s.triangleIdBase();
@@ -103,7 +105,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type
     in.overlapDepth = cp.overlap;
     in.ts = ts;
     in.time = time;
-    in.armA = to_float3(in.contactPnt - in.bodyAPos) + k.sphereArm[a];
+    in.armA = to_float3(in.contactPnt - in.bodyAPos) + sphereArmOf(s, a);
     in.armB = to_float3(in.contactPnt - in.bodyBPos) + offB;
     in.AOwnerPos = k.ownerPos[oA];
     in.BOwnerPos = k.ownerPos[oB] + shiftB;

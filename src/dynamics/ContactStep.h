@@ -26,6 +26,7 @@
 #pragma once
 
 #include "dynamics/ContactInputsGather.h"
+#include "state/SphereLayout.h"
 
 namespace deme {
 
@@ -49,8 +50,8 @@ DEME_HD_INLINE bool contactStep(S& s, const Model& model, size_t i, float time, 
     const uint8_t type = SphereSphere ? (uint8_t)SPHERE_SPHERE : c.type[i];
     bool gather = type != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
     if (!Model::kSeesApartPairs && (SphereSphere || type == SPHERE_SPHERE)) {
-        const double3 pA = s.cache.spherePos[c.geomA[i]];
-        const double3 d = pA - nearestImage(s.frame.periodic, pA, s.cache.spherePos[c.geomB[i]]);
+        const double3 pA = sphereCentre(s, c.geomA[i]);
+        const double3 d = pA - nearestImage(s.frame.periodic, pA, sphereCentre(s, c.geomB[i]));
         const double reach = (double)s.spheres.radius[c.geomA[i]] + (double)s.spheres.radius[c.geomB[i]];
         gather = dot(d, d) < reach * reach * (1.0 + 1e-9);
     }

@@ -13,7 +13,9 @@ void updateAnalyticalCache(SimState& s) {
 
 void refreshKinematicCache(SimState& s) {
     KinematicCache& k = s.cache;
-    const size_t n = s.owners.size(), nS = s.spheres.size(), nT = s.triangles.size();
+    const size_t n = s.owners.size(), nT = s.triangles.size();
+    // Spheres that are their owners have no centres or arms of their own (state/SphereLayout.h).
+    const size_t nS = s.spheresAreOwners ? 0 : s.spheres.size();
     k.ownerPos.resize(n);
     k.ownerAngVelGlobal.resize(n);
     k.spherePos.resize(nS);

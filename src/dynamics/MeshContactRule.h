@@ -3,6 +3,7 @@
 #pragma once
 
 #include "dynamics/ContactInputsGather.h"
+#include "state/SphereLayout.h"
 
 namespace deme {
 
@@ -71,7 +72,7 @@ template <class S>
 DEME_HD_INLINE bool resolveSphereMeshContacts(S& s, size_t first, size_t n, MeshCandidate* cand, size_t capacity) {
     auto& c = s.contacts;
     const bodyID_t a = c.geomA[first];
-    const double3 x = s.cache.spherePos[a];
+    const double3 x = sphereCentre(s, a);
     const double r = s.spheres.radius[a];
     const bodyID_t triBase = s.triangleIdBase();
     size_t m = 0;

@@ -162,9 +162,20 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
         require(v.size() == (trackerLoads ? nO : 0), std::string("trackerLoads.") + name + " does not fit its flag");
     });
     if (!trackerLoads) s.trackerLoads.release();  // loads pending before the read held storage
+    // Spheres that are their owners (state/SphereLayout.h) were written without offsets, centres or
+    // arms: the state takes the layout it was written in.
+    s.spheresAreOwners = nS > 0 && s.spheres.relPos.empty();
+    const size_t placed = s.spheresAreOwners ? 0 : nS;  // offsets, centres, arms
     namedSphereFields(s.spheres, [&](const char* name, const auto& v, FieldRole) {
-        require(v.size() == nS, std::string("spheres.") + name + " is not one value per sphere");
+        const bool offsets = static_cast<const void*>(&v) == static_cast<const void*>(&s.spheres.relPos);
+        require(v.size() == (offsets ? placed : nS), std::string("spheres.") + name + " is not one value per sphere");
     });
+    require(s.cache.spherePos.size() == placed && s.cache.sphereArm.size() == placed,
+            "the cached sphere centres do not fit the spheres");
+    if (s.spheresAreOwners) {
+        require(s.numClumps == nS, "spheres without offsets, but not one per clump");
+        for (size_t i = 0; i < nS; i++) require(s.spheres.owner[i] == (bodyID_t)i, "spheres without offsets, but not their owners'");
+    }
     namedAnalyticalFields(s.analytical, [&](const char* name, const auto& v, FieldRole) {
         require(v.size() == nA, std::string("analytical.") + name + " is not one value per component");
     });

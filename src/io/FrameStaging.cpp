@@ -5,6 +5,7 @@
 #include "dynamics/ContactInputsGather.h"
 #include "runtime/Simulation.h"
 #include "runtime/StressMeasure.h"
+#include "state/SphereLayout.h"
 
 namespace deme {
 
@@ -99,12 +100,12 @@ OutputFrame stageSphereFrame(const Simulation& sim) {
         const size_t k = rowOf.empty() ? s.sphereInternalToUser[i] : rowOf[s.sphereInternalToUser[i]];
         const bodyID_t ow = s.spheres.owner[i];
         const float4 q = s.owners.oriQ[ow];
-        putPoint(xyz, k, s.cache.spherePos[i]);
+        putPoint(xyz, k, sphereCentre(s, i));
         r.values<float>()[k] = s.spheres.radius[i];
         const float3 w = rotateToGlobal(q, s.owners.angVel[ow]);
         if (needVel) {
             // A sphere's velocity includes its owner's spin about the owner centre.
-            const float3 v = s.owners.vel[ow] + cross(w, rotateToGlobal(q, s.spheres.relPos[i]));
+            const float3 v = s.owners.vel[ow] + cross(w, rotateToGlobal(q, sphereRelPos(s, i)));
             if (absv) absv->values<float>()[k] = length(v);
             if (vel) put3(*vel, k, v);
         }

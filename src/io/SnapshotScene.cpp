@@ -4,6 +4,7 @@
 
 #include "physics/Quaternion.h"
 #include "runtime/Simulation.h"
+#include "state/SphereLayout.h"
 
 namespace deme {
 
@@ -38,7 +39,7 @@ SnapshotScene stageSnapshotScene(const Simulation& sim, const SnapshotOptions& o
     if (by != By::NONE) scene.value.resize(n);
 #pragma omp parallel for schedule(static) if (n > 4096)
     for (long i = 0; i < n; i++) {
-        const double3 p = s.cache.spherePos[i];
+        const double3 p = sphereCentre(s, i);
         scene.spherePos[i] = make_float3((float)p.x, (float)p.y, (float)p.z);
         scene.sphereRadius[i] = s.spheres.radius[i];
         const bodyID_t ow = s.spheres.owner[i];
@@ -48,7 +49,7 @@ SnapshotScene stageSnapshotScene(const Simulation& sim, const SnapshotOptions& o
             // As the sphere file's absv: the owner's velocity plus its spin about the owner centre.
             const float4 q = s.owners.oriQ[ow];
             const float3 w = rotateToGlobal(q, s.owners.angVel[ow]);
-            scene.value[i] = length(s.owners.vel[ow] + cross(w, rotateToGlobal(q, s.spheres.relPos[i])));
+            scene.value[i] = length(s.owners.vel[ow] + cross(w, rotateToGlobal(q, sphereRelPos(s, i))));
             break;
         }
         case By::HEIGHT: scene.value[i] = (float)p.z; break;

@@ -18,6 +18,7 @@
 #include "kinematics/BinGrid.h"
 #include "physics/ContactGeometry.h"
 #include "physics/Periodic.h"
+#include "state/SphereLayout.h"
 
 namespace deme {
 
@@ -72,7 +73,7 @@ DEME_HD_INLINE void boxAround(const double3& p, double e, double3& lo, double3& 
 // Sphere i's box, enlarged by its margin.
 template <class S>
 DEME_HD_INLINE void sphereBox(const S& s, const DetectionArgs& a, size_t i, double3& lo, double3& hi) {
-    boxAround(s.cache.spherePos[i], (double)s.spheres.radius[i] + marginOf(s, a, s.spheres.owner[i]), lo, hi);
+    boxAround(sphereCentre(s, i), (double)s.spheres.radius[i] + marginOf(s, a, s.spheres.owner[i]), lo, hi);
 }
 
 // The bins sphere i's enlarged box covers: registration and search compute them alike.
@@ -169,7 +170,7 @@ DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, b
                                            unsigned int capacity) {
     const BinGrid& g = a.grid;
     const PeriodicBox& period = s.frame.periodic;
-    const double3 pA = s.cache.spherePos[sa];
+    const double3 pA = sphereCentre(s, sa);
     const bodyID_t oA = s.spheres.owner[sa];
     const double eA = (double)s.spheres.radius[sa] + marginOf(s, a, oA);
     // A's box and its bins, as its registration computed them (sphereBox).
@@ -189,7 +190,7 @@ DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, b
             const bodyID_t b = a.sphereBins.items[e];
             // Across a periodic face: b's image nearest to a, in a's frame (the bins the loop visits
             // are a's box's, unwrapped).
-            const double3 pB = nearestImage(period, pA, s.cache.spherePos[b]);
+            const double3 pB = nearestImage(period, pA, sphereCentre(s, b));
             const double rB = (double)s.spheres.radius[b];
             const bool shared = a.sharedExtraMargin >= 0.0;
             const bodyID_t oB0 = shared ? 0 : s.spheres.owner[b];

@@ -14,6 +14,7 @@
 #pragma once
 
 #include "kinematics/DetectionRules.h"
+#include "state/SphereLayout.h"
 
 namespace deme {
 
@@ -32,7 +33,7 @@ DEME_HD_INLINE bool sphereIsDormant(const S& s, const uint8_t* dormant, size_t i
 // The registry's key of dormant sphere i: the bin that holds its centre.
 template <class S>
 DEME_HD_INLINE uint32_t dormantBinOf(const S& s, const BinGrid& g, size_t i) {
-    const double3 p = s.cache.spherePos[i];
+    const double3 p = sphereCentre(s, i);
     return (uint32_t)binIndex(g, binCoord(g, 0, p.x), binCoord(g, 1, p.y), binCoord(g, 2, p.z));
 }
 
@@ -66,7 +67,7 @@ template <class S>
 DEME_HD_INLINE unsigned int dormantPartners(const S& s, const DetectionArgs& a, const DormantBinsView& d, bodyID_t sa,
                                             bodyID_t* out, unsigned int capacity) {
     const BinGrid& g = a.grid;
-    const double3 pA = s.cache.spherePos[sa];
+    const double3 pA = sphereCentre(s, sa);
     const bodyID_t oA = s.spheres.owner[sa];
     const double eA = (double)s.spheres.radius[sa] + marginOf(s, a, oA);
     const double R = eA + d.maxReach + a.margin;
@@ -87,7 +88,7 @@ DEME_HD_INLINE unsigned int dormantPartners(const S& s, const DetectionArgs& a, 
                 for (uint32_t e = d.start[bin]; e < d.start[last + 1]; e++) {
                     // Distance first (b's position and radius only); owner and family for the rest.
                     const bodyID_t b = d.items[e];
-                    const double3 dd = pA - s.cache.spherePos[b];
+                    const double3 dd = pA - sphereCentre(s, b);
                     const double rB = (double)s.spheres.radius[b];
                     const bodyID_t oB0 = shared ? 0 : s.spheres.owner[b];
                     const double reach = eA + rB + (shared ? a.margin + a.sharedExtraMargin : marginOf(s, a, oB0));

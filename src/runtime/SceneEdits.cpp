@@ -5,6 +5,8 @@
 
 #include <deme/Error.h>
 
+#include "state/SphereLayoutChoice.h"
+
 namespace deme {
 
 namespace {
@@ -68,6 +70,9 @@ void insertClumps(SimState& s, const SimState& part) {
     const bodyID_t userSphereBase = (bodyID_t)s.sphereUserToInternal.size();
     if (s.owners.size() + k >= (size_t(1) << 31) || s.sphereUserToInternal.size() + kS >= (size_t(1) << 31))
         throwError("UpdateClumps", "too many owners or spheres for 32-bit ids");
+    // The new rows come with their offsets: the full sphere arrays for the edit, the layout chosen
+    // again after it (state/SphereLayout.h).
+    expandSphereLayout(s);
 
     // Owners: every field's new rows at `at`; the analytical and mesh owners move up by k.
     forEachOwnerField(s.owners, part.owners, [at](auto& mine, const auto& theirs, FieldRole) {
@@ -116,6 +121,7 @@ void insertClumps(SimState& s, const SimState& part) {
     s.numClumps += k;
     rebuildOwnerRanges(s);
     resizeDerived(s);
+    chooseSphereLayout(s);
 }
 
 RemovedClumps removeClumps(SimState& s, const std::vector<uint8_t>& remove) {
@@ -159,7 +165,10 @@ RemovedClumps removeClumps(SimState& s, const std::vector<uint8_t>& remove) {
     if (!s.trackerLoads.empty())
         forEachTrackerLoadField(s.trackerLoads, s.trackerLoads,
                                 [&](auto& field, auto&, FieldRole) { compact(field, keepOwner); });
-    forEachSphereField(s.spheres, s.spheres, [&](auto& field, auto&, FieldRole) { compact(field, keepSphere); });
+    // (Spheres that are their owners have no offsets: state/SphereLayout.h. They stay so.)
+    forEachSphereField(s.spheres, s.spheres, [&](auto& field, auto&, FieldRole) {
+        if (field.size() == nS) compact(field, keepSphere);
+    });
     for (bodyID_t& o : s.spheres.owner) o = newOwner[o];
     for (bodyID_t& o : s.analytical.owner) o = newOwner[o];
     for (bodyID_t& o : s.triangles.owner) o = newOwner[o];
@@ -179,6 +188,7 @@ RemovedClumps removeClumps(SimState& s, const std::vector<uint8_t>& remove) {
     s.removedMass += r.mass;
     rebuildOwnerRanges(s);
     resizeDerived(s);
+    chooseSphereLayout(s);
     return r;
 }
 

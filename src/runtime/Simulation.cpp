@@ -16,6 +16,7 @@
 #include "parallel/Parallel.h"
 #include "runtime/MemoryAccounting.h"
 #include "runtime/PeriodicLimits.h"
+#include "state/SphereLayoutChoice.h"
 
 namespace deme {
 
@@ -35,7 +36,8 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     checkPeriodicScene(state, "Initialize");
     m_state = std::move(state);
     m_model = model;
-    m_initialScene = sceneFingerprint(m_state, m_model);
+    m_initialScene = sceneFingerprint(m_state, m_model);  // of the full layout, whichever is chosen
+    chooseSphereLayout(m_state);
     refreshKinematicCache(m_state);
     m_grid = makeBinGrid(m_state, settings.binSize);
     checkShearedGrid(m_state.frame.periodic, m_grid, "Initialize");

@@ -92,6 +92,9 @@ struct SimState {
     ContactArrays contacts;
     KinematicCache cache;
     IntegrationScratch integrationScratch;
+    // Every clump one sphere at its centre, sphere i owner i's: no sphere offsets, centres or arms
+    // are kept (state/SphereLayout.h; runtime/SphereLayoutChoice.h sets it).
+    bool spheresAreOwners = false;
     std::vector<uint32_t> ownerSphereStart;  // spheres of owner o: [start[o], start[o+1])
     std::vector<uint32_t> ownerTriStart;     // triangles of owner o: [start[o], start[o+1])
     // Owners and spheres are stored in a space-filling-curve order for memory locality; users see

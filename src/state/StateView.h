@@ -38,6 +38,7 @@ struct StateView {
     CacheView cache;
     IntegrationScratchView integrationScratch;
     unsigned int numWildcards;
+    bool spheresAreOwners;  // as SimState's (state/SphereLayout.h)
     uint32_t numOwners, numSpheres, numAnalytical, numTriangles, numContacts;
     DEME_HD bodyID_t analyticalIdBase() const { return numSpheres; }
     DEME_HD bodyID_t triangleIdBase() const { return numSpheres + numAnalytical; }

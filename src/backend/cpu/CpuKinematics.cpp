@@ -52,7 +52,11 @@ void CpuKinematics::submit(const DetectionOrder& order) {
     }
     Order& o = m_order;
     o.order = order;
-    o.spherePos = m_live.cache.spherePos;
+    // The spheres' centres (their owners' where spheres are owners, state/SphereLayout.h).
+    if (m_live.spheresAreOwners)
+        o.spherePos.assign(m_live.cache.ownerPos.begin(), m_live.cache.ownerPos.begin() + m_live.spheres.size());
+    else
+        o.spherePos = m_live.cache.spherePos;
     o.analPos = m_live.cache.analPos;
     o.analDir = m_live.cache.analDir;
     o.triVert = m_live.cache.triVert;

@@ -47,7 +47,8 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
     const bodyID_t* ownerIds = subset.all ? nullptr : subset.owners.data();
     const bodyID_t* sphereIds = subset.all ? nullptr : subset.spheres.data();
     const size_t nStepped = subset.all ? n : subset.owners.size();
-    const size_t nSpheres = subset.all ? s.spheres.size() : subset.spheres.size();
+    // Spheres that are their owners are placed with them (state/SphereLayout.h).
+    const size_t nSpheres = s.spheresAreOwners ? 0 : subset.all ? s.spheres.size() : subset.spheres.size();
     const size_t nTris = s.triangles.size();
     const float h = (float)dt;
     const TrackerLoadArrays& loads = s.trackerLoads;

@@ -33,8 +33,9 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
     m_motion.resizeDiscarding(NUM_FAMILIES);
     m_reduction.resizeDiscarding(1);
     m_componentSpeed.resizeDiscarding(std::max<size_t>(1, s.analytical.size()));
-    // Only the fused step reads the owners' sphere ranges (4 B per owner).
-    if (m_fusedStep && s.triangles.size() == 0)
+    // Only the fused step reads the owners' sphere ranges (4 B per owner), and only where spheres
+    // are not their owners (state/SphereLayout.h).
+    if (m_fusedStep && s.triangles.size() == 0 && !s.spheresAreOwners)
         uploadResized(m_ownerSphereStart, s.ownerSphereStart, st);
     else
         m_ownerSphereStart.release();
@@ -54,6 +55,7 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
             reinterpret_cast<const char*>(m_control.data()) + offsetof(StepBatchControl, time));
     m_view.domainSize = s.domainSize;
     m_view.numWildcards = s.numWildcards;
+    m_view.spheresAreOwners = s.spheresAreOwners;
     m_view.numOwners = (uint32_t)s.owners.size();
     m_view.numSpheres = (uint32_t)s.spheres.size();
     m_view.numAnalytical = (uint32_t)s.analytical.size();

@@ -318,6 +318,7 @@ void CudaKinematics::setGeometry(const SimState& s, const BinGrid& g, const Fami
     k.dormant = DormantFamilies::of(s, families);
     k.numOwners = (uint32_t)s.owners.size();
     k.numSpheres = (uint32_t)s.spheres.size();
+    k.spheresAreOwners = s.spheresAreOwners;
     k.numAnalytical = (uint32_t)s.analytical.size();
     k.numTriangles = (uint32_t)s.triangles.size();
     m_geometryChanged = true;
@@ -333,7 +334,9 @@ void CudaKinematics::submit(const DetectionOrder& order) {
     if (!m_mailbox.idle()) throwError(CALL, "internal: a kinematics order was sent while another was in flight");
     // The snapshot, copied on dT's stream; kT starts once the stream has passed the event.
     const Geometry& k = m_geometry;
-    m_inbox.spherePos.copyFromAsync(m_source.cache.spherePos, k.numSpheres, m_dtStream);
+    // The spheres' centres (their owners' where spheres are owners, state/SphereLayout.h).
+    const DeviceBuffer<double3>& centres = k.spheresAreOwners ? m_source.cache.ownerPos : m_source.cache.spherePos;
+    m_inbox.spherePos.copyFromAsync(centres, k.numSpheres, m_dtStream);
     m_inbox.triVert.copyFromAsync(m_source.cache.triVert, 3 * (size_t)k.numTriangles, m_dtStream);
     m_inbox.analPos.copyFromAsync(m_source.cache.analPos, k.numAnalytical, m_dtStream);
     m_inbox.analDir.copyFromAsync(m_source.cache.analDir, k.numAnalytical, m_dtStream);

@@ -91,6 +91,7 @@ class CudaKinematics : public KinematicsBackend {
         BinGrid grid{};
         DomainFrame frame{};  // its periodic box: detection compares geometries through their nearest images
         uint32_t numOwners = 0, numSpheres = 0, numAnalytical = 0, numTriangles = 0;
+        bool spheresAreOwners = false;  // the snapshot's centres are the owners' (state/SphereLayout.h)
         DormantFamilies dormant;  // the active box's families (DeviceDormantRegistry)
     };
     struct Order {

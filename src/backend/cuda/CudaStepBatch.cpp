@@ -40,7 +40,8 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     const bodyID_t* ownerIds = m_subsetAll ? nullptr : m_steppedOwners.data();
     const bodyID_t* sphereIds = m_subsetAll ? nullptr : m_steppedSpheres.data();
     const unsigned int nStepped = m_subsetAll ? nO : m_numSteppedOwners;
-    const unsigned int nPlaced = m_subsetAll ? m_view.numSpheres : m_numSteppedSpheres;
+    // Spheres that are their owners are placed with them (state/SphereLayout.h).
+    const unsigned int nPlaced = m_view.spheresAreOwners ? 0 : m_subsetAll ? m_view.numSpheres : m_numSteppedSpheres;
     StepReduction* red = m_reduction.data();
     StateView stepView = m_view;
     if (!storeContactForces) stepView.contacts.force = nullptr;

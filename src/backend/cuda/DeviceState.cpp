@@ -61,6 +61,13 @@ void DeviceState::upload(const SimState& s, Stream stream) {
     forEachAnalyticalField(analytical, s.analytical, up);
     forEachTriangleField(triangles, s.triangles, up);
     forEachCacheField(cache, s.cache, up);
+    // Spheres that are their owners keep no offsets, centres or arms (state/SphereLayout.h): no
+    // storage either, where an earlier layout had some.
+    if (s.spheresAreOwners) {
+        spheres.relPos.release();
+        cache.spherePos.release();
+        cache.sphereArm.release();
+    }
 }
 
 void DeviceState::uploadTrackerLoads(const SimState& s, Stream stream) {

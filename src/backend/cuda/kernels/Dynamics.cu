@@ -231,8 +231,9 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
 
 // Integration and placement in one kernel, for scenes without triangles (whose placement waits for
 // every owner): the thread that steps an owner places its spheres (ownerSphereStart: owner o's are
-// [start[o], start[o + 1])), and the block that finishes last steps the analytical owners' components
-// (every owner's pose is then in place) and ends the step. One kernel boundary fewer than
+// [start[o], start[o + 1]); null where spheres are their owners, state/SphereLayout.h), and the
+// block that finishes last steps the analytical owners' components (every owner's pose is then in
+// place) and ends the step. One kernel boundary fewer than
 // deme_integrate and deme_place_and_finish, and the spheres read their owner's new pose where it was
 // just written.
 extern "C" __global__ void deme_integrate_and_place(StateView s, StepBatchControl* ctl,
@@ -245,7 +246,7 @@ extern "C" __global__ void deme_integrate_and_place(StateView s, StepBatchContro
     beginDependentKernel();
     if (ctl->stop) return;
     const long long o = integrateOwner(s, ctl, motion, consts, travelBaseline, ids, n, red);
-    if (o >= 0)
+    if (o >= 0 && ownerSphereStart)
         for (uint32_t i = ownerSphereStart[o], end = ownerSphereStart[o + 1]; i < end; i++) placeSphere(s, i);
     if (!lastBlockToFinish(blocksDone)) return;
     stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h, domainDiagonal,

@@ -1,0 +1,56 @@
+#include "state/SphereLayoutChoice.h"
+
+#include <cstdlib>
+#include <cstring>
+
+namespace deme {
+
+namespace {
+
+// DEME_FULL_SPHERE_LAYOUT=1: every scene keeps the full arrays.
+bool fullLayoutForced() {
+    const char* v = std::getenv("DEME_FULL_SPHERE_LAYOUT");
+    return v && std::strcmp(v, "0") != 0 && *v;
+}
+
+template <class T>
+void releaseStorage(std::vector<T>& v) {
+    std::vector<T>().swap(v);  // (clear() would keep the storage)
+}
+
+}  // namespace
+
+bool spheresCanBeOwners(const SimState& s) {
+    const size_t nS = s.spheres.size();
+    if (fullLayoutForced() || nS == 0 || nS != s.numClumps) return false;
+    for (size_t i = 0; i < nS; i++)
+        if (s.spheres.owner[i] != (bodyID_t)i) return false;
+    if (s.spheresAreOwners) return true;  // the offsets are zero by construction
+    for (const float3& r : s.spheres.relPos)
+        if (r.x != 0.f || r.y != 0.f || r.z != 0.f) return false;
+    return true;
+}
+
+void chooseSphereLayout(SimState& s) {
+    if (!spheresCanBeOwners(s)) {
+        expandSphereLayout(s);
+        return;
+    }
+    s.spheresAreOwners = true;
+    releaseStorage(s.spheres.relPos);
+    releaseStorage(s.cache.spherePos);
+    releaseStorage(s.cache.sphereArm);
+}
+
+void expandSphereLayout(SimState& s) {
+    if (!s.spheresAreOwners) return;
+    const size_t nS = s.spheres.size();
+    s.spheresAreOwners = false;
+    s.spheres.relPos.assign(nS, make_float3(0.f, 0.f, 0.f));
+    // The cache, where it has been built: a centred sphere's centre is its owner's, its arm zero.
+    if (s.cache.ownerPos.size() < nS) return;
+    s.cache.spherePos.assign(s.cache.ownerPos.begin(), s.cache.ownerPos.begin() + nS);
+    s.cache.sphereArm.assign(nS, make_float3(0.f, 0.f, 0.f));
+}
+
+}  // namespace deme

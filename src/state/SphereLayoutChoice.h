@@ -1,0 +1,23 @@
+// Which sphere layout a host state takes (state/SphereLayout.h), and the switches between the two.
+// Host only.
+#pragma once
+
+#include "state/SimState.h"
+
+namespace deme {
+
+// Whether the state's spheres can be their owners: every clump is one sphere at its centre, and
+// sphere i is owner i's. Always false with DEME_FULL_SPHERE_LAYOUT=1 in the environment (the full
+// arrays for every scene: how tests compare the two layouts).
+bool spheresCanBeOwners(const SimState& s);
+
+// Spheres as their owners where they can be (their offsets, centres and arms released), the full
+// arrays otherwise (expandSphereLayout). After the scene's clumps change: Initialize, UpdateClumps,
+// removals, a checkpoint read.
+void chooseSphereLayout(SimState& s);
+
+// The full arrays, whatever the scene: zero offsets, and centres and arms from the cached owner
+// positions (exactly what placing a centred sphere gives). Nothing if the state has them already.
+void expandSphereLayout(SimState& s);
+
+}  // namespace deme
