@@ -14,7 +14,7 @@ namespace deme {
 
 template <class S>
 DEME_HD_INLINE bodyID_t geometryOwner(const S& s, uint8_t type, bodyID_t b) {
-    return type == SPHERE_SPHERE       ? s.spheres.owner[b]
+    return type == SPHERE_SPHERE       ? sphereOwner(s, b)
            : type == SPHERE_ANALYTICAL ? s.analytical.owner[b - s.analyticalIdBase()]
                                        : s.triangles.owner[b - s.triangleIdBase()];
 }
@@ -58,7 +58,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type
     const auto& k = s.cache;
     const bodyID_t a = s.contacts.geomA[c];
     const bodyID_t b = s.contacts.geomB[c];
-    const bodyID_t oA = s.spheres.owner[a];
+    const bodyID_t oA = sphereOwner(s, a);
     const bodyID_t oB = geometryOwner(s, type, b);
 
     in.bodyAPos = sphereCentre(s, a);

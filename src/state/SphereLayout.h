@@ -34,6 +34,13 @@ DEME_HD_INLINE double3 sphereCentre(const S& s, size_t i) {
     return sphereCentres(s)[i];
 }
 
+// Sphere i's owner: sphere i itself where spheres are their owners (one dependent read fewer for a
+// contact's owners).
+template <class S>
+DEME_HD_INLINE bodyID_t sphereOwner(const S& s, size_t i) {
+    return s.spheresAreOwners ? (bodyID_t)i : s.spheres.owner[i];
+}
+
 // Sphere i's centre minus its owner's centre, global frame.
 template <class S>
 DEME_HD_INLINE float3 sphereArmOf(const S& s, size_t i) {
