@@ -174,7 +174,8 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
             "the cached sphere centres do not fit the spheres");
     if (s.spheresAreOwners) {
         require(s.numClumps == nS, "spheres without offsets, but not one per clump");
-        for (size_t i = 0; i < nS; i++) require(s.spheres.owner[i] == (bodyID_t)i, "spheres without offsets, but not their owners'");
+        for (size_t i = 0; i < nS; i++)
+            require(s.spheres.owner[i] == (bodyID_t)i, "spheres without offsets, but not their owners'");
     }
     namedAnalyticalFields(s.analytical, [&](const char* name, const auto& v, FieldRole) {
         require(v.size() == nA, std::string("analytical.") + name + " is not one value per component");

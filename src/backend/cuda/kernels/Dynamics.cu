@@ -233,9 +233,8 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
 // every owner): the thread that steps an owner places its spheres (ownerSphereStart: owner o's are
 // [start[o], start[o + 1]); null where spheres are their owners, state/SphereLayout.h), and the
 // block that finishes last steps the analytical owners' components (every owner's pose is then in
-// place) and ends the step. One kernel boundary fewer than
-// deme_integrate and deme_place_and_finish, and the spheres read their owner's new pose where it was
-// just written.
+// place) and ends the step. One kernel boundary fewer than deme_integrate and deme_place_and_finish,
+// and the spheres read their owner's new pose where it was just written.
 extern "C" __global__ void deme_integrate_and_place(StateView s, StepBatchControl* ctl,
                                                     const FamilyStepMotion* motion, StepConstants consts,
                                                     const double* travelBaseline, const bodyID_t* ids, unsigned int n,
