@@ -71,11 +71,15 @@ class DEMClumpBatch {
 
   private:
     friend class DEMSolver;
+    friend struct BatchValues;  // reads a clump's value without making the list (src/api/BatchValues.h)
     std::vector<std::shared_ptr<DEMClumpTemplate>> m_distinctTypes;
     std::vector<uint32_t> m_typeIndex;  // per clump, into m_distinctTypes; empty if there is one
-    std::vector<float3> m_pos, m_vel, m_angVel;
-    std::vector<float4> m_oriQ;
-    std::vector<family_t> m_family;
+    std::vector<float3> m_pos;
+    // One value per clump, or a single one every clump takes (the defaults, or a Set call with one
+    // value: 41 of a clump's 53 bytes of initial values never made); a getter makes the list.
+    mutable std::vector<float3> m_vel, m_angVel;
+    mutable std::vector<float4> m_oriQ;
+    mutable std::vector<family_t> m_family;
     size_t m_numClumps = 0;
     size_t m_ownerOffset = 0;
     bool m_initialized = false;
@@ -83,7 +87,7 @@ class DEMClumpBatch {
     void handOver();
     // `values`, or a deme::Error naming `call` once the batch was handed over.
     template <class T>
-    const T& initialValues(const T& values, const char* call) const;
+    T& initialValues(T& values, const char* call) const;
 };
 
 }  // namespace deme

@@ -26,10 +26,10 @@ float DEMClumpTemplate::GetExtent() const {
 
 DEMClumpBatch::DEMClumpBatch(std::shared_ptr<DEMClumpTemplate> type, std::vector<float3> positions)
     : m_pos(std::move(positions)),
-      m_vel(m_pos.size(), make_float3(0.f)),
-      m_angVel(m_pos.size(), make_float3(0.f)),
-      m_oriQ(m_pos.size(), make_float4(0.f, 0.f, 0.f, 1.f)),
-      m_family(m_pos.size(), 0),
+      m_vel(1, make_float3(0.f)),  // one value each, which every clump takes until set one by one
+      m_angVel(1, make_float3(0.f)),
+      m_oriQ(1, make_float4(0.f, 0.f, 0.f, 1.f)),
+      m_family(1, 0),
       m_numClumps(m_pos.size()) {
     if (type) m_distinctTypes.push_back(std::move(type));
 }
@@ -66,8 +66,23 @@ std::vector<std::shared_ptr<DEMClumpTemplate>> DEMClumpBatch::GetTypes() const {
     return out;
 }
 
+namespace {
+
+// `values` as one per clump: a single shared value is made into the list here, for the caller who
+// asks for the list.
 template <class T>
-const T& DEMClumpBatch::initialValues(const T& values, const char* call) const {
+const std::vector<T>& perClump(std::vector<T>& values, size_t n) {
+    if (values.size() != n) {
+        const T shared = values.front();
+        values.assign(n, shared);
+    }
+    return values;
+}
+
+}  // namespace
+
+template <class T>
+T& DEMClumpBatch::initialValues(T& values, const char* call) const {
     if (m_initialized)
         throwError(call, "the batch's clumps are in the solver's state since Initialize (or UpdateClumps); read "
                          "and steer them with a tracker");
@@ -92,51 +107,72 @@ const std::vector<float3>& DEMClumpBatch::GetPositions() const {
     return initialValues(m_pos, "DEMClumpBatch::GetPositions");
 }
 const std::vector<float3>& DEMClumpBatch::GetVelocities() const {
-    return initialValues(m_vel, "DEMClumpBatch::GetVelocities");
+    return perClump(initialValues(m_vel, "DEMClumpBatch::GetVelocities"), m_numClumps);
 }
 const std::vector<float3>& DEMClumpBatch::GetAngVelocities() const {
-    return initialValues(m_angVel, "DEMClumpBatch::GetAngVelocities");
+    return perClump(initialValues(m_angVel, "DEMClumpBatch::GetAngVelocities"), m_numClumps);
 }
-const std::vector<float4>& DEMClumpBatch::GetOriQs() const { return initialValues(m_oriQ, "DEMClumpBatch::GetOriQs"); }
+const std::vector<float4>& DEMClumpBatch::GetOriQs() const {
+    return perClump(initialValues(m_oriQ, "DEMClumpBatch::GetOriQs"), m_numClumps);
+}
 const std::vector<family_t>& DEMClumpBatch::GetFamilies() const {
-    return initialValues(m_family, "DEMClumpBatch::GetFamilies");
+    return perClump(initialValues(m_family, "DEMClumpBatch::GetFamilies"), m_numClumps);
 }
 
 namespace {
 
-template <typename T>
-void assignPerClump(std::vector<T>& dst, const std::vector<T>& src, bool initialized, const char* call) {
+void requireNotHandedOver(bool initialized, const char* call) {
     if (initialized) throwError(call, "the batch is already initialized; use a tracker to change running clumps");
-    if (src.size() != dst.size())
-        throwError(call, "got " + std::to_string(src.size()) + " values for " + std::to_string(dst.size()) + " clumps");
+}
+
+template <typename T>
+void assignPerClump(std::vector<T>& dst, const std::vector<T>& src, size_t n, bool initialized, const char* call) {
+    requireNotHandedOver(initialized, call);
+    if (src.size() != n)
+        throwError(call, "got " + std::to_string(src.size()) + " values for " + std::to_string(n) + " clumps");
     dst = src;
 }
 
 }  // namespace
 
-void DEMClumpBatch::SetVel(const float3& v) { SetVel(std::vector<float3>(m_pos.size(), v)); }
+// One value for every clump is kept once (the getters make the list where asked).
+void DEMClumpBatch::SetVel(const float3& v) {
+    requireNotHandedOver(m_initialized, "DEMClumpBatch::SetVel");
+    requireFinite3("DEMClumpBatch::SetVel", "velocity", v);
+    m_vel.assign(1, v);
+}
 void DEMClumpBatch::SetVel(const std::vector<float3>& v) {
     for (const auto& x : v) requireFinite3("DEMClumpBatch::SetVel", "velocity", x);
-    assignPerClump(m_vel, v, m_initialized, "DEMClumpBatch::SetVel");
+    assignPerClump(m_vel, v, m_numClumps, m_initialized, "DEMClumpBatch::SetVel");
 }
-void DEMClumpBatch::SetAngVel(const float3& w) { SetAngVel(std::vector<float3>(m_pos.size(), w)); }
+void DEMClumpBatch::SetAngVel(const float3& w) {
+    requireNotHandedOver(m_initialized, "DEMClumpBatch::SetAngVel");
+    requireFinite3("DEMClumpBatch::SetAngVel", "angular velocity", w);
+    m_angVel.assign(1, w);
+}
 void DEMClumpBatch::SetAngVel(const std::vector<float3>& w) {
     for (const auto& x : w) requireFinite3("DEMClumpBatch::SetAngVel", "angular velocity", x);
-    assignPerClump(m_angVel, w, m_initialized, "DEMClumpBatch::SetAngVel");
+    assignPerClump(m_angVel, w, m_numClumps, m_initialized, "DEMClumpBatch::SetAngVel");
 }
-void DEMClumpBatch::SetOriQ(const float4& q) { SetOriQ(std::vector<float4>(m_pos.size(), q)); }
+void DEMClumpBatch::SetOriQ(const float4& q) {
+    requireNotHandedOver(m_initialized, "DEMClumpBatch::SetOriQ");
+    m_oriQ.assign(1, requireQuaternion("DEMClumpBatch::SetOriQ", q));
+}
 void DEMClumpBatch::SetOriQ(const std::vector<float4>& q) {
     std::vector<float4> normalized;
     normalized.reserve(q.size());
     for (const auto& x : q) normalized.push_back(requireQuaternion("DEMClumpBatch::SetOriQ", x));
-    assignPerClump(m_oriQ, normalized, m_initialized, "DEMClumpBatch::SetOriQ");
+    assignPerClump(m_oriQ, normalized, m_numClumps, m_initialized, "DEMClumpBatch::SetOriQ");
 }
-void DEMClumpBatch::SetFamily(unsigned int family) { SetFamily(std::vector<unsigned int>(m_pos.size(), family)); }
+void DEMClumpBatch::SetFamily(unsigned int family) {
+    requireNotHandedOver(m_initialized, "DEMClumpBatch::SetFamily");
+    m_family.assign(1, requireFamily("DEMClumpBatch::SetFamily", family));
+}
 void DEMClumpBatch::SetFamily(const std::vector<unsigned int>& families) {
     std::vector<family_t> f;
     f.reserve(families.size());
     for (unsigned int x : families) f.push_back(requireFamily("DEMClumpBatch::SetFamily", x));
-    assignPerClump(m_family, f, m_initialized, "DEMClumpBatch::SetFamily");
+    assignPerClump(m_family, f, m_numClumps, m_initialized, "DEMClumpBatch::SetFamily");
 }
 
 }  // namespace deme

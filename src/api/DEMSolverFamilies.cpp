@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "codegen/Expression.h"
+#include "api/BatchValues.h"
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
 #include "api/Validate.h"
@@ -77,12 +78,7 @@ void DEMSolver::ChangeFamily(unsigned int from, unsigned int to) {
         m_sim->invalidateContacts();
         return;
     }
-    for (auto& b : m_scene->batches) {
-        std::vector<unsigned int> fams(b->GetFamilies().begin(), b->GetFamilies().end());
-        for (auto& x : fams)
-            if (x == f) x = t;
-        b->SetFamily(fams);
-    }
+    for (auto& b : m_scene->batches) BatchValues::renameFamily(*b, f, t);
     for (auto& o : m_scene->externObjs)
         if (o->GetFamily() == f) o->SetFamily(t);
 }

@@ -1,5 +1,6 @@
 #include "api/SceneAssembly.h"
 
+#include "api/BatchValues.h"
 #include "api/ForceModelSetup.h"
 
 #include <algorithm>
@@ -204,8 +205,9 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
         const size_t owner = s.owners.size();
         s.ownerUserToInternal[u] = (bodyID_t)owner;
         s.ownerInternalToUser[owner] = (bodyID_t)u;
-        addOwner(s, to_double3(b->GetPositions()[i]), b->GetOriQs()[i], b->GetVelocities()[i], b->GetAngVelocities()[i],
-                 b->GetFamilies()[i], OWNER_CLUMP, true, templateIndex.at(&t), t.GetExtent(), u, "clump");
+        addOwner(s, to_double3(b->GetPositions()[i]), BatchValues::oriQ(*b, i), BatchValues::vel(*b, i),
+                 BatchValues::angVel(*b, i), BatchValues::family(*b, i), OWNER_CLUMP, true, templateIndex.at(&t),
+                 t.GetExtent(), u, "clump");
         for (size_t k = 0; k < t.GetNumSpheres(); k++) {
             s.spheres.owner.push_back((bodyID_t)owner);
             s.spheres.relPos.push_back(t.relPos[k]);
