@@ -112,10 +112,13 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     size_t& contacts = b[(int)MemoryGroup::CONTACTS];
     size_t& detection = b[(int)MemoryGroup::DETECTION];
     if (onGpu) {
-        // Two sets (the one in use and the one history mapping reads from), per-contact forces in
-        // the one in use, and the pairs (ids, type) of the outbox kT fills
-        // (backend/cuda/CudaDynamics, CudaContactSets, DeviceHistoryMapping).
-        contacts = e.pairs * (bytesPerPair(s.contacts, W, false, true) + bytesPerPair(s.contacts, W, false, false) + 9);
+        // Two sets (the one in use and the one history mapping reads from), the per-contact forces
+        // in the idle set's wildcards' memory (grown to hold them where a pair has fewer than three
+        // wildcards), and the pairs (ids, type) of the outbox kT fills (backend/cuda/CudaDynamics,
+        // CudaContactSets, DeviceHistoryMapping).
+        const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
+        const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;
+        contacts = e.pairs * (2 * bytesPerPair(s.contacts, W, false, false) + forceGrowth + 9);
         // kT's snapshot (sphere centres, owner families), pair offsets; the bins' entries (an item
         // id each) and starts, from the counting sort (backend/cuda/CudaKinematics.cpp,
         // Work::detect; the bins an item covers are computed from its box, not stored). (kT on a

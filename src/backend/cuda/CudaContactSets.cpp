@@ -40,11 +40,34 @@ double CudaDynamics::maxTravelSinceOrder() {
     return t;
 }
 
+// The idle set's wildcards hold the history of the set before the one in use: dead until the next
+// install maps into them. Per-contact forces (12 B a pair), written by a storing step and read by
+// the host before the next install, live there meanwhile, so they take no memory of their own where
+// the model keeps at least three wildcards a pair (Hertz-Mindlin keeps four).
+void CudaDynamics::lendIdleMemoryToForces() {
+    DeviceContacts& inUse = m_contacts[m_current];
+    if (!m_forcesInIdleMemory) {
+        inUse.force.release();  // forces uploaded with the set: a storing step rewrites them all
+        inUse.force.tradeMemory(m_contacts[1 - m_current].wildcards);
+        m_forcesInIdleMemory = true;
+    }
+    inUse.force.resizeDiscarding(m_numContacts);  // grows the lent memory where it is too small
+    refreshView();
+}
+
+void CudaDynamics::returnForceMemory() {
+    if (!m_forcesInIdleMemory) return;
+    m_contacts[1 - m_current].wildcards.tradeMemory(m_contacts[m_current].force);
+    m_forcesInIdleMemory = false;
+    refreshView();
+}
+
 // History mapping from the set in use (with its up-to-date wildcards) into the fresh one, then the
 // fresh one serves.
 void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     select();
     const double t0 = now();
+    returnForceMemory();  // the fresh set's wildcards take the mapped history
     DeviceContacts& old = m_contacts[m_current];
     DeviceContacts& fresh = m_contacts[1 - m_current];
     // The outbox's buffers become the fresh set's pairs; the fresh set's former ones (unused since
@@ -58,10 +81,8 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     const unsigned int total =
         m_history.install(fresh, (unsigned int)r.numPairs, old, m_numContacts, m_W, m_view, m_prim, m_stream);
     // Per-contact forces are written by a storing step of the set in use only (nothing carries them
-    // from one set to the next): one buffer, handed to the set that serves now.
-    std::swap(fresh.force, old.force);
+    // from one set to the next), in memory lent for it then.
     old.force.release();
-    fresh.force.resizeDiscarding(total);
     m_current = 1 - m_current;
     m_numContacts = total;
     refreshView();

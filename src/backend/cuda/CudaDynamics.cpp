@@ -24,11 +24,12 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
     m_orderBaseline.resizeDiscarding(s.owners.size());
     if (withContacts) {
         // The contact set the host has (history included).
+        returnForceMemory();  // both sets' arrays are rewritten or released here
         m_W = s.numWildcards;
         m_current = 0;
         m_numContacts = (uint32_t)s.contacts.size();
         uploadContacts(s.contacts, m_W, m_contacts[0], st);
-        m_contacts[1].force.release();  // only the set in use holds per-contact forces (install)
+        m_contacts[1].force.release();  // only the set in use has per-contact forces
     }
     m_motion.resizeDiscarding(NUM_FAMILIES);
     m_reduction.resizeDiscarding(1);

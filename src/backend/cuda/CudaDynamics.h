@@ -79,6 +79,11 @@ class CudaDynamics : public DynamicsBackend {
     void compileGenerated(const char* program, const std::string& source, const char* kernelName, CudaModule& module,
                           CudaKernel& kernel);
     void refreshView();
+    // Per-contact forces are stored in the memory of the idle set's wildcards, dead between two
+    // installs (CudaContactSets.cpp): lent before a storing step, given back before an install or
+    // an upload overwrites either set.
+    void lendIdleMemoryToForces();
+    void returnForceMemory();
     // Writes one step's launches into `list` (CudaStepBatch.cpp): per-contact forces stored or not.
     void recordStep(LaunchList& list, const Settings& settings, bool storeContactForces);
     // The owners and spheres a step integrates and places (CudaStepSubset.cpp).
@@ -130,6 +135,7 @@ class CudaDynamics : public DynamicsBackend {
     DeviceContacts m_contacts[2];  // the set in use and the one a detection fills
     int m_current = 0;
     uint32_t m_numContacts = 0;
+    bool m_forcesInIdleMemory = false;  // the set in use's forces hold the idle set's wildcards' memory
     // Owners' travel at the snapshot of the set in use (baseline) and of the order in flight.
     DeviceBuffer<double> m_baseline, m_orderBaseline;
     DeviceBuffer<FamilyStepMotion> m_motion;

@@ -98,6 +98,7 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
     } else if (m_loadOwnersStale) {
         updateLoadOwners(true);
     }
+    if (batch.storeContactForcesAtEnd) lendIdleMemoryToForces();
     recordStep(m_plainStep, settings, false);
     if (batch.storeContactForcesAtEnd) recordStep(m_storingStep, settings, true);
     // The batch's steps: the last one stores the contact forces if asked; the plain ones go in

@@ -157,6 +157,15 @@ class DeviceBuffer {
         resize(count);
     }
     int device() const { return raw_.device(); }
+    // Trades memory with a buffer of another element type; both are left with size 0 and the
+    // other's capacity. For memory that serves two arrays at times when only one of them is live
+    // (CudaDynamics: the idle contact set's wildcards hold the per-contact forces a step stores).
+    template <class U>
+    void tradeMemory(DeviceBuffer<U>& other) {
+        std::swap(raw_, other.raw_);
+        size_ = 0;
+        other.size_ = 0;
+    }
 
     // Whole-buffer copies that wait for the stream: for set-up, tests and output, not the step loop.
     void upload(const std::vector<T>& host, Stream stream = nullptr) {
@@ -172,6 +181,8 @@ class DeviceBuffer {
     }
 
   private:
+    template <class U>
+    friend class DeviceBuffer;
     void checkRange(size_t offset, size_t count) const;
 
     RawDeviceBuffer raw_;

@@ -1,5 +1,8 @@
 #include "backend/cuda/DeviceState.h"
 
+#include <algorithm>
+#include <type_traits>
+
 namespace deme::cuda {
 
 namespace {
@@ -113,6 +116,13 @@ void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, Contact
         if (role == FieldRole::HOST) return;
         const size_t count = contactFieldCount(c, host, n, W);
         host.resize(count);
+        // Per-contact forces exist only after a storing step of the set in use (CudaDynamics::
+        // lendIdleMemoryToForces); before one (a set just installed, and a call that failed before its
+        // last step) they read as none.
+        if (dev.size() < count) {
+            std::fill(host.begin(), host.end(), std::decay_t<decltype(host[0])>{});
+            return;
+        }
         if (count) dev.downloadAsync(host.data(), count, stream);
     });
 }
