@@ -10,13 +10,15 @@
 
 namespace deme {
 
-// Name of the generated kernel, the first of a GPU step (dynamics/StepBatch.h):
-//   deme_family_motion(StepBatchControl* ctl, FamilyStepMotion* out, float3* contactForce,
-//                      float3* contactTorque, const bodyID_t* clearIds, unsigned int numCleared)
-// threads 0 .. NUM_FAMILIES - 1 write every family's entry for the end of the step (time
-// ctl->time + ctl->dt); threads 0 .. numCleared - 1 clear the contact loads of owners clearIds[i]
-// (owner i if clearIds is null) for the step's force pass, and thread 0 stamps the force phase's
-// start into the control block. Nothing once the batch has ended (ctl->stop).
+// Name of the generated kernel, launched once at the start of each GPU batch of steps
+// (dynamics/StepBatch.h, backend/cuda/CudaStepBatch.cpp):
+//   deme_family_motion(const StepBatchControl* ctl, FamilyStepMotion* out, unsigned int numSteps,
+//                      float3* contactForce, float3* contactTorque, unsigned int numCleared)
+// thread k * NUM_FAMILIES + f (k < numSteps) writes family f's entry for the end of the batch's step
+// k into out[k * NUM_FAMILIES + f], at the time the batch's clock will have then (ctl->time plus k
+// additions of ctl->dt, as finishBatchStep makes them, plus dt), so that every step of the batch reads
+// its prescriptions from the table instead of a kernel of its own; threads 0 .. numCleared - 1 clear
+// owner i's contact loads for the batch's first step (later steps' integration clears them).
 inline constexpr const char* kFamilyMotionKernel = "deme_family_motion";
 
 std::string familyMotionKernelSource(const std::array<FamilyMotion, NUM_FAMILIES>& motions);

@@ -26,6 +26,11 @@ struct StepTally {
 
 constexpr unsigned int NO_FAULT = 0xFFFFFFFFu;
 
+// Steps a batch may hold at most: a GPU queues them with one host synchronisation at the end, so a
+// long batch costs it nothing; the cap keeps the progress report and STEP_METRIC lines regular, and
+// sizes the GPU's table of a batch's prescriptions (codegen/FamilyMotionSource.h).
+constexpr unsigned long long MAX_BATCH_STEPS = 256;
+
 // The batch's control block: set by the host before the batch, advanced after each step, read back
 // once after it (on the GPU it lives in device memory).
 struct StepBatchControl {

@@ -138,9 +138,6 @@ void Simulation::uploadIfEdited() {
 
 namespace {
 
-// Steps a batch may hold at most: a GPU queues them with one host synchronisation at the end, so a
-// long batch costs it nothing; the cap keeps the progress report and STEP_METRIC lines regular.
-constexpr unsigned long long MAX_BATCH_STEPS = 256;
 // Asynchronous detection, with an order in flight: steps between looks for its result. A result
 // taken up to this many steps late only raises the latency n_max adapts to; looking every step
 // would cost a GPU one host synchronisation per step.

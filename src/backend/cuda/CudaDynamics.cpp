@@ -31,7 +31,7 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
         uploadContacts(s.contacts, m_W, m_contacts[0], st);
         m_contacts[1].force.release();  // only the set in use has per-contact forces
     }
-    m_motion.resizeDiscarding(NUM_FAMILIES);
+    m_motion.resizeDiscarding((size_t)MAX_BATCH_STEPS * NUM_FAMILIES);  // a batch's table (CudaStepBatch.cpp)
     m_reduction.resizeDiscarding(1);
     m_componentSpeed.resizeDiscarding(std::max<size_t>(1, s.analytical.size()));
     // Only the fused step reads the owners' sphere ranges (4 B per owner), and only where spheres

@@ -94,7 +94,7 @@ class CudaDynamics : public DynamicsBackend {
     std::string m_name;
     Stream m_stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
     CudaModule m_dynamicsModule, m_exchangeModule;
-    CudaKernel kBeginBatch, kCopyDoubles, kResolveMesh, kIntegrate, kPlaceAndFinish, kIntegrateAndPlace,
+    CudaKernel kBeginBatch, kClearLoads, kCopyDoubles, kResolveMesh, kIntegrate, kPlaceAndFinish, kIntegrateAndPlace,
         kMaxTravelSince, kSteppedFlags, kSteppedScatter, kMarkContactOwners, kScatterFlagged, kFlagListed;
     // The batch's control block (dynamics/StepBatch.h) on the device, and its pinned host copy.
     DeviceBuffer<StepBatchControl> m_control;

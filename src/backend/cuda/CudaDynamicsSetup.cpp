@@ -48,6 +48,7 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     m_dynamicsModule = CudaModule("Initialize", d.image);
     m_exchangeModule = CudaModule("Initialize", x.image);
     kBeginBatch = m_dynamicsModule.kernel("deme_begin_batch");
+    kClearLoads = m_dynamicsModule.kernel("deme_clear_loads");
     kCopyDoubles = m_dynamicsModule.kernel("deme_copy_doubles");
     kResolveMesh = m_dynamicsModule.kernel("deme_resolve_mesh_contacts");
     kIntegrate = m_dynamicsModule.kernel("deme_integrate");

@@ -8,6 +8,7 @@
 #include <string>
 
 #include <cuda_runtime_api.h>
+#include <deme/Error.h>
 
 #include "backend/cuda/CudaCheck.h"
 #include "backend/cuda/CudaDynamics.h"
@@ -46,14 +47,19 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     StateView stepView = m_view;
     if (!storeContactForces) stepView.contacts.force = nullptr;
 
-    // The force phase: from the first kernel (which clears the loads and stamps the phase's start)
-    // to integration (which adds the phase's length to the control block).
-    const bodyID_t* clearIds = m_subsetAll ? nullptr : m_loadOwners.data();
-    const unsigned int nCleared = m_subsetAll ? nO : m_numLoadOwners;
-    const unsigned int tCleared = stepThreadsFor(nCleared);
-    list.kernel(kFamilyMotion, blocksFor(std::max<unsigned int>(nCleared, NUM_FAMILIES), tCleared), tCleared, 0,
-                m_control.data(), m_motion.data(), m_state.owners.contactForce.data(),
-                m_state.owners.contactTorque.data(), clearIds, nCleared);
+    // The force phase runs from the end of the step before (or the batch's start; in the active
+    // box, its steps' first kernel, which clears the loads of the owners it may load) to integration
+    // (which adds the phase's length to the control block). Other steps find the loads cleared by
+    // the integration before them, or by the batch's first kernel (steps()).
+    if (!m_subsetAll) {
+        const unsigned int tCleared = stepThreadsFor(m_numLoadOwners);
+        list.kernel(kClearLoads, std::max(1u, blocksFor(m_numLoadOwners, tCleared)), tCleared, 0, m_control.data(),
+                    m_state.owners.contactForce.data(), m_state.owners.contactTorque.data(),
+                    (const bodyID_t*)m_loadOwners.data(), m_numLoadOwners);
+    }
+    // A storing step's loads stay for the host to read (trackers); the next batch's first kernel
+    // clears them.
+    const unsigned int clearLoads = m_subsetAll && !storeContactForces ? 1u : 0u;
     const unsigned int tMesh = stepThreadsFor(m_numContacts);
     if (nT && m_numContacts) list.kernel(kResolveMesh, blocksFor(m_numContacts, tMesh), tMesh, 0, m_view, ctl, red);
     const unsigned int tForce = settings.threadsPerBlock ? settings.threadsPerBlock : stepThreadsFor(m_numContacts);
@@ -65,14 +71,15 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
         // At least one block: it also ends the step.
         list.kernel(kIntegrateAndPlace, std::max(1u, blocksFor(nStepped, tStepped)), tStepped, 0, m_view,
                     m_control.data(), (const FamilyStepMotion*)m_motion.data(), consts,
-                    (const double*)m_baseline.data(), ownerIds, nStepped, (const uint32_t*)m_ownerSphereStart.data(),
+                    (const double*)m_baseline.data(), ownerIds, nStepped, clearLoads,
+                    (const uint32_t*)m_ownerSphereStart.data(),
                     m_numClumps, m_numAnalyticalOwners, m_domainDiagonal, red, m_componentSpeed.data(),
                     m_blocksDone.data());
         return;
     }
     list.kernel(kIntegrate, blocksFor(nStepped, tStepped), tStepped, 0, m_view, m_control.data(),
                 (const FamilyStepMotion*)m_motion.data(), consts, (const double*)m_baseline.data(), ownerIds, nStepped,
-                red);
+                clearLoads, red);
     // At least one block: it also ends the step.
     const unsigned int tPlaced = stepThreadsFor((unsigned long long)nPlaced + nT);
     const unsigned int placeBlocks = std::max(1u, blocksFor((unsigned long long)nPlaced + nT, tPlaced));
@@ -85,15 +92,22 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
                                     TimingStats& timing) {
     const Stream st = m_stream;
     const unsigned long long n = std::max<unsigned long long>(batch.maxSteps, 1);
+    if (n > MAX_BATCH_STEPS)  // the prescriptions' table holds that many steps
+        throwError("DoDynamics", "a batch of " + std::to_string(n) + " steps; at most " +
+                                     std::to_string(MAX_BATCH_STEPS) + " go in one");
     if (m_profileFromStep >= m_steps && m_profileFromStep < m_steps + n) startProfilerCapture();
     m_steps += n;
     const double t0 = now();
     StepBatchControl* ctl = m_control.data();
     launch(kBeginBatch, 1, 1, 0, st, ctl, batch.time, settings.dt, batch.margin, m_reduction.data());
+    // The prescriptions of each of the batch's steps, and every owner's loads cleared for its first
+    // step (codegen/FamilyMotionSource.h).
+    const unsigned int nO = m_view.numOwners, tableSize = (unsigned int)n * NUM_FAMILIES;
+    launch(kFamilyMotion, blocksFor(std::max(tableSize, nO), 256), 256, 0, st, (const StepBatchControl*)ctl,
+           m_motion.data(), (unsigned int)n, m_state.owners.contactForce.data(), m_state.owners.contactTorque.data(),
+           nO);
     if (m_subsetStale) {
-        // After an upload, a detection or a family change: O(owners), reads this step's motion.
-        launch(kFamilyMotion, 1, NUM_FAMILIES, 0, st, ctl, m_motion.data(), (float3*)nullptr, (float3*)nullptr,
-               (const bodyID_t*)nullptr, 0u);
+        // After an upload, a detection or a family change: O(owners), reads the first step's motion.
         updateStepSubset();
     } else if (m_loadOwnersStale) {
         updateLoadOwners(true);

@@ -48,7 +48,23 @@ extern "C" __global__ void deme_begin_batch(StepBatchControl* ctl, double time, 
                                             StepReduction* red) {
     if (globalIndex() != 0) return;
     *ctl = beginStepBatch(time, dt, margin);
+    ctl->forcePhaseStartNs = deviceClockNs();  // the first step's force phase starts after this
     clearReduction(red);
+}
+
+// The active box's steps clear the loads of the owners in ids[0, n) before their force pass (every
+// other step's integration clears the loads it read, integrateOwner); the step's force phase starts
+// here then (after the host's look at the subset, not before it).
+extern "C" __global__ void deme_clear_loads(StepBatchControl* ctl, float3* contactForce, float3* contactTorque,
+                                            const bodyID_t* ids, unsigned int n) {
+    beginDependentKernel();
+    if (ctl->stop) return;
+    const size_t k = globalIndex();
+    if (k == 0) ctl->forcePhaseStartNs = deviceClockNs();
+    if (k >= n) return;
+    const size_t o = ids[k];
+    contactForce[o] = make_float3(0.f);
+    contactTorque[o] = make_float3(0.f);
 }
 
 // The analytical owners' step, by one block: its threads place the components, one each, with
@@ -88,6 +104,7 @@ __device__ inline void finishStep(StepBatchControl* ctl, StepReduction* red) {
     t.realSphereSphere = red->realSphereSphere;
     finishBatchStep(*ctl, t);
     clearReduction(red);
+    ctl->forcePhaseStartNs = deviceClockNs();  // the next step's force phase starts once this kernel ends
 }
 
 extern "C" __global__ void deme_copy_doubles(double* dst, const double* src, unsigned int n) {
@@ -139,10 +156,15 @@ DEME_BUILT_IN_FORCE_PASSES(_r64, __maxnreg__(64))
 // deme_stepped_flags), the first part of the two integration kernels below, with the step's maxima
 // and first fault combined per warp. An owner whose rotation this step was too large for the series
 // step takes the exact (scalar) step at once (rare; the CPU does these in a sweep of their own so
-// that its main sweep vectorises). Returns the owner stepped, or -1 for a thread past the end.
+// that its main sweep vectorises). The step's prescriptions are the batch's table's row for it
+// (motion[stepsDone * NUM_FAMILIES + family], codegen/FamilyMotionSource.h). With clearLoads the
+// owner's contact loads are cleared once read, ready for the next step's force pass: in every step
+// but one whose loads the host reads after it (the storing step) and the active box's, which
+// deme_clear_loads clears. Returns the owner stepped, or -1 for a thread past the end.
 __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, const FamilyStepMotion* motion,
                                            const StepConstants& consts, const double* travelBaseline,
-                                           const bodyID_t* ids, unsigned int n, StepReduction* red) {
+                                           const bodyID_t* ids, unsigned int n, unsigned int clearLoads,
+                                           StepReduction* red) {
     const size_t k = globalIndex();
     // The force phase has ended (the kernels of a stream run one after the other).
     if (k == 0) ctl->forcePhaseNs += deviceClockNs() - ctl->forcePhaseStartNs;
@@ -152,13 +174,18 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
     long long stepped = -1;
     if (k < n) {
         const size_t o = ids ? (size_t)ids[k] : k;
-        const OwnerStepResult r = stepOwner(s, o, motion[s.owners.family[o]], consts, travelBaseline[o]);
+        const FamilyStepMotion* stepMotion = motion + (size_t)ctl->stepsDone * NUM_FAMILIES;
+        const OwnerStepResult r = stepOwner(s, o, stepMotion[s.owners.family[o]], consts, travelBaseline[o]);
         s.integrationScratch.flags[o] = r.flags;
         travel = r.travelSinceDetection > 0.0 ? r.travelSinceDetection : 0.0;
         speed = r.speed;
         if (r.flags & STEP_FAULTS) fault = (unsigned int)o;
         large = (r.flags & STEP_LARGE_ROTATION) ? 1u : 0u;
         if (large) finishLargeRotation(s, o, consts.h);
+        if (clearLoads) {
+            s.owners.contactForce[o] = make_float3(0.f);
+            s.owners.contactTorque[o] = make_float3(0.f);
+        }
         stepped = (long long)o;
     }
     for (int off = 16; off > 0; off >>= 1) {
@@ -197,10 +224,10 @@ __device__ inline bool lastBlockToFinish(unsigned int* blocksDone) {
 // deme_place_and_finish after it.
 extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, const FamilyStepMotion* motion,
                                           StepConstants consts, const double* travelBaseline, const bodyID_t* ids,
-                                          unsigned int n, StepReduction* red) {
+                                          unsigned int n, unsigned int clearLoads, StepReduction* red) {
     beginDependentKernel();
     if (ctl->stop) return;
-    integrateOwner(s, ctl, motion, consts, travelBaseline, ids, n, red);
+    integrateOwner(s, ctl, motion, consts, travelBaseline, ids, n, clearLoads, red);
 }
 
 // A step's last kernel after deme_integrate: the cached poses after integration -- spheres ids[0,
@@ -238,13 +265,14 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
 extern "C" __global__ void deme_integrate_and_place(StateView s, StepBatchControl* ctl,
                                                     const FamilyStepMotion* motion, StepConstants consts,
                                                     const double* travelBaseline, const bodyID_t* ids, unsigned int n,
-                                                    const uint32_t* ownerSphereStart, unsigned int firstAnalyticalOwner,
+                                                    unsigned int clearLoads, const uint32_t* ownerSphereStart,
+                                                    unsigned int firstAnalyticalOwner,
                                                     unsigned int numAnalyticalOwners, double domainDiagonal,
                                                     StepReduction* red, float* componentSpeed,
                                                     unsigned int* blocksDone) {
     beginDependentKernel();
     if (ctl->stop) return;
-    const long long o = integrateOwner(s, ctl, motion, consts, travelBaseline, ids, n, red);
+    const long long o = integrateOwner(s, ctl, motion, consts, travelBaseline, ids, n, clearLoads, red);
     if (o >= 0 && ownerSphereStart)
         for (uint32_t i = ownerSphereStart[o], end = ownerSphereStart[o + 1]; i < end; i++) placeSphere(s, i);
     if (!lastBlockToFinish(blocksDone)) return;
