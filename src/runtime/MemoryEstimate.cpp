@@ -9,7 +9,9 @@
 
 #include <deme/Error.h>
 
+#include "dynamics/StepBatch.h"
 #include "runtime/MemoryAccounting.h"
+#include "state/FamilyStepMotion.h"
 
 namespace deme {
 
@@ -127,7 +129,9 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         // Triangles, where there are any: their global boxes (2 double3), entries and their own
         // bins' starts.
         if (nT) detection += nT * 48 + (size_t)(4.0 * triEntries) + 4 * (bins + 1);
-        b[(int)MemoryGroup::STEP_SCRATCH] = 16 * nO;  // step subsets (CudaDynamics: 4 lists of 4 B)
+        // Step subsets (CudaDynamics: 4 lists of 4 B), and the table of a batch's prescriptions (a
+        // row of families per step, CudaStepBatch.cpp).
+        b[(int)MemoryGroup::STEP_SCRATCH] = 16 * nO + MAX_BATCH_STEPS * NUM_FAMILIES * sizeof(FamilyStepMotion);
     } else {
         contacts = e.pairs * bytesPerPair(s.contacts, W, true, true) + 8 * (nO + 1);  // + the owners' two starts
         // The registry's entries and bins' starts, for spheres and for triangles (whose global
