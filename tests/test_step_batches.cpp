@@ -262,6 +262,31 @@ TEST(CudaStepGraphs, FusedIntegrationAndPlacementEqualTwoKernelsBitForBit) {
     EXPECT_LT(lowest, -0.13f);
 }
 
+// GPU only: a step's loads cleared by the integration before it (the default under 2^18 owners)
+// give the trajectory of a kernel that clears them at every step's start, bit for bit: the bouncing
+// spheres (a prescribed family, tracker loads, batches ended early) and the dumbbells that land on a
+// plane. A load left from the step before would push them apart.
+TEST(CudaStepGraphs, LoadsClearedByIntegrationEqualAClearingKernelBitForBit) {
+    if (!cuda::cudaBackendBuilt() || cuda::usableDevices().empty()) GTEST_SKIP() << "needs a GPU";
+    ScopedEnvironmentVariable backend("DEME_BACKEND", "cuda");
+    Trajectory kernel;
+    std::vector<float4> clumpsKernel;
+    {
+        ScopedEnvironmentVariable off("DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION", "0");
+        kernel = inOneCall(false);
+        clumpsKernel = fallingDumbbellPoses(6000);
+    }
+    ScopedEnvironmentVariable on("DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION", "1");
+    expectBitForBit(inOneCall(false), kernel);
+    const std::vector<float4> cleared = fallingDumbbellPoses(6000);
+    ASSERT_EQ(cleared.size(), clumpsKernel.size());
+    size_t differ = 0;
+    for (size_t k = 0; k < cleared.size(); k++)
+        differ += cleared[k].x != clumpsKernel[k].x || cleared[k].y != clumpsKernel[k].y ||
+                  cleared[k].z != clumpsKernel[k].z || cleared[k].w != clumpsKernel[k].w;
+    EXPECT_EQ(differ, 0u) << "clump poses that differ";
+}
+
 // GPU only: graphs of several steps (the default 8, and 7, whose batches of up to 30 steps leave
 // remainders, with batches ended early inside a graph) equal graphs of one step, bit for bit.
 TEST(CudaStepGraphs, GraphsOfSeveralStepsEqualOneStepGraphsBitForBit) {

@@ -13,6 +13,7 @@
 #include "backend/cuda/CudaCheck.h"
 #include "backend/cuda/CudaDynamics.h"
 #include "backend/cuda/Device.h"
+#include "backend/cuda/StepGraph.h"
 #include "dynamics/OwnerStep.h"
 
 namespace deme::cuda {
@@ -47,19 +48,22 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     StateView stepView = m_view;
     if (!storeContactForces) stepView.contacts.force = nullptr;
 
-    // The force phase runs from the end of the step before (or the batch's start; in the active
-    // box, its steps' first kernel, which clears the loads of the owners it may load) to integration
-    // (which adds the phase's length to the control block). Other steps find the loads cleared by
-    // the integration before them, or by the batch's first kernel (steps()).
-    if (!m_subsetAll) {
-        const unsigned int tCleared = stepThreadsFor(m_numLoadOwners);
-        list.kernel(kClearLoads, std::max(1u, blocksFor(m_numLoadOwners, tCleared)), tCleared, 0, m_control.data(),
-                    m_state.owners.contactForce.data(), m_state.owners.contactTorque.data(),
-                    (const bodyID_t*)m_loadOwners.data(), m_numLoadOwners);
+    // The force phase runs from the end of the step before (or the batch's start) to integration
+    // (which adds the phase's length to the control block). The step's force pass finds the loads
+    // cleared by the integration before it (or by the batch's first kernel, steps()); in the active
+    // box and in large scenes (loadsClearedByIntegration) the step's first kernel clears them, and
+    // the phase starts there.
+    const bool clearedByIntegration = m_subsetAll && loadsClearedByIntegration(nO);
+    if (!clearedByIntegration) {
+        const bodyID_t* clearIds = m_subsetAll ? nullptr : m_loadOwners.data();
+        const unsigned int nCleared = m_subsetAll ? nO : m_numLoadOwners;
+        const unsigned int tCleared = stepThreadsFor(nCleared);
+        list.kernel(kClearLoads, std::max(1u, blocksFor(nCleared, tCleared)), tCleared, 0, m_control.data(),
+                    m_state.owners.contactForce.data(), m_state.owners.contactTorque.data(), clearIds, nCleared);
     }
     // A storing step's loads stay for the host to read (trackers); the next batch's first kernel
     // clears them.
-    const unsigned int clearLoads = m_subsetAll && !storeContactForces ? 1u : 0u;
+    const unsigned int clearLoads = clearedByIntegration && !storeContactForces ? 1u : 0u;
     const unsigned int tMesh = stepThreadsFor(m_numContacts);
     if (nT && m_numContacts) list.kernel(kResolveMesh, blocksFor(m_numContacts, tMesh), tMesh, 0, m_view, ctl, red);
     const unsigned int tForce = settings.threadsPerBlock ? settings.threadsPerBlock : stepThreadsFor(m_numContacts);

@@ -28,6 +28,12 @@ bool fusedStepEnabled() {
     return !(v && std::strcmp(v, "0") == 0);
 }
 
+bool loadsClearedByIntegration(unsigned int owners) {
+    const char* v = std::getenv("DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION");
+    if (v && *v) return std::strcmp(v, "0") != 0;
+    return owners < (1u << 18);
+}
+
 StepGraph::~StepGraph() {
     if (m_exec && cudaGraphExecDestroy(static_cast<cudaGraphExec_t>(m_exec)) != cudaSuccess) cudaGetLastError();
 }

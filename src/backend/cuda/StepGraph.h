@@ -51,6 +51,11 @@ bool overlappedLaunchesEnabled();
 // Whether a step of a scene without triangles integrates and places in one kernel
 // (deme_integrate_and_place): DEME_CUDA_FUSED_STEP unset or not "0".
 bool fusedStepEnabled();
+// Whether integration clears the loads it read for a scene of `owners` owners (instead of a kernel
+// at the start of every step): DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION "1" or "0", or by default for
+// scenes under 2^18 owners, where a step's kernels are latency bound and one fewer is worth 1.5-2 %;
+// above, the clearing kernel was the faster (BENCHMARKS.md, SMALL-SYSTEMS).
+bool loadsClearedByIntegration(unsigned int owners);
 // How many steps one graph launch queues (DEME_CUDA_GRAPH_STEPS, default 8; 1 is a graph per step).
 // Inline, without CUDA: a library built without the backend parses (and tests) it the same way.
 inline unsigned int stepsPerGraph() {

@@ -52,9 +52,9 @@ extern "C" __global__ void deme_begin_batch(StepBatchControl* ctl, double time, 
     clearReduction(red);
 }
 
-// The active box's steps clear the loads of the owners in ids[0, n) before their force pass (every
-// other step's integration clears the loads it read, integrateOwner); the step's force phase starts
-// here then (after the host's look at the subset, not before it).
+// A step's first kernel where integration does not clear the loads it read (integrateOwner): clears
+// the loads of owners ids[0, n) (the active box's owners that a step may load; every owner if ids is
+// null) before the force pass, whose phase starts here then.
 extern "C" __global__ void deme_clear_loads(StepBatchControl* ctl, float3* contactForce, float3* contactTorque,
                                             const bodyID_t* ids, unsigned int n) {
     beginDependentKernel();
@@ -62,7 +62,7 @@ extern "C" __global__ void deme_clear_loads(StepBatchControl* ctl, float3* conta
     const size_t k = globalIndex();
     if (k == 0) ctl->forcePhaseStartNs = deviceClockNs();
     if (k >= n) return;
-    const size_t o = ids[k];
+    const size_t o = ids ? (size_t)ids[k] : k;
     contactForce[o] = make_float3(0.f);
     contactTorque[o] = make_float3(0.f);
 }
@@ -158,9 +158,9 @@ DEME_BUILT_IN_FORCE_PASSES(_r64, __maxnreg__(64))
 // step takes the exact (scalar) step at once (rare; the CPU does these in a sweep of their own so
 // that its main sweep vectorises). The step's prescriptions are the batch's table's row for it
 // (motion[stepsDone * NUM_FAMILIES + family], codegen/FamilyMotionSource.h). With clearLoads the
-// owner's contact loads are cleared once read, ready for the next step's force pass: in every step
-// but one whose loads the host reads after it (the storing step) and the active box's, which
-// deme_clear_loads clears. Returns the owner stepped, or -1 for a thread past the end.
+// owner's contact loads are cleared once read, ready for the next step's force pass (not in a step
+// whose loads the host reads after it, the storing step, nor where deme_clear_loads clears them at
+// every step's start). Returns the owner stepped, or -1 for a thread past the end.
 __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, const FamilyStepMotion* motion,
                                            const StepConstants& consts, const double* travelBaseline,
                                            const bodyID_t* ids, unsigned int n, unsigned int clearLoads,
