@@ -157,7 +157,9 @@ std::string CudaDynamics::launchReport() const {
     const std::string overlap =
         std::string(m_overlapLaunches ? ", each kernel overlapping the drain of the one before"
                                       : ", each kernel after the one before has ended") +
-        (m_fusedStep && m_view.numTriangles == 0 ? ", integration and placement in one kernel" : "");
+        (m_fusedStep && m_view.numTriangles == 0 ? ", integration and placement in one kernel" : "") +
+        (m_subsetAll && loadsClearedByIntegration(m_view.numOwners) ? ", loads cleared by integration"
+                                                                     : ", loads cleared by a kernel a step");
     if (!m_useGraphs) return "steps launched kernel by kernel (DEME_CUDA_GRAPHS=0)" + overlap;
     const unsigned long long made = m_plainGraph.captures() + m_plainGraphs.captures() + m_storingGraph.captures();
     const unsigned long long updated = m_plainGraph.updates() + m_plainGraphs.updates() + m_storingGraph.updates();

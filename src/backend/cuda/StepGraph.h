@@ -53,8 +53,9 @@ bool overlappedLaunchesEnabled();
 bool fusedStepEnabled();
 // Whether integration clears the loads it read for a scene of `owners` owners (instead of a kernel
 // at the start of every step): DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION "1" or "0", or by default for
-// scenes under 2^18 owners, where a step's kernels are latency bound and one fewer is worth 1.5-2 %;
-// above, the clearing kernel was the faster (BENCHMARKS.md, SMALL-SYSTEMS).
+// scenes under 2^18 owners, where a step's kernels are latency bound and one fewer is worth 2-3 %
+// on the drum; above, where a step is bandwidth bound, the kernel stays (at 2.9 M spheres one H200
+// was 4 % slower without it, another as fast: BENCHMARKS.md, SMALL-SYSTEMS).
 bool loadsClearedByIntegration(unsigned int owners);
 // How many steps one graph launch queues (DEME_CUDA_GRAPH_STEPS, default 8; 1 is a graph per step).
 // Inline, without CUDA: a library built without the backend parses (and tests) it the same way.
