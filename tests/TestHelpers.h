@@ -25,21 +25,32 @@ inline double effectiveModulus(double E, double nu) { return E / (2.0 * (1.0 - n
 
 // 1,000 spheres of r = 4 mm (2,500 kg/m^3) on a lattice 9.5 mm apart (8.5 mm in z) in a closed
 // 0.1 x 0.1 x 0.2 m box, under gravity, dt 2e-5 s, not yet initialized: settled after 0.3 s, each
-// touches about six others. The memory tests' scene.
-inline void addThousandSphereBed(DEMSolver& sim) {
+// touches about six others. The memory tests' scene. With `sideways` > 0, each sphere is shifted in
+// x and y by up to that much (a fixed sequence), so that the bed they fall into is disordered and
+// its contacts push sideways too. Returns the spheres' batch.
+inline std::shared_ptr<DEMClumpBatch> addThousandSphereBed(DEMSolver& sim, float sideways = 0.f) {
     sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.4));
     sim.InstructBoxDomainDimension({0.f, 0.1f}, {0.f, 0.1f}, {0.f, 0.2f});
     sim.InstructBoxDomainBoundingBC("all", mat);
     const float r = 0.004f;
     auto type = sim.LoadSphereType((float)sphereMass(r, 2500), r, mat);
+    unsigned int seed = 12345u;
+    auto shift = [&seed, sideways] {
+        seed = seed * 1664525u + 1013904223u;
+        return sideways * ((float)(seed >> 8) / 8388608.f - 1.f);
+    };
     std::vector<float3> xyz;
     for (int k = 0; k < 10; k++)
         for (int j = 0; j < 10; j++)
-            for (int i = 0; i < 10; i++) xyz.push_back(make_float3(0.007f + 0.0095f * i, 0.007f + 0.0095f * j, 0.006f + 0.0085f * k));
-    sim.AddClumps(type, xyz);
+            for (int i = 0; i < 10; i++) {
+                const float dx = shift(), dy = shift();
+                xyz.push_back(make_float3(0.007f + 0.0095f * i + dx, 0.007f + 0.0095f * j + dy, 0.006f + 0.0085f * k));
+            }
+    auto batch = sim.AddClumps(type, xyz);
     sim.SetInitTimeStep(2e-5);
     sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    return batch;
 }
 
 // The message of the deme::Error that f throws; fails the test if it throws none.

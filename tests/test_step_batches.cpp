@@ -233,29 +233,40 @@ std::vector<float4> fallingDumbbellPoses(int steps) {
     return poses;
 }
 
+namespace {
+
+// The bouncing spheres (a prescribed family, tracker loads, batches ended early) and dumbbells that
+// spin and land on a plane, with the switch `variable` "0" and then "1": the same trajectories, bit
+// for bit. Returns the dumbbells' poses.
+std::vector<float4> expectTheSameWhether(const char* variable) {
+    Trajectory off;
+    std::vector<float4> clumpsOff;
+    {
+        ScopedEnvironmentVariable v(variable, "0");
+        off = inOneCall(false);
+        clumpsOff = fallingDumbbellPoses(6000);
+    }
+    ScopedEnvironmentVariable v(variable, "1");
+    expectBitForBit(inOneCall(false), off);
+    const std::vector<float4> on = fallingDumbbellPoses(6000);
+    EXPECT_EQ(on.size(), clumpsOff.size());
+    size_t differ = 0;
+    for (size_t k = 0; k < on.size() && k < clumpsOff.size(); k++)
+        differ += on[k].x != clumpsOff[k].x || on[k].y != clumpsOff[k].y || on[k].z != clumpsOff[k].z ||
+                  on[k].w != clumpsOff[k].w;
+    EXPECT_EQ(differ, 0u) << "clump poses that differ with " << variable;
+    return on;
+}
+
+}  // namespace
+
 // GPU only: integration and placement in one kernel (deme_integrate_and_place, the default for
 // scenes without triangles) give the trajectory of the two kernels one after the other, bit for
-// bit: spheres with a prescribed family and tracker loads, and dumbbells that spin and land on a
-// plane. A sphere placed before its owner's new pose was in place would drift from it.
+// bit. A sphere placed before its owner's new pose was in place would drift from it.
 TEST(CudaStepGraphs, FusedIntegrationAndPlacementEqualTwoKernelsBitForBit) {
     if (!cuda::cudaBackendBuilt() || cuda::usableDevices().empty()) GTEST_SKIP() << "needs a GPU";
     ScopedEnvironmentVariable backend("DEME_BACKEND", "cuda");
-    Trajectory twoKernels;
-    std::vector<float4> clumpsTwoKernels;
-    {
-        ScopedEnvironmentVariable off("DEME_CUDA_FUSED_STEP", "0");
-        twoKernels = inOneCall(false);
-        clumpsTwoKernels = fallingDumbbellPoses(6000);
-    }
-    ScopedEnvironmentVariable on("DEME_CUDA_FUSED_STEP", "1");
-    expectBitForBit(inOneCall(false), twoKernels);
-    const std::vector<float4> fused = fallingDumbbellPoses(6000);
-    ASSERT_EQ(fused.size(), clumpsTwoKernels.size());
-    size_t differ = 0;
-    for (size_t k = 0; k < fused.size(); k++)
-        differ += fused[k].x != clumpsTwoKernels[k].x || fused[k].y != clumpsTwoKernels[k].y ||
-                  fused[k].z != clumpsTwoKernels[k].z || fused[k].w != clumpsTwoKernels[k].w;
-    EXPECT_EQ(differ, 0u) << "clump poses that differ";
+    const std::vector<float4> fused = expectTheSameWhether("DEME_CUDA_FUSED_STEP");
     // The dumbbells fell and came to the plane (the comparison is of a run that did something).
     float lowest = 1.f;
     for (size_t k = 0; k < fused.size(); k += 2) lowest = std::min(lowest, fused[k].z);
@@ -263,28 +274,12 @@ TEST(CudaStepGraphs, FusedIntegrationAndPlacementEqualTwoKernelsBitForBit) {
 }
 
 // GPU only: a step's loads cleared by the integration before it (the default under 2^18 owners)
-// give the trajectory of a kernel that clears them at every step's start, bit for bit: the bouncing
-// spheres (a prescribed family, tracker loads, batches ended early) and the dumbbells that land on a
-// plane. A load left from the step before would push them apart.
+// give the trajectory of a kernel that clears them at every step's start, bit for bit. A load left
+// from the step before would push them apart.
 TEST(CudaStepGraphs, LoadsClearedByIntegrationEqualAClearingKernelBitForBit) {
     if (!cuda::cudaBackendBuilt() || cuda::usableDevices().empty()) GTEST_SKIP() << "needs a GPU";
     ScopedEnvironmentVariable backend("DEME_BACKEND", "cuda");
-    Trajectory kernel;
-    std::vector<float4> clumpsKernel;
-    {
-        ScopedEnvironmentVariable off("DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION", "0");
-        kernel = inOneCall(false);
-        clumpsKernel = fallingDumbbellPoses(6000);
-    }
-    ScopedEnvironmentVariable on("DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION", "1");
-    expectBitForBit(inOneCall(false), kernel);
-    const std::vector<float4> cleared = fallingDumbbellPoses(6000);
-    ASSERT_EQ(cleared.size(), clumpsKernel.size());
-    size_t differ = 0;
-    for (size_t k = 0; k < cleared.size(); k++)
-        differ += cleared[k].x != clumpsKernel[k].x || cleared[k].y != clumpsKernel[k].y ||
-                  cleared[k].z != clumpsKernel[k].z || cleared[k].w != clumpsKernel[k].w;
-    EXPECT_EQ(differ, 0u) << "clump poses that differ";
+    expectTheSameWhether("DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION");
 }
 
 // GPU only: graphs of several steps (the default 8, and 7, whose batches of up to 30 steps leave

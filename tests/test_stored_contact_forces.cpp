@@ -66,36 +66,14 @@ std::vector<ContactRow> readContactFile(const std::string& path) {
 // after each call the contact file's forces summed onto the spheres equal their contact forces.
 void expectForcesOfTheLastStep(const std::string& dir, bool frictionless) {
     DEMSolver sim;
-    sim.SetVerbosity("QUIET");
-    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.4));
-    sim.InstructBoxDomainDimension({0.f, 0.1f}, {0.f, 0.1f}, {0.f, 0.2f});
-    sim.InstructBoxDomainBoundingBC("all", mat);
-    const float r = 0.004f;
-    auto type = sim.LoadSphereType((float)sphereMass(r, 2500), r, mat);
-    // A lattice 1.5 mm apart, each sphere shifted sideways by up to 0.7 mm (a fixed sequence): the
-    // bed they fall into is disordered, so its contacts push sideways too.
-    std::vector<float3> xyz;
-    unsigned int seed = 12345u;
-    auto jitter = [&seed] {
-        seed = seed * 1664525u + 1013904223u;
-        return 0.0007f * ((float)(seed >> 8) / 8388608.f - 1.f);
-    };
-    for (int k = 0; k < 10; k++)
-        for (int j = 0; j < 10; j++)
-            for (int i = 0; i < 10; i++) {
-                const float dx = jitter(), dy = jitter();
-                xyz.push_back(make_float3(0.007f + 0.0095f * i + dx, 0.007f + 0.0095f * j + dy, 0.006f + 0.0095f * k));
-            }
-    auto grains = sim.AddClumps(type, xyz);
+    auto grains = addThousandSphereBed(sim, 0.0007f);  // disordered: its contacts push sideways too
     auto tracker = sim.Track(grains);
     if (frictionless) sim.UseFrictionlessHertzianModel();
-    sim.SetInitTimeStep(2e-5);
-    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
     sim.SetCDUpdateFreq(20);
     sim.SetCDMaxUpdateFreq(20);
     sim.Initialize();
     sim.DoDynamics(0.05);  // into a bed
-    const size_t n = xyz.size();
+    const size_t n = tracker->GetNumOwners();
     size_t checkedContacts = 0;
     for (int call = 0; call < 5; call++) {
         sim.DoDynamics(500 * 2e-5);
