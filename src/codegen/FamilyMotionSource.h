@@ -18,7 +18,8 @@ namespace deme {
 // k into out[k * NUM_FAMILIES + f], at the time the batch's clock will have then (ctl->time plus k
 // additions of ctl->dt, as finishBatchStep makes them, plus dt), so that every step of the batch reads
 // its prescriptions from the table instead of a kernel of its own; threads 0 .. numCleared - 1 clear
-// owner i's contact loads for the batch's first step (later steps' integration clears them).
+// owner i's contact loads for the batch's first step where integration clears them in the later
+// steps (numCleared is 0 where a kernel clears them at every step's start).
 inline constexpr const char* kFamilyMotionKernel = "deme_family_motion";
 
 std::string familyMotionKernelSource(const std::array<FamilyMotion, NUM_FAMILIES>& motions);

@@ -104,12 +104,16 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
     const double t0 = now();
     StepBatchControl* ctl = m_control.data();
     launch(kBeginBatch, 1, 1, 0, st, ctl, batch.time, settings.dt, batch.margin, m_reduction.data());
-    // The prescriptions of each of the batch's steps, and every owner's loads cleared for its first
-    // step (codegen/FamilyMotionSource.h).
+    // The prescriptions of each of the batch's steps (codegen/FamilyMotionSource.h), and, where
+    // integration clears the loads, every owner's cleared for the first step (the step before may
+    // have kept them for the host). Where a kernel clears them at every step's start, the batch
+    // leaves them: a scene that large (loadsClearedByIntegration) never has integration clear them,
+    // in the active box or not, and clearing its millions of owners twice would cost a sweep.
     const unsigned int nO = m_view.numOwners, tableSize = (unsigned int)n * NUM_FAMILIES;
-    launch(kFamilyMotion, blocksFor(std::max(tableSize, nO), 256), 256, 0, st, (const StepBatchControl*)ctl,
+    const unsigned int nCleared = loadsClearedByIntegration(nO) ? nO : 0u;
+    launch(kFamilyMotion, blocksFor(std::max(tableSize, nCleared), 256), 256, 0, st, (const StepBatchControl*)ctl,
            m_motion.data(), (unsigned int)n, m_state.owners.contactForce.data(), m_state.owners.contactTorque.data(),
-           nO);
+           nCleared);
     if (m_subsetStale) {
         // After an upload, a detection or a family change: O(owners), reads the first step's motion.
         updateStepSubset();
