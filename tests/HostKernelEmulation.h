@@ -40,3 +40,4 @@ void runThreadsReversed(size_t n, Kernel kernel) {
 
 #define __global__
 #define __device__
+#define __launch_bounds__(...)

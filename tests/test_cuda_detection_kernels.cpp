@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <vector>
 
@@ -19,6 +20,9 @@
 #include "backend/cpu/ContactDetector.h"
 #include "kinematics/DormantRules.h"
 #include "runtime/FamilyRules.h"
+
+#include "BackendFixture.h"
+#include "backend/cuda/DetectionLanes.h"
 
 #include "HostKernelEmulation.h"
 #include "backend/cuda/kernels/Detection.cu"
@@ -64,13 +68,15 @@ struct EmulatedBins {
 // whose boxes the kernels compute from `v` and `args`. The scatter's threads run from the last to the
 // first: on a GPU their order is the atomics', and the per-bin sort must put each bin's items in
 // increasing order whatever it was.
+// `lanes` threads an item, as CudaKinematics::detect launches them (DetectionLanes.h).
 void emulateBinning(EmulatedBins& b, const StateView& v, const DetectionArgs& args, BinnedKind kind,
-                    const bodyID_t* ids, unsigned int n, size_t numBins) {
+                    const bodyID_t* ids, unsigned int n, size_t numBins, unsigned int lanes = 1) {
     b.start.assign(numBins + 2, 0);
-    runThreads(n, [&] { deme_bin_count(v, args, kind, ids, n, b.start.data()); });
+    runThreads((size_t)n * lanes, [&] { deme_bin_count(v, args, kind, ids, n, lanes, b.start.data()); });
     exclusiveSum(b.start);
     b.items.assign(b.start[numBins + 1], 0);
-    runThreadsReversed(n, [&] { deme_bin_scatter(v, args, kind, ids, n, b.start.data(), b.items.data()); });
+    runThreadsReversed((size_t)n * lanes,
+                       [&] { deme_bin_scatter(v, args, kind, ids, n, lanes, b.start.data(), b.items.data()); });
     runThreads(numBins, [&] { deme_bin_sort(b.start.data(), numBins, b.items.data()); });
 }
 
@@ -116,11 +122,22 @@ struct EmulatedDetection {
     DetectedContacts contacts;
 };
 
+// How CudaKinematics::detect spreads the spheres' work over threads (DetectionLanes.h): threads an
+// item in registration; the radius from which a sphere is wide, and the threads a wide sphere's
+// search takes; threads a sphere in the search of the others. The default is a thread an item.
+struct Spread {
+    unsigned int binLanes = 1;
+    float wideRadius = std::numeric_limits<float>::infinity();
+    unsigned int wideLanes = cuda::WIDE_SPHERE_LANES;
+    unsigned int searchLanes = 1;
+};
+
 // CudaKinematics::detect; with `dormant` (1 per dormant family) and `movable` (1 per owner that
-// can move) as DeviceDormantRegistry::prepare, without them a full search.
+// can move) as DeviceDormantRegistry::prepare, without them a full search; spread as `spread` says
+// (but a thread a sphere with the registry, as on the GPU).
 EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double margin, const uint8_t* mask,
                                 const float* extra, const uint8_t* dormant = nullptr,
-                                const uint8_t* movable = nullptr) {
+                                const uint8_t* movable = nullptr, Spread spread = Spread{}) {
     // A sheared cell's image layers displaced by the state's offset, as CudaKinematics::detect.
     const BinGrid grid = withShearOffset(sceneGrid, s.frame.periodic);
     StateView v{};
@@ -154,7 +171,13 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     }
     const bodyID_t* ids = r.usedRegistry ? r.registry.moving.data() : nullptr;
     const unsigned int nSearched = r.usedRegistry ? (unsigned int)r.registry.moving.size() : nS;
-    emulateBinning(r.spheres, v, args, BINNED_SPHERES, ids, nSearched, grid.numBins());
+    if (r.usedRegistry) spread = Spread{};
+    const unsigned int lanes = spread.wideLanes;
+    std::vector<bodyID_t> wide;  // as CudaKinematics::setGeometry lists them
+    for (size_t i = 0; i < nS; i++)
+        if (s.spheres.radius[i] >= spread.wideRadius) wide.push_back((bodyID_t)i);
+    const unsigned int nWide = (unsigned int)wide.size();
+    emulateBinning(r.spheres, v, args, BINNED_SPHERES, ids, nSearched, grid.numBins(), spread.binLanes);
     std::vector<double3> triLo(nT), triHi(nT);
     args.triLo = triLo.data();
     args.triHi = triHi.data();
@@ -164,9 +187,20 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     if (nT) args.triangleBins = BinsView{r.triangles.start.data(), r.triangles.items.data()};
     // As on the GPU: counts, then their exclusive sum in place.
     std::vector<unsigned int> offset(nSearched + 1, 0);
-    runThreads(nSearched, [&] {
-        deme_pair_search(v, args, dormantBins, ids, nSearched, offset.data(), (const unsigned int*)nullptr,
-                         (bodyID_t*)nullptr, (bodyID_t*)nullptr, (uint8_t*)nullptr);
+    const unsigned int sLanes = spread.searchLanes;
+    if (sLanes > 1)
+        runThreads((size_t)nSearched * sLanes, [&] {
+            deme_pair_search_lanes(v, args, nSearched, sLanes, spread.wideRadius, offset.data(),
+                                   (const unsigned int*)nullptr, (unsigned int*)nullptr, (bodyID_t*)nullptr);
+        });
+    else
+        runThreads(nSearched, [&] {
+            deme_pair_search(v, args, dormantBins, ids, nSearched, spread.wideRadius, offset.data(),
+                             (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr, (uint8_t*)nullptr);
+        });
+    runThreads((size_t)nWide * lanes, [&] {
+        deme_pair_search_wide(v, args, wide.data(), nWide, lanes, offset.data(), (const unsigned int*)nullptr,
+                              (unsigned int*)nullptr, (bodyID_t*)nullptr);
     });
     exclusiveSum(offset);
     const unsigned int total = offset[nSearched];
@@ -174,10 +208,41 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     c.geomA.assign(total, 0);
     c.geomB.assign(total, 0);
     c.type.assign(total, 0);
-    runThreads(nSearched, [&] {
-        deme_pair_search(v, args, dormantBins, ids, nSearched, (unsigned int*)nullptr, offset.data(), c.geomA.data(),
-                         c.geomB.data(), c.type.data());
-    });
+    if (sLanes > 1) {
+        // Backwards: a sphere's lanes write its partners in the order of their atomics, which
+        // deme_pair_order must undo whatever it was.
+        std::vector<unsigned int> cursor(nSearched, 0);
+        runThreadsReversed((size_t)nSearched * sLanes, [&] {
+            deme_pair_search_lanes(v, args, nSearched, sLanes, spread.wideRadius, (unsigned int*)nullptr,
+                                   offset.data(), cursor.data(), c.geomB.data());
+        });
+        runThreads(nSearched, [&] {
+            deme_pair_order(v, nSearched, spread.wideRadius, offset.data(), c.geomA.data(), c.geomB.data(),
+                            c.type.data());
+        });
+    } else {
+        runThreads(nSearched, [&] {
+            deme_pair_search(v, args, dormantBins, ids, nSearched, spread.wideRadius, (unsigned int*)nullptr,
+                             offset.data(), c.geomA.data(), c.geomB.data(), c.type.data());
+        });
+    }
+    if (nWide) {
+        // Backwards: a wide sphere's lanes write its partners in the order of their atomics, which
+        // the ranking must undo whatever it was.
+        std::vector<unsigned int> cursor(nWide, 0);
+        runThreadsReversed((size_t)nWide * lanes, [&] {
+            deme_pair_search_wide(v, args, wide.data(), nWide, lanes, (unsigned int*)nullptr, offset.data(),
+                                  cursor.data(), c.geomB.data());
+        });
+        for (unsigned int w = 0; w < nWide; w++) EXPECT_EQ(cursor[w], offset[wide[w] + 1] - offset[wide[w]]);
+        runThreads((size_t)nWide * lanes, [&] {
+            deme_pair_rank_wide(wide.data(), nWide, lanes, offset.data(), c.geomA.data(), c.geomB.data());
+        });
+        runThreads((size_t)nWide * lanes, [&] {
+            deme_pair_finish_wide(v, wide.data(), nWide, lanes, offset.data(), c.geomA.data(), c.geomB.data(),
+                                  c.type.data());
+        });
+    }
     if (r.usedRegistry) {  // DeviceDormantRegistry::sortPairs
         std::vector<unsigned long long> keys(total), sortedKeys;
         std::vector<unsigned int> idx(total), sortedIdx;
@@ -237,14 +302,25 @@ static void expectSameList(const DetectedContacts& gpu, const DetectedContacts& 
     EXPECT_EQ(gpu.type, cpu.type);
 }
 
-// The emulated kernels against the CPU detector.
+// Spreads for the scenes of randomScene (radii 0.3-2 mm): a thread an item; 3 threads an item
+// (splitting most boxes' rows unevenly) and the spheres from 1.2 mm wide with 3 lanes; 16 threads
+// an item (most rows a thread of their own, lanes left idle) and the spheres from 0.8 mm wide with
+// a warp each; 2 threads a sphere in the search and none wide.
+static const Spread SPREADS[] = {Spread{}, Spread{3u, 0.0012f, 3u, 3u}, Spread{16u, 0.0008f, 32u, 16u},
+                                 Spread{1u, std::numeric_limits<float>::infinity(), 32u, 2u}};
+
+// The emulated kernels against the CPU detector, in every spread.
 static void expectTheCpuDetectorsPairs(SimState& s, const BinGrid& grid, double margin, const DetectionRules& dr) {
-    const EmulatedDetection gpu = emulateDetect(s, grid, margin, dr.rules.contactMask(), dr.extra);
     ContactDetector det;
     DetectedContacts cpu;
     double binning = 0.0, search = 0.0;
     det.detect(s, grid, margin, dr.rules.contactMask(), dr.extra, cpu, binning, search);
-    expectSameList(gpu.contacts, cpu, 20);
+    for (const Spread& spread : SPREADS) {
+        SCOPED_TRACE(testing::Message() << spread.binLanes << " threads an item, wide from " << spread.wideRadius);
+        const EmulatedDetection gpu =
+            emulateDetect(s, grid, margin, dr.rules.contactMask(), dr.extra, nullptr, nullptr, spread);
+        expectSameList(gpu.contacts, cpu, 20);
+    }
 }
 
 TEST(CudaDetectionKernels, MatchTheCpuDetectorExactly) {
@@ -258,10 +334,13 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorExactly) {
             const BinGrid grid = makeBinGrid(s, binSize);
             for (double margin : {0.0, 1e-4}) {
                 SCOPED_TRACE(testing::Message() << "seed " << seed << ", bin " << binSize << ", margin " << margin);
-                const EmulatedDetection gpu = emulateDetect(s, grid, margin, dr.rules.contactMask(), dr.extra);
                 const BinRegistry cpuBins = cpuSphereBins(s, grid, margin, dr.extra);
-                EXPECT_EQ(gpu.spheres.starts(grid.numBins()), cpuBins.start);
-                EXPECT_EQ(gpu.spheres.items, cpuBins.entries);
+                for (const Spread& spread : SPREADS) {
+                    const EmulatedDetection gpu =
+                        emulateDetect(s, grid, margin, dr.rules.contactMask(), dr.extra, nullptr, nullptr, spread);
+                    EXPECT_EQ(gpu.spheres.starts(grid.numBins()), cpuBins.start) << spread.binLanes << " lanes";
+                    EXPECT_EQ(gpu.spheres.items, cpuBins.entries) << spread.binLanes << " lanes";
+                }
                 expectTheCpuDetectorsPairs(s, grid, margin, dr);
                 cases++;
             }
@@ -310,6 +389,119 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorInAShearedCell) {
         }
     }
     EXPECT_EQ(cases, 6);
+}
+
+// A ball among grains ten times smaller (a drop into a bed): its box spans some 1,700 bins of the
+// grains' size, which one thread walked alone (DetectionLanes.h). Spread as the GPU spreads it here
+// (16 threads an item in registration, the ball wide and searched by a warp), the kernels' list is
+// still the CPU's, pair for pair, with the ball low in the scene's space-filling order (it reports
+// over a hundred of its pairs itself) and high in it (the grains near it report most of them).
+TEST(CudaDetectionKernels, MatchTheCpuDetectorWithABallAmongSmallGrains) {
+    const DetectionRules dr;
+    int cases = 0;
+    for (float at : {-0.008f, 0.008f}) {
+        Scene scene = randomScene(7, 1500);
+        auto ballType = std::make_shared<DEMClumpTemplate>();
+        ballType->mass = 1.f;
+        ballType->MOI = make_float3(1.f);
+        ballType->radii.push_back(0.009f);
+        ballType->relPos.push_back(make_float3(0.f));
+        ballType->materials.push_back(scene.materials.front());
+        scene.batches.push_back(std::make_shared<DEMClumpBatch>(
+            std::vector<std::shared_ptr<DEMClumpTemplate>>{ballType}, std::vector<float3>{make_float3(at, at, at)}));
+        SimState s = detectionState(scene, "CudaDetectionKernels");
+        const bodyID_t ballId =
+            (bodyID_t)(std::find(s.spheres.radius.begin(), s.spheres.radius.end(), 0.009f) - s.spheres.radius.begin());
+        ASSERT_LT((size_t)ballId, s.spheres.size());
+        const double margin = 1e-4;
+        const BinGrid grid = makeBinGrid(s, 0.0011);
+        const double reach = 0.009 + margin + 2e-4;  // the largest extra margin is family 1's
+        ASSERT_GT(cuda::maxBinRows(grid, reach), 256u);
+        Spread spread;
+        spread.binLanes = cuda::binningLanes((unsigned int)s.spheres.size(), false, grid, reach);
+        EXPECT_EQ(spread.binLanes, cuda::MAX_BINNING_LANES);
+        spread.wideRadius = cuda::wideSphereRadius(grid);
+        spread.searchLanes = cuda::searchLanes((unsigned int)s.spheres.size(), false, grid, 0.0003 + margin);
+        EXPECT_GT(spread.searchLanes, 1u);
+        EXPECT_EQ(std::count_if(s.spheres.radius.begin(), s.spheres.radius.end(),
+                                [&](float r) { return r >= spread.wideRadius; }),
+                  1);
+        ContactDetector det;
+        DetectedContacts cpu;
+        double binning = 0.0, search = 0.0;
+        det.detect(s, grid, margin, dr.rules.contactMask(), dr.extra, cpu, binning, search);
+        size_t ballAsA = 0, ballAsB = 0;
+        for (size_t k = 0; k < cpu.size(); k++) {
+            ballAsA += cpu.geomA[k] == ballId;
+            ballAsB += cpu.geomB[k] == ballId;
+        }
+        SCOPED_TRACE(testing::Message() << "ball at " << at << ", id " << ballId << " of " << s.spheres.size()
+                                        << ", its pairs as A " << ballAsA << ", as B " << ballAsB);
+        EXPECT_GT(ballAsA + ballAsB, 200u);
+        if (at < 0.f)
+            EXPECT_GT(ballAsA, 100u);  // the ball's lanes fill and rank a long list
+        else
+            EXPECT_GT(ballAsB, 4 * ballAsA);  // the grains find the ball
+        const EmulatedDetection gpu =
+            emulateDetect(s, grid, margin, dr.rules.contactMask(), dr.extra, nullptr, nullptr, spread);
+        EXPECT_EQ(gpu.contacts.geomA, cpu.geomA);
+        EXPECT_EQ(gpu.contacts.geomB, cpu.geomB);
+        EXPECT_EQ(gpu.contacts.type, cpu.type);
+        cases++;
+    }
+    EXPECT_EQ(cases, 2);
+}
+
+// Threads an item in registration: one per row of bins of the largest box, up to 16, below 2^18
+// searched spheres; one above, and with the active box's dormant registry. Threads a sphere in the
+// search: the same from the smallest box. Wide spheres from twice the smallest bin edge. The diagnostic switches' numbers where they are set, and an error naming
+// the variable for anything else.
+TEST(CudaDetectionKernels, SpreadFollowsTheLargestBoxAndTheSceneSize) {
+    BinGrid g{make_double3(0, 0, 0), 1.0, make_double3(1, 1, 1), 100, 100, 100, 0u};
+    ScopedEnvironmentVariable unsetLanes("DEME_CUDA_BINNING_LANES", "");
+    ScopedEnvironmentVariable unsetWide("DEME_CUDA_WIDE_SPHERES", "");
+    ScopedEnvironmentVariable unsetSearch("DEME_CUDA_SEARCH_LANES", "");
+    EXPECT_EQ(cuda::maxBinRows(g, 0.4), 4u);   // a box 0.8 wide spans at most 2 bins an axis
+    EXPECT_EQ(cuda::maxBinRows(g, 1.0), 16u);  // 2.0 wide: at most 4
+    EXPECT_EQ(cuda::binningLanes(1000, false, g, 0.4), 4u);
+    EXPECT_EQ(cuda::binningLanes(1000, false, g, 1.0), 16u);
+    EXPECT_EQ(cuda::binningLanes(1000, false, g, 5.0), 16u);
+    EXPECT_EQ(cuda::binningLanes(cuda::DETECTION_LANES_BELOW - 1, false, g, 5.0), 16u);
+    EXPECT_EQ(cuda::binningLanes(cuda::DETECTION_LANES_BELOW, false, g, 5.0), 1u);
+    EXPECT_EQ(cuda::binningLanes(1000, true, g, 5.0), 1u);
+    EXPECT_EQ(cuda::searchLanes(1000, false, g, 0.4), 4u);
+    EXPECT_EQ(cuda::searchLanes(1000, false, g, 5.0), 16u);
+    EXPECT_EQ(cuda::searchLanes(cuda::DETECTION_LANES_BELOW, false, g, 0.4), 1u);
+    EXPECT_EQ(cuda::searchLanes(1000, true, g, 0.4), 1u);
+    EXPECT_EQ(cuda::wideSphereRadius(g), 2.f);
+    g.edge.y = 0.75;
+    EXPECT_EQ(cuda::wideSphereRadius(g), 1.5f);
+    {
+        ScopedEnvironmentVariable lanes("DEME_CUDA_BINNING_LANES", "32");
+        ScopedEnvironmentVariable wide("DEME_CUDA_WIDE_SPHERES", "0");
+        ScopedEnvironmentVariable search("DEME_CUDA_SEARCH_LANES", "5");
+        EXPECT_EQ(cuda::searchLanes(1u << 20, false, g, 0.4), 5u);
+        EXPECT_EQ(cuda::searchLanes(1000, true, g, 0.4), 1u);
+        EXPECT_EQ(cuda::binningLanes(1u << 20, false, g, 0.4), 32u);
+        EXPECT_EQ(cuda::binningLanes(1000, true, g, 0.4), 1u);
+        EXPECT_EQ(cuda::wideSphereRadius(g), std::numeric_limits<float>::infinity());
+    }
+    auto expectError = [](const char* name, const char* bad, auto call) {
+        ScopedEnvironmentVariable v(name, bad);
+        try {
+            call();
+            ADD_FAILURE() << "no error for " << name << "=" << bad;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(std::string(name) + " is '" + bad + "'"), std::string::npos)
+                << e.what();
+        }
+    };
+    for (const char* bad : {"0", "65", "4x", "-1"})
+        expectError("DEME_CUDA_BINNING_LANES", bad, [&] { cuda::binningLanes(1000, false, g, 1.0); });
+    for (const char* bad : {"0", "65", "x"})
+        expectError("DEME_CUDA_SEARCH_LANES", bad, [&] { cuda::searchLanes(1000, false, g, 1.0); });
+    for (const char* bad : {"2", "yes", "-0"})
+        expectError("DEME_CUDA_WIDE_SPHERES", bad, [&] { cuda::wideSphereRadius(g); });
 }
 
 // The active box: with a dormant family (fixed, no contacts among fixed families) the kernels build
@@ -407,11 +599,11 @@ TEST(CudaDetectionKernels, BinStartsOfAMostlyEmptyGrid) {
                 for (int x = lo[3 * i]; x <= hi[3 * i]; x++) entries.push_back({(unsigned int)binIndex(g, x, y, z), i});
     std::sort(entries.begin(), entries.end());
     std::vector<unsigned int> start(numBins + 2, 0);
-    runThreads(3, [&] { deme_bin_count(none, args, BINNED_TRIANGLES, nullptr, 3, start.data()); });
+    runThreads(3, [&] { deme_bin_count(none, args, BINNED_TRIANGLES, nullptr, 3, 1u, start.data()); });
     exclusiveSum(start);
     ASSERT_EQ(start[numBins + 1], 17u);
     std::vector<unsigned int> items(17, 99);
-    runThreadsReversed(3, [&] { deme_bin_scatter(none, args, BINNED_TRIANGLES, nullptr, 3, start.data(), items.data()); });
+    runThreadsReversed(3, [&] { deme_bin_scatter(none, args, BINNED_TRIANGLES, nullptr, 3, 1u, start.data(), items.data()); });
     runThreads(numBins, [&] { deme_bin_sort(start.data(), numBins, items.data()); });
     for (size_t b = 0; b <= numBins; b++) {
         const auto first = std::lower_bound(entries.begin(), entries.end(), std::make_pair((unsigned int)b, 0u));

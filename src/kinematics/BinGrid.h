@@ -103,14 +103,30 @@ DEME_HD inline void layerXBins(const BinGrid& g, int z, int x0, int x1, int& xa,
     while (xa >= g.nx) xa -= g.nx, xb -= g.nx;
 }
 
-// The bins box b covers, in (z, y, x) order: f(bin) for each. Registration and search walk the same
-// bins this way on both backends.
+// How many rows of bins (one y and one z, every x) box b covers.
+DEME_HD inline unsigned int binRows(const BinBox& b) {
+    return (unsigned int)((b.hi[1] - b.lo[1] + 1) * (b.hi[2] - b.lo[2] + 1));
+}
+
+// The bins of rows first, first + step, first + 2 step, ... of box b (rows in (z, y) order, each
+// row's bins in x order): f(x, y, z) for each. Several threads that take the rows of one box in turn
+// (first = 0 .. step - 1) cover its bins once between them (the GPU's lab-scale detection,
+// docs/cuda-backend.md).
+template <class F>
+DEME_HD inline void forEachBinOfRows(const BinGrid& g, const BinBox& b, unsigned int first, unsigned int step, F&& f) {
+    const unsigned int ny = (unsigned int)(b.hi[1] - b.lo[1] + 1), rows = binRows(b);
+    int xa, xb;  // a layer's x bins (shifted in a sheared cell's image layers: layerXBins)
+    for (unsigned int r = first; r < rows; r += step) {
+        const int y = b.lo[1] + (int)(r % ny), z = b.lo[2] + (int)(r / ny);
+        for (layerXBins(g, z, b.lo[0], b.hi[0], xa, xb); xa <= xb; xa++) f(xa, y, z);
+    }
+}
+
+// The bins box b covers, in (z, y, x) order: f(x, y, z) for each. Registration and search walk the
+// same bins this way on both backends.
 template <class F>
 DEME_HD inline void forEachBinOf(const BinGrid& g, const BinBox& b, F&& f) {
-    int xa, xb;  // a layer's x bins (shifted in a sheared cell's image layers: layerXBins)
-    for (int z = b.lo[2]; z <= b.hi[2]; z++)
-        for (int y = b.lo[1]; y <= b.hi[1]; y++)
-            for (layerXBins(g, z, b.lo[0], b.hi[0], xa, xb); xa <= xb; xa++) f(xa, y, z);
+    forEachBinOfRows(g, b, 0u, 1u, f);
 }
 
 }  // namespace deme

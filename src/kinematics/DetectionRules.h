@@ -162,89 +162,145 @@ DEME_HD_INLINE uint8_t contactTypeOf(const S& s, bodyID_t b) {
                                     : (uint8_t)SPHERE_TRIANGLE;
 }
 
+// A sphere that searches for its partners: what the search of any of its bins reads.
+struct SearchedSphere {
+    bodyID_t id, owner;
+    double3 centre, lo, hi;  // its box, enlarged by its margin
+    double reach;            // its enlarged radius
+    BinBox bins;             // the bins of its box, as its registration computed them (sphereBox)
+    const uint8_t* maskRow;  // its family's row of the contact mask
+};
+
+template <class S>
+DEME_HD_INLINE SearchedSphere searchedSphere(const S& s, const DetectionArgs& a, bodyID_t sa) {
+    SearchedSphere A;
+    A.id = sa;
+    A.centre = sphereCentre(s, sa);
+    A.owner = s.spheres.owner[sa];
+    A.reach = (double)s.spheres.radius[sa] + marginOf(s, a, A.owner);
+    boxAround(A.centre, A.reach, A.lo, A.hi);
+    A.bins = binBox(a.grid, A.lo, A.hi);
+    A.maskRow = a.familyMask + (size_t)s.owners.family[A.owner] * NUM_FAMILIES;
+    return A;
+}
+
+// A's sphere partners that bin (x, y, z) reports: spheres b > A of another owner within reach, each
+// pair from the one bin that holds the lower corner of the two boxes' intersection; f(b) for each.
+template <class S, class F>
+DEME_HD_INLINE void spherePartnersInBin(const S& s, const DetectionArgs& a, const SearchedSphere& A, int x, int y,
+                                        int z, F&& f) {
+    const BinGrid& g = a.grid;
+    const uint64_t bin = binIndex(g, x, y, z);
+    const uint32_t e1 = a.sphereBins.start[bin + 1];
+    for (uint32_t e = firstEntryAbove(a.sphereBins, a.sphereBins.start[bin], e1, A.id); e < e1; e++) {
+        // The geometric tests first: most entries fail them (spheres out of reach, or pairs another
+        // bin reports), and they need only b's position and radius, read side by side; b's owner and
+        // family are looked up for the rest.
+        const bodyID_t b = a.sphereBins.items[e];
+        // Across a periodic face: b's image nearest to A, in A's frame (the bins searched are A's
+        // box's, unwrapped).
+        const double3 pB = nearestImage(s.frame.periodic, A.centre, sphereCentre(s, b));
+        const double rB = (double)s.spheres.radius[b];
+        const bool shared = a.sharedExtraMargin >= 0.0;
+        const bodyID_t oB0 = shared ? 0 : s.spheres.owner[b];
+        const double eB = rB + (shared ? a.margin + a.sharedExtraMargin : marginOf(s, a, oB0));
+        const double reach = A.reach + eB;
+        const double3 d = A.centre - pB;
+        if (fabs(d.x) > reach || fabs(d.y) > reach || fabs(d.z) > reach) continue;
+        if (!binOwnsPair(g, A.lo, make_double3(pB.x - eB, pB.y - eB, pB.z - eB), x, y, z)) continue;
+        if (dot(d, d) >= reach * reach) continue;
+        const bodyID_t oB = shared ? s.spheres.owner[b] : oB0;
+        if (oB == A.owner || !A.maskRow[s.owners.family[oB]]) continue;
+        f(b);
+    }
+}
+
+// A's triangle partners that bin (x, y, z) reports (the triangle's index t; each pair from one bin):
+// f(t) for each. Without triangles (a.triangleBins.start null) none.
+template <class S, class F>
+DEME_HD_INLINE void trianglePartnersInBin(const S& s, const DetectionArgs& a, const SearchedSphere& A, int x, int y,
+                                          int z, F&& f) {
+    if (a.triangleBins.start == nullptr) return;
+    const uint64_t bin = binIndex(a.grid, x, y, z);
+    for (uint32_t e = a.triangleBins.start[bin]; e < a.triangleBins.start[bin + 1]; e++) {
+        const uint32_t tri = a.triangleBins.items[e];
+        const bodyID_t oT = s.triangles.owner[tri];
+        if (!A.maskRow[s.owners.family[oT]]) continue;
+        // The triangle's image nearest to A (across a periodic face), in A's frame.
+        const double3* v0 = &s.cache.triVert[3 * (size_t)tri];
+        const double3 shift = imageShift(s.frame.periodic, A.centre - v0[0]);
+        const double3 lo = a.triLo[tri] + shift, hi = a.triHi[tri] + shift;
+        if (lo.x > A.hi.x || lo.y > A.hi.y || lo.z > A.hi.z || hi.x < A.lo.x || hi.y < A.lo.y || hi.z < A.lo.z)
+            continue;
+        if (!binOwnsPair(a.grid, A.lo, lo, x, y, z)) continue;
+        double3 bary;
+        const double3 c = closestPointOnTriangle(A.centre, v0[0] + shift, v0[1] + shift, v0[2] + shift, bary);
+        if (length(A.centre - c) >= A.reach + marginOf(s, a, oT)) continue;
+        f(tri);
+    }
+}
+
+// A's analytical partners (every component is checked: they are few), by index j: f(j) for each.
+template <class S, class F>
+DEME_HD_INLINE void analyticalPartners(const S& s, const DetectionArgs& a, const SearchedSphere& A, F&& f) {
+    const unsigned int nA = (unsigned int)(s.triangleIdBase() - s.analyticalIdBase());
+    for (unsigned int j = 0; j < nA; j++)
+        if (analyticalInReach(s, a, A.maskRow, A.centre, A.reach, j)) f(j);
+}
+
 // Sphere sa's partners (unified geometry ids) in contact-set order, into out[0, capacity); returns
 // how many there are. If that is more than `capacity`, out holds no usable list: call again with
 // room for all (capacity 0 counts only).
 template <class S>
 DEME_HD_INLINE unsigned int spherePartners(const S& s, const DetectionArgs& a, bodyID_t sa, bodyID_t* out,
                                            unsigned int capacity) {
-    const BinGrid& g = a.grid;
-    const PeriodicBox& period = s.frame.periodic;
-    const double3 pA = sphereCentre(s, sa);
-    const bodyID_t oA = s.spheres.owner[sa];
-    const double eA = (double)s.spheres.radius[sa] + marginOf(s, a, oA);
-    // A's box and its bins, as its registration computed them (sphereBox).
-    double3 loA, hiA;
-    boxAround(pA, eA, loA, hiA);
-    const BinBox boxA = binBox(g, loA, hiA);
-    const uint8_t* maskRow = a.familyMask + (size_t)s.owners.family[oA] * NUM_FAMILIES;
-    // 1. Sphere partners: spheres b > a of another owner (each pair once, from its lower sphere).
+    const SearchedSphere A = searchedSphere(s, a, sa);
+    // 1. Sphere partners (each pair once, from its lower sphere).
     unsigned int nSph = 0;
-    forEachBinOf(g, boxA, [&](int x, int y, int z) {
-        const uint64_t bin = binIndex(g, x, y, z);
-        const uint32_t e1 = a.sphereBins.start[bin + 1];
-        for (uint32_t e = firstEntryAbove(a.sphereBins, a.sphereBins.start[bin], e1, sa); e < e1; e++) {
-            // The geometric tests first: most entries fail them (spheres out of reach, or pairs
-            // another bin reports), and they need only b's position and radius, read side by side;
-            // b's owner and family are looked up for the rest.
-            const bodyID_t b = a.sphereBins.items[e];
-            // Across a periodic face: b's image nearest to a, in a's frame (the bins the loop visits
-            // are a's box's, unwrapped).
-            const double3 pB = nearestImage(period, pA, sphereCentre(s, b));
-            const double rB = (double)s.spheres.radius[b];
-            const bool shared = a.sharedExtraMargin >= 0.0;
-            const bodyID_t oB0 = shared ? 0 : s.spheres.owner[b];
-            const double eB = rB + (shared ? a.margin + a.sharedExtraMargin : marginOf(s, a, oB0));
-            const double reach = eA + eB;
-            const double3 d = pA - pB;
-            if (fabs(d.x) > reach || fabs(d.y) > reach || fabs(d.z) > reach) continue;
-            if (!binOwnsPair(g, loA, make_double3(pB.x - eB, pB.y - eB, pB.z - eB), x, y, z)) continue;
-            if (dot(d, d) >= reach * reach) continue;
-            const bodyID_t oB = shared ? s.spheres.owner[b] : oB0;
-            if (oB == oA || !maskRow[s.owners.family[oB]]) continue;
+    forEachBinOf(a.grid, A.bins, [&](int x, int y, int z) {
+        spherePartnersInBin(s, a, A, x, y, z, [&](bodyID_t b) {
             if (nSph < capacity) out[nSph] = b;
             nSph++;
-        }
+        });
     });
     // 2. Triangle partners, kept behind the spheres for now.
     unsigned int nTri = 0;
     const bodyID_t triBase = s.triangleIdBase();
-    if (a.triangleBins.start != nullptr) {  // null without triangles
-        forEachBinOf(g, boxA, [&](int x, int y, int z) {
-            const uint64_t bin = binIndex(g, x, y, z);
-            for (uint32_t e = a.triangleBins.start[bin]; e < a.triangleBins.start[bin + 1]; e++) {
-                const uint32_t tri = a.triangleBins.items[e];
-                const bodyID_t oT = s.triangles.owner[tri];
-                if (!maskRow[s.owners.family[oT]]) continue;
-                // The triangle's image nearest to a (across a periodic face), in a's frame.
-                const double3* v0 = &s.cache.triVert[3 * (size_t)tri];
-                const double3 shift = imageShift(period, pA - v0[0]);
-                const double3 lo = a.triLo[tri] + shift, hi = a.triHi[tri] + shift;
-                if (lo.x > hiA.x || lo.y > hiA.y || lo.z > hiA.z || hi.x < loA.x || hi.y < loA.y || hi.z < loA.z)
-                    continue;
-                if (!binOwnsPair(g, loA, lo, x, y, z)) continue;
-                double3 bary;
-                const double3 c = closestPointOnTriangle(pA, v0[0] + shift, v0[1] + shift, v0[2] + shift, bary);
-                if (length(pA - c) >= eA + marginOf(s, a, oT)) continue;
+    if (a.triangleBins.start != nullptr) {
+        forEachBinOf(a.grid, A.bins, [&](int x, int y, int z) {
+            trianglePartnersInBin(s, a, A, x, y, z, [&](uint32_t tri) {
                 if (nSph + nTri < capacity) out[nSph + nTri] = triBase + tri;
                 nTri++;
-            }
+            });
         });
     }
-    // 3. Analytical components (few: every one is checked).
-    const unsigned int nA = (unsigned int)(s.triangleIdBase() - s.analyticalIdBase());
+    // 3. Analytical components.
     unsigned int nAna = 0;
-    for (unsigned int j = 0; j < nA; j++) nAna += analyticalInReach(s, a, maskRow, pA, eA, j) ? 1u : 0u;
+    analyticalPartners(s, a, A, [&](unsigned int) { nAna++; });
     const unsigned int total = nSph + nAna + nTri;
     if (total > capacity) return total;
-    // 4. In order: [spheres by id | analytical by id | triangles by id].
+    // 4. In order: [spheres by id | analytical by id | triangles by id] (the unified ids' order).
     sortIds(out, nSph);
     sortIds(out + nSph, nTri);
     for (unsigned int k = nTri; k > 0; k--) out[nSph + nAna + k - 1] = out[nSph + k - 1];
     unsigned int at = nSph;
-    for (unsigned int j = 0; j < nA; j++)
-        if (analyticalInReach(s, a, maskRow, pA, eA, j)) out[at++] = s.analyticalIdBase() + j;
+    analyticalPartners(s, a, A, [&](unsigned int j) { out[at++] = s.analyticalIdBase() + j; });
     return total;
+}
+
+// Rows first, first + step, ... of sphere A's box (forEachBinOfRows): its sphere and triangle
+// partners those bins report and, for first = 0, its analytical ones; f(unified id) for each, in no
+// particular order. The `step` threads of the GPU's lab-scale search split a sphere so, and its
+// partners are then put in contact-set order (ascending unified id) at once.
+template <class S, class F>
+DEME_HD_INLINE void spherePartnersInRows(const S& s, const DetectionArgs& a, const SearchedSphere& A,
+                                         unsigned int first, unsigned int step, F&& f) {
+    const bodyID_t triBase = s.triangleIdBase();
+    forEachBinOfRows(a.grid, A.bins, first, step, [&](int x, int y, int z) {
+        spherePartnersInBin(s, a, A, x, y, z, f);
+        trianglePartnersInBin(s, a, A, x, y, z, [&](uint32_t tri) { f(triBase + tri); });
+    });
+    if (first == 0) analyticalPartners(s, a, A, [&](unsigned int j) { f(s.analyticalIdBase() + j); });
 }
 
 }  // namespace deme

@@ -209,12 +209,14 @@ for step in "${steps[@]}"; do
         grep -E "^\{" "$OUT/graphsteps.log" | cut -c1-330
         ;;
     smallab)
-        # SMALL-SYSTEMS, asynchronous detection, each setting twice, alternating, in one command.
+        # SMALL-SYSTEMS, each setting twice, alternating, in one command.
         # SMALL_SETTINGS: one setting a word, its variables joined by commas; BIN=path picks the
         # benchmark binary (a baseline's: `baseline` builds one), the rest are put in the environment
         # (e.g. DEME_CUDA_OVERLAP_LAUNCHES=0, DEME_CUDA_OWNER_THREADS=128, DEME_BENCH_FORCE_THREADS=128).
+        # SMALL_MODES: the detection modes (default async; "sync async" runs both).
         for round in 1 2; do
             for c in drum impact; do
+                for mode in ${SMALL_MODES:-async}; do
                 for setting in ${SMALL_SETTINGS:-BIN=./build-gpu/bench/small_systems}; do
                     bin=./build-gpu/bench/small_systems
                     vars=()
@@ -224,9 +226,10 @@ for step in "${steps[@]}"; do
                         *) vars+=("$kv") ;;
                         esac
                     done
-                    echo "{\"setting\": \"$setting\", \"round\": $round}" >>"$OUT/smallab.log"
-                    env "${vars[@]}" DEME_BENCH_TIMING=1 timeout 200 "$bin" $c "" "" cuda async >>"$OUT/smallab.log" 2>&1
-                    echo "smallab $c $setting round $round: rc $?"
+                    echo "{\"setting\": \"$setting\", \"mode\": \"$mode\", \"round\": $round}" >>"$OUT/smallab.log"
+                    env "${vars[@]}" DEME_BENCH_TIMING=1 timeout 200 "$bin" $c "" "" cuda "$mode" >>"$OUT/smallab.log" 2>&1
+                    echo "smallab $c $mode $setting round $round: rc $?"
+                done
                 done
             done
         done

@@ -1,6 +1,8 @@
 #include "backend/cuda/CudaKinematics.h"
 
+#include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include <deme/Error.h>
 
@@ -9,6 +11,7 @@
 #include "backend/cuda/CudaCheck.h"
 #include "backend/cuda/CudaModule.h"
 #include "backend/cuda/Device.h"
+#include "backend/cuda/DetectionLanes.h"
 #include "backend/cuda/DevicePrimitives.h"
 #include "backend/cuda/EmbeddedKernel.h"
 #include "backend/cuda/NvrtcCompiler.h"
@@ -63,13 +66,18 @@ struct CudaKinematics::Work {
     const DeviceState* shared = nullptr;
     Stream stream = nullptr;
     CudaModule module;
-    CudaKernel kTriBoxes, kBinCount, kBinScatter, kBinSort, kPairSearch;
+    CudaKernel kTriBoxes, kBinCount, kBinScatter, kBinSort, kPairSearch, kPairSearchLanes, kPairOrder, kPairSearchWide,
+        kPairRankWide, kPairFinishWide;
     DevicePrimitives prim;
     DeviceDormantRegistry dormant;  // the active box: dormant spheres registered once
     // Static geometry (a copy of Geometry).
     DeviceBuffer<bodyID_t> sphereOwner, anaOwner, triOwner;
     DeviceBuffer<float> radius, anaRadius, familyExtraMargin;
     double sharedExtraMargin = -1.0;  // DetectionArgs::sharedExtraMargin of familyExtraMargin
+    // The smallest and largest sphere, the largest family extra margin (DetectionLanes.h).
+    double minRadius = 0.0, maxRadius = 0.0, maxExtraMargin = 0.0;
+    DeviceBuffer<bodyID_t> wideSpheres;              // searched by several threads each (DetectionLanes.h)
+    float wideRadius = 0.f;
     DeviceBuffer<uint8_t> anaType, anaInside, familyMask;
     BinGrid grid{};
     DomainFrame frame{};
@@ -81,6 +89,8 @@ struct CudaKinematics::Work {
     DeviceBins sphereBins, triBins;
     DeviceBuffer<double3> triLo, triHi;
     DeviceBuffer<unsigned int> pairOffset;  // each searched sphere's pair count, then (in place) offset
+    DeviceBuffer<unsigned int> wideCursor;  // each wide sphere's partners written so far
+    DeviceBuffer<unsigned int> laneCursor;  // each sphere's, where several threads search it
 
     ~Work() {
         if (stream && cudaStreamDestroy(toCuda(stream)) != cudaSuccess) cudaGetLastError();
@@ -102,6 +112,12 @@ void CudaKinematics::Work::upload(const Geometry& g) {
     uploadResized(familyMask, g.familyMask, stream);
     uploadResized(familyExtraMargin, g.familyExtraMargin, stream);
     sharedExtraMargin = sharedExtraMarginOf(g.familyExtraMargin.data());
+    minRadius = g.minRadius;
+    maxRadius = g.maxRadius;
+    uploadResized(wideSpheres, g.wideSpheres, stream);
+    wideRadius = g.wideRadius;
+    maxExtraMargin = 0.0;
+    for (float e : g.familyExtraMargin) maxExtraMargin = std::max(maxExtraMargin, (double)e);
     dormant.upload(g.dormant, stream);  // built afresh at the next detection
     grid = g.grid;
     frame = g.frame;
@@ -182,26 +198,37 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     const bodyID_t* ids = useDormant ? dormant.moving() : nullptr;  // null: every sphere
     const unsigned int nSearched = useDormant ? dormant.numMoving() : nS;
     const DormantBinsView dormantBins = useDormant ? dormant.view() : DormantBinsView{nullptr, nullptr, 0.0};
+    // Threads an item in registration and a sphere in the pair search (DetectionLanes.h); triangles
+    // keep one each.
+    const unsigned int lanes = binningLanes(nSearched, useDormant, grid, maxRadius + o.detectionMargin() + maxExtraMargin);
+    const unsigned int sLanes = searchLanes(nSearched, useDormant, grid, minRadius + o.detectionMargin());
+    const unsigned long long laneThreads = (unsigned long long)nSearched * sLanes;
+    // Wide spheres, searched by several threads each (none with the dormant registry, whose searches
+    // take one thread a sphere).
+    const unsigned int nWide = useDormant ? 0u : (unsigned int)wideSpheres.size();
+    const float searchWideFrom = nWide ? wideRadius : std::numeric_limits<float>::infinity();
+    const unsigned long long wideThreads = (unsigned long long)nWide * WIDE_SPHERE_LANES;
 
     // 1. Bins of every geometry enlarged by its margin: of items ids[0, n) (all `items` if null), by
     // a counting sort (kernels/Detection.cu, deme_bin_count): 4 bytes per entry and per bin.
-    auto binItems = [&](DeviceBins& b, BinnedKind kind, const bodyID_t* ids, unsigned int n) {
+    auto binItems = [&](DeviceBins& b, BinnedKind kind, const bodyID_t* ids, unsigned int n, unsigned int itemLanes) {
         b.start.resizeDiscarding(numBins + 2);
         b.start.zeroAsync(stream);
+        const unsigned long long threads = (unsigned long long)n * itemLanes;
         if (n)
-            launch(kBinCount, blocksFor(n, THREADS), THREADS, 0, stream, v, args, (unsigned int)kind, ids, n,
-                   b.start.data());
+            launch(kBinCount, blocksFor(threads, THREADS), THREADS, 0, stream, v, args, (unsigned int)kind, ids, n,
+                   itemLanes, b.start.data());
         prim.exclusiveSum(b.start.data(), b.start.data(), numBins + 2, stream);
         const unsigned int entries = readCount(b.start, numBins + 1);
         b.items.resizeDiscarding(entries);
         if (entries) {
-            launch(kBinScatter, blocksFor(n, THREADS), THREADS, 0, stream, v, args, (unsigned int)kind, ids, n,
-                   b.start.data(), b.items.data());
+            launch(kBinScatter, blocksFor(threads, THREADS), THREADS, 0, stream, v, args, (unsigned int)kind, ids,
+                   n, itemLanes, b.start.data(), b.items.data());
             launch(kBinSort, blocksFor(numBins, THREADS), THREADS, 0, stream, (const unsigned int*)b.start.data(),
                    (unsigned long long)numBins, b.items.data());
         }
     };
-    binItems(sphereBins, BINNED_SPHERES, ids, nSearched);
+    binItems(sphereBins, BINNED_SPHERES, ids, nSearched, lanes);
     triLo.resizeDiscarding(nT);
     triHi.resizeDiscarding(nT);
     args.triLo = triLo.data();
@@ -209,7 +236,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     // No triangles, no bins for them (and no host round trip to size them).
     if (nT) {
         launch(kTriBoxes, blocksFor(nT, THREADS), THREADS, 0, stream, v, args, triLo.data(), triHi.data());
-        binItems(triBins, BINNED_TRIANGLES, (const bodyID_t*)nullptr, nT);
+        binItems(triBins, BINNED_TRIANGLES, (const bodyID_t*)nullptr, nT, 1u);
     }
     synchronize(stream);
     const double t1 = now();
@@ -220,10 +247,18 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     if (nT) args.triangleBins = BinsView{triBins.start.data(), triBins.items.data()};
     pairOffset.resizeDiscarding(nSearched + 1);
     pairOffset.zeroAsync(stream);
-    if (nSearched)
+    if (nSearched && sLanes > 1)
+        launch(kPairSearchLanes, blocksFor(laneThreads, THREADS), THREADS, 0, stream, v, args, nSearched, sLanes,
+               searchWideFrom, pairOffset.data(), (const unsigned int*)nullptr, (unsigned int*)nullptr,
+               (bodyID_t*)nullptr);
+    else if (nSearched)
         launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
-               pairOffset.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr,
+               searchWideFrom, pairOffset.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr,
                (uint8_t*)nullptr);
+    if (nWide)
+        launch(kPairSearchWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, args,
+               (const bodyID_t*)wideSpheres.data(), nWide, WIDE_SPHERE_LANES, pairOffset.data(),
+               (const unsigned int*)nullptr, (unsigned int*)nullptr, (bodyID_t*)nullptr);
     prim.exclusiveSum(pairOffset.data(), pairOffset.data(), nSearched + 1, stream);
     const unsigned int total = readCount(pairOffset, nSearched);
     // The outbox is on dT's GPU: size it there.
@@ -238,10 +273,37 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
         localOut.geomB.resizeDiscarding(total);
         localOut.type.resizeDiscarding(total);
     }
-    if (total)
+    if (total && sLanes > 1) {
+        // Several threads a sphere fill its partners in no order; then each sphere's into
+        // contact-set order.
+        laneCursor.resizeDiscarding(nSearched);
+        laneCursor.zeroAsync(stream);
+        launch(kPairSearchLanes, blocksFor(laneThreads, THREADS), THREADS, 0, stream, v, args, nSearched, sLanes,
+               searchWideFrom, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(), laneCursor.data(),
+               dst.geomB.data());
+        launch(kPairOrder, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, nSearched, searchWideFrom,
+               (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data(), dst.type.data());
+    } else if (total) {
         launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
-               (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data(),
-               dst.type.data());
+               searchWideFrom, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(), dst.geomA.data(),
+               dst.geomB.data(), dst.type.data());
+    }
+    if (total) {
+        // The wide spheres' lanes fill their partners in no order; then each one's into contact-set
+        // order.
+        if (nWide) {
+            wideCursor.resizeDiscarding(nWide);
+            wideCursor.zeroAsync(stream);
+            const bodyID_t* wide = wideSpheres.data();
+            const unsigned int* offsets = pairOffset.data();
+            launch(kPairSearchWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, args, wide, nWide,
+                   WIDE_SPHERE_LANES, (unsigned int*)nullptr, offsets, wideCursor.data(), dst.geomB.data());
+            launch(kPairRankWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, wide, nWide, WIDE_SPHERE_LANES,
+                   offsets, dst.geomA.data(), (const bodyID_t*)dst.geomB.data());
+            launch(kPairFinishWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, wide, nWide,
+                   WIDE_SPHERE_LANES, offsets, dst.geomA.data(), dst.geomB.data(), dst.type.data());
+        }
+    }
     // Pairs found from the moving side with a dormant sphere of lower id: into (A, B) order.
     if (useDormant)
         dormant.sortPairs(v, dst.geomA.data(), dst.geomB.data(), dst.type.data(), total, prim, stream);
@@ -301,6 +363,15 @@ void CudaKinematics::setGeometry(const SimState& s, const BinGrid& g, const Fami
     const bool staged = m_kTDevice != m_dTDevice;
     k.sphereOwner = staged ? s.spheres.owner : std::vector<bodyID_t>();
     k.radius = staged ? s.spheres.radius : std::vector<float>();
+    k.maxRadius = 0.0;
+    k.minRadius = s.spheres.radius.empty() ? 0.0 : (double)s.spheres.radius[0];
+    k.wideRadius = wideSphereRadius(g);
+    k.wideSpheres.clear();
+    for (size_t i = 0; i < s.spheres.radius.size(); i++) {
+        k.maxRadius = std::max(k.maxRadius, (double)s.spheres.radius[i]);
+        k.minRadius = std::min(k.minRadius, (double)s.spheres.radius[i]);
+        if (s.spheres.radius[i] >= k.wideRadius) k.wideSpheres.push_back((bodyID_t)i);
+    }
     k.anaOwner = s.analytical.owner;
     k.anaType = s.analytical.type;
     k.anaRadius = s.analytical.radius;
@@ -406,6 +477,11 @@ void CudaKinematics::run() {
         w->kBinScatter = w->module.kernel("deme_bin_scatter");
         w->kBinSort = w->module.kernel("deme_bin_sort");
         w->kPairSearch = w->module.kernel("deme_pair_search");
+        w->kPairSearchLanes = w->module.kernel("deme_pair_search_lanes");
+        w->kPairOrder = w->module.kernel("deme_pair_order");
+        w->kPairSearchWide = w->module.kernel("deme_pair_search_wide");
+        w->kPairRankWide = w->module.kernel("deme_pair_rank_wide");
+        w->kPairFinishWide = w->module.kernel("deme_pair_finish_wide");
         w->dormant.loadKernels(w->module);
         m_deviceName = info.name;
         m_compileSeconds = c.compileSeconds;

@@ -87,6 +87,10 @@ class CudaKinematics : public KinematicsBackend {
     struct Geometry {
         std::vector<bodyID_t> sphereOwner, anaOwner, triOwner;
         std::vector<float> radius, anaRadius, familyExtraMargin;
+        double minRadius = 0.0, maxRadius = 0.0;  // the smallest and largest sphere's radius
+        // The spheres searched by several threads each, of radius wideRadius or more (DetectionLanes.h).
+        std::vector<bodyID_t> wideSpheres;
+        float wideRadius = 0.f;
         std::vector<uint8_t> anaType, anaInside, familyMask;
         BinGrid grid{};
         DomainFrame frame{};  // its periodic box: detection compares geometries through their nearest images

@@ -35,22 +35,26 @@ __device__ inline BinBox binnedBox(const StateView& s, const DetectionArgs& a, u
 // each of its bins by an atomic add on start[bin + 1], which ends at the bin's end, the next bin's
 // first entry: start[0, numBins] are then every bin's first entry and the end. 4. deme_bin_sort:
 // each bin's items in increasing id (the scatter's order is the atomics'), as the searches expect.
+// `lanes` threads share an item (thread t: item t / lanes, its box's rows t % lanes, + lanes, ...):
+// at lab scale one thread walking a large sphere's hundreds of bins was a detection's critical path
+// (docs/cuda-backend.md, "Detection at lab scale"); 1 is a thread per item.
 extern "C" __global__ void deme_bin_count(StateView s, DetectionArgs a, unsigned int kind, const bodyID_t* ids,
-                                          unsigned int n, unsigned int* start) {
-    const size_t k = globalIndex();
+                                          unsigned int n, unsigned int lanes, unsigned int* start) {
+    const size_t t = globalIndex(), k = t / lanes;
     if (k >= n) return;
     const BinGrid& g = a.grid;
-    forEachBinOf(g, binnedBox(s, a, kind, ids ? (size_t)ids[k] : k),
-                 [&](int x, int y, int z) { atomicAdd(&start[binIndex(g, x, y, z) + 1], 1u); });
+    forEachBinOfRows(g, binnedBox(s, a, kind, ids ? (size_t)ids[k] : k), (unsigned int)(t % lanes), lanes,
+                     [&](int x, int y, int z) { atomicAdd(&start[binIndex(g, x, y, z) + 1], 1u); });
 }
 
 extern "C" __global__ void deme_bin_scatter(StateView s, DetectionArgs a, unsigned int kind, const bodyID_t* ids,
-                                            unsigned int n, unsigned int* start, unsigned int* items) {
-    const size_t k = globalIndex();
+                                            unsigned int n, unsigned int lanes, unsigned int* start,
+                                            unsigned int* items) {
+    const size_t t = globalIndex(), k = t / lanes;
     if (k >= n) return;
     const BinGrid& g = a.grid;
     const size_t i = ids ? (size_t)ids[k] : k;
-    forEachBinOf(g, binnedBox(s, a, kind, i), [&](int x, int y, int z) {
+    forEachBinOfRows(g, binnedBox(s, a, kind, i), (unsigned int)(t % lanes), lanes, [&](int x, int y, int z) {
         items[atomicAdd(&start[binIndex(g, x, y, z) + 1], 1u)] = (unsigned int)i;
     });
 }
@@ -82,13 +86,16 @@ extern "C" __global__ void deme_bin_counts(const unsigned int* keys, unsigned in
 // Per searched sphere A = ids[k]: its partners, then (with a dormant registry, d.start not null)
 // its dormant partners as (lower, higher) pairs, which deme_pairs_from_keys puts in order after a
 // sort. With `outB` null, counts them into count[k]; otherwise writes them from offset[k] to
-// offset[k + 1] (the exclusive sum of the counts, which may have been taken in place).
+// offset[k + 1] (the exclusive sum of the counts, which may have been taken in place). Spheres of
+// radius `wideRadius` or more are left to deme_pair_search_wide (count[k] stays 0 here).
 extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, DormantBinsView d, const bodyID_t* ids,
-                                            unsigned int n, unsigned int* count, const unsigned int* offset,
-                                            bodyID_t* outA, bodyID_t* outB, uint8_t* outType) {
+                                            unsigned int n, float wideRadius, unsigned int* count,
+                                            const unsigned int* offset, bodyID_t* outA, bodyID_t* outB,
+                                            uint8_t* outType) {
     const size_t k = globalIndex();
     if (k >= n) return;
     const bodyID_t sa = ids ? ids[k] : (bodyID_t)k;
+    if (s.spheres.radius[sa] >= wideRadius) return;
     if (outB == nullptr) {
         count[k] = spherePartners(s, a, sa, nullptr, 0u) + (d.start ? dormantPartners(s, a, d, sa, nullptr, 0u) : 0u);
         return;
@@ -107,6 +114,98 @@ extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, Dorman
         outA[base + own + j] = sa < b ? sa : b;
         outB[base + own + j] = sa < b ? b : sa;
         outType[base + own + j] = (uint8_t)SPHERE_SPHERE;
+    }
+}
+
+// --- Lab scale (backend/cuda/DetectionLanes.h; docs/cuda-backend.md, "Detection at lab scale"):
+// there a detection's time is the longest chain of dependent loads one thread walks, so a sphere's
+// search is split among `lanes` threads, each taking every lanes-th row of bins of its box
+// (forEachBinOfRows), and the few wide spheres (radius `wideRadius` or more: a ball among grains,
+// whose box spans hundreds of bins) are searched by a warp each. Never with a dormant registry.
+
+// Sphere sa's (the k-th searched) share of thread `lane` of `lanes`: counting (outB null), its
+// partners added to count[k] (zeroed); filling, each written from offset[k] on at a slot taken by
+// an atomic add on *cursor (zeroed), in no order (the sphere's partners are ordered afterwards).
+__device__ inline void searchLane(const StateView& s, const DetectionArgs& a, bodyID_t sa, size_t k, unsigned int lane,
+                                  unsigned int lanes, unsigned int* count, const unsigned int* offset,
+                                  unsigned int* cursor, bodyID_t* outB) {
+    const SearchedSphere A = searchedSphere(s, a, sa);
+    if (outB == nullptr) {
+        unsigned int found = 0;
+        spherePartnersInRows(s, a, A, lane, lanes, [&](bodyID_t) { found++; });
+        if (found) atomicAdd(&count[k], found);
+        return;
+    }
+    const unsigned int base = offset[k];
+    spherePartnersInRows(s, a, A, lane, lanes, [&](bodyID_t b) { outB[base + atomicAdd(cursor, 1u)] = b; });
+}
+
+// Every sphere but the wide ones, `lanes` threads each (thread t: sphere t / lanes; cursor[k] is
+// sphere k's). Its registers are capped so that four blocks of 256 share a multiprocessor: uncapped
+// (132 registers) one block did, and a grid of several threads a sphere took as many waves.
+extern "C" __global__ void __launch_bounds__(256, 4)
+    deme_pair_search_lanes(StateView s, DetectionArgs a, unsigned int n, unsigned int lanes, float wideRadius,
+                           unsigned int* count, const unsigned int* offset, unsigned int* cursor, bodyID_t* outB) {
+    const size_t t = globalIndex(), k = t / lanes;
+    if (k >= n || s.spheres.radius[k] >= wideRadius) return;
+    searchLane(s, a, (bodyID_t)k, k, (unsigned int)(t % lanes), lanes, count, offset, cursor ? &cursor[k] : nullptr,
+               outB);
+}
+
+// After deme_pair_search_lanes: each sphere's partners, outB[offset[k], offset[k + 1]), in
+// contact-set order (ascending unified id: spheres, analytical components, triangles), and A and
+// the types. Not the wide spheres (deme_pair_rank_wide, deme_pair_finish_wide).
+extern "C" __global__ void deme_pair_order(StateView s, unsigned int n, float wideRadius, const unsigned int* offset,
+                                           bodyID_t* outA, bodyID_t* outB, uint8_t* outType) {
+    const size_t k = globalIndex();
+    if (k >= n || s.spheres.radius[k] >= wideRadius) return;
+    const unsigned int first = offset[k], last = offset[k + 1];
+    sortIds(outB + first, last - first);
+    for (unsigned int j = first; j < last; j++) {
+        outA[j] = (bodyID_t)k;
+        outType[j] = contactTypeOf(s, outB[j]);
+    }
+}
+
+// The wide spheres wide[0, nWide), `lanes` threads each (thread t: sphere wide[t / lanes]; cursor[w]
+// is the w-th's).
+extern "C" __global__ void deme_pair_search_wide(StateView s, DetectionArgs a, const bodyID_t* wide, unsigned int nWide,
+                                                 unsigned int lanes, unsigned int* count, const unsigned int* offset,
+                                                 unsigned int* cursor, bodyID_t* outB) {
+    const size_t t = globalIndex(), w = t / lanes;
+    if (w >= nWide) return;
+    searchLane(s, a, wide[w], wide[w], (unsigned int)(t % lanes), lanes, count, offset, cursor ? &cursor[w] : nullptr,
+               outB);
+}
+
+// Each wide sphere's partners, outB[offset[k], offset[k + 1]), in contact-set order (ascending
+// unified id: spheres, analytical components, triangles) into outA's same range: each element goes
+// to its rank (the ids are distinct), the range's elements shared among the sphere's lanes.
+extern "C" __global__ void deme_pair_rank_wide(const bodyID_t* wide, unsigned int nWide, unsigned int lanes,
+                                               const unsigned int* offset, bodyID_t* outA, const bodyID_t* outB) {
+    const size_t t = globalIndex(), w = t / lanes;
+    if (w >= nWide) return;
+    const bodyID_t k = wide[w];
+    const unsigned int first = offset[k], last = offset[k + 1];
+    for (unsigned int e = first + (unsigned int)(t % lanes); e < last; e += lanes) {
+        const bodyID_t id = outB[e];
+        unsigned int rank = 0;
+        for (unsigned int j = first; j < last; j++) rank += outB[j] < id ? 1u : 0u;
+        outA[first + rank] = id;
+    }
+}
+
+// Then the ordered ids back into outB, A into outA and the types.
+extern "C" __global__ void deme_pair_finish_wide(StateView s, const bodyID_t* wide, unsigned int nWide,
+                                                 unsigned int lanes, const unsigned int* offset, bodyID_t* outA,
+                                                 bodyID_t* outB, uint8_t* outType) {
+    const size_t t = globalIndex(), w = t / lanes;
+    if (w >= nWide) return;
+    const bodyID_t k = wide[w];
+    for (unsigned int e = offset[k] + (unsigned int)(t % lanes); e < offset[k + 1]; e += lanes) {
+        outB[e] = outA[e];
+        outA[e] = k;
+        outType[e] = contactTypeOf(s, outB[e]);
     }
 }
 
