@@ -76,7 +76,8 @@ DEME_BACKEND_TEST(MeshBodies, MeshedBoxCarriesBedWeightLikeAnalyticalBox) {
 }
 
 // A free meshed cube (SetMass) dropped onto the bed comes to rest on it: its velocity vanishes and
-// the grains' contact force on it balances its weight (2 %); the bed's floor then carries bed + cube.
+// the grains' contact force on it balances its weight (2 %); the floor and the cylinder around the
+// bed then carry bed + cube between them (1 %).
 DEME_BACKEND_TEST(MeshBodies, FreeCubeSettlesOnBed) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
@@ -100,22 +101,30 @@ DEME_BACKEND_TEST(MeshBodies, FreeCubeSettlesOnBed) {
     sim.SetInitTimeStep(4e-5);
     sim.SetGravitationalAcceleration(make_float3(0, 0, (float)-G));
     sim.Initialize();
-    auto tc = sim.Track(cube), tf = sim.Track(floorObj);
+    auto tc = sim.Track(cube), tf = sim.Track(floorObj), tw = sim.Track(walls);
     EXPECT_TRUE(cube->IsFree());
     sim.DoDynamics(0.8);
-    double load = 0.0, floorLoad = 0.0;
+    double load = 0.0, floorLoad = 0.0, wallLoad = 0.0;
     for (int i = 0; i < 50; i++) {
         sim.DoDynamics(0.002);
         load += tc->ContactForce().z;
         floorLoad += -tf->ContactForce().z;
+        wallLoad += -tw->ContactForce().z;
     }
     const double weight = cubeMass * G;
     EXPECT_LT(tc->Pos().z, 0.05f);   // it fell onto the bed
     EXPECT_GT(tc->Pos().z, -0.03f);  // and did not fall through it
     EXPECT_LT(length(tc->Vel()), 0.01f);
     EXPECT_NEAR(load / 50, weight, 0.02 * weight);
+    // At rest the floor and the cylinder carry the weight of the bed and the cube between them
+    // (static equilibrium; within 0.15 % in runs whose cube started up to 0.1 mm apart). How it is
+    // shared is not fixed: the cylinder is frictional, and its share depends on how the grains
+    // settled against it (from -1.7 % to 3.3 % of the weight in those runs, which a check of the
+    // floor alone against the whole weight, within 3 %, failed now and then on a GPU, whose runs
+    // differ with the order of its atomic sums).
     const double total = weight + pts.size() * sphereMass(R, DENSITY) * G;
-    EXPECT_NEAR(floorLoad / 50, total, 0.03 * total);  // the cylinder is frictional: a little less
+    EXPECT_NEAR((floorLoad + wallLoad) / 50, total, 0.01 * total);
+    EXPECT_GT(floorLoad / 50, 0.9 * total);  // the floor carries most of it
 }
 
 // A vertical blade spinning at +5 rad/s about z through a bed: the grains resist, so the contact
