@@ -1,7 +1,8 @@
 // The memory estimate of Initialize (runtime/MemoryEstimate.h, docs/memory.md "Scenes too large"):
 // it predicts the table GetMemoryStats measures once the run has its contact set, and a scene whose
 // estimate exceeds the memory there (here a smaller machine made by DEME_MEMORY_LIMIT) fails at
-// Initialize with a deme::Error that says what it needs and what there is.
+// Initialize with a deme::Error that says what it needs and what there is; a contact set that
+// outgrows the memory later fails DoDynamics before it is installed, and the run can be saved.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -83,4 +84,60 @@ DEME_BACKEND_TEST(MemoryEstimate, MalformedLimitIsAnError) {
     addThousandSphereBed(sim);
     const std::string msg = demeErrorMessage([&] { sim.Initialize(); });
     EXPECT_NE(msg.find("DEME_MEMORY_LIMIT is \"12 GB\""), std::string::npos) << msg;
+}
+
+// A contact set that outgrows the memory during the run (here the margin widened after Initialize
+// by SetMaxVelocity, on a machine made small by DEME_MEMORY_LIMIT: a little more than the run holds)
+// fails DoDynamics before it is installed, with a deme::Error naming the set, its pairs and bytes,
+// and what there is. Nothing has changed then: the state is that of the last step, WriteCheckpoint
+// saves it, a solver that reads the checkpoint has the same time and positions, and with the limit
+// lifted and the margin back the run goes on.
+DEME_BACKEND_TEST(MemoryEstimate, ContactSetOutgrowingTheMemoryIsANamedErrorAndTheRunCanBeSaved) {
+    const std::string ckpt = (scratchDir() / "saved.ckpt").string();
+    std::vector<float3> saved(1000), read(1000);
+    double savedTime = 0.0;
+    {
+        DEMSolver sim;
+        auto bed = addThousandSphereBed(sim);
+        sim.Initialize();
+        auto grains = sim.Track(bed);
+        sim.DoDynamics(0.02);
+        const size_t pairsBefore = sim.GetNumContacts();
+        const MemoryStats m = sim.GetMemoryStats();
+        const size_t held = onGpu() ? m.deviceTotal() : m.hostTotal();
+        // A margin of about 1.1 * 20 m/s * n_max * 2e-5 s: every grain within a few of its
+        // neighbours' diameters is a pair, some ten times the set in use.
+        sim.SetMaxVelocity(20.f);
+        {
+            const ScopedEnvironmentVariable limit("DEME_MEMORY_LIMIT", std::to_string(held + 50000));
+            const std::string msg = demeErrorMessage([&] { sim.DoDynamics(0.02); });
+            EXPECT_NE(msg.find("DoDynamics"), std::string::npos) << msg;
+            EXPECT_NE(msg.find("the contact set has grown to "), std::string::npos) << msg;
+            EXPECT_NE(msg.find("for contacts and history"), std::string::npos) << msg;
+            EXPECT_NE(msg.find(onGpu() ? "GPU" : "host memory"), std::string::npos) << msg;
+            EXPECT_NE(msg.find("WriteCheckpoint saves it"), std::string::npos) << msg;
+            // The pairs named are many more than the set in use held.
+            const size_t at = msg.find("grown to ") + 9;
+            EXPECT_GT(std::stoull(msg.substr(at)), 5 * pairsBefore) << msg;
+        }
+        EXPECT_GT(sim.GetSimTime(), 0.02 - 1e-9);
+        EXPECT_LT(sim.GetSimTime(), 0.04 - 1e-9);  // stopped in the call that failed
+        savedTime = sim.GetSimTime();
+        grains->Positions(saved.data());
+        sim.WriteCheckpoint(ckpt);
+        // The run goes on with the margin back and the limit lifted.
+        sim.SetMaxVelocity(0.5f);
+        sim.DoDynamics(0.01);
+        EXPECT_NEAR(sim.GetSimTime(), savedTime + 0.01, 1e-9);
+    }
+    DEMSolver sim;
+    auto bed = addThousandSphereBed(sim);
+    sim.Initialize();
+    sim.ReadCheckpoint(ckpt);
+    EXPECT_EQ(sim.GetSimTime(), savedTime);
+    sim.Track(bed)->Positions(read.data());
+    for (size_t i = 0; i < saved.size(); i++) {
+        EXPECT_EQ(read[i].x, saved[i].x) << i;
+        EXPECT_EQ(read[i].z, saved[i].z) << i;
+    }
 }

@@ -184,6 +184,12 @@ class DynamicsBackend {
     // (runtime/MemoryEstimate.h): the GPU's free memory; on the CPU what the machine has available
     // plus what the host state already holds. 0 where not known.
     virtual size_t memoryAvailable() const = 0;
+    // What the run holds now where its steps keep their arrays, per group as ShowMemoryStats counts
+    // it (the GPU's buffers of this process; the host state and this backend's own arrays), and the
+    // memory still free there (0 where not known): for the check before a contact set grows
+    // (runtime/MemoryEstimate.h, requireRoomForContactSet).
+    virtual void countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const = 0;
+    virtual size_t memoryFree() const = 0;
 };
 
 // A backend's two sides, made together (each side knows its partner).

@@ -49,6 +49,7 @@ void ContactSetManager::account(const DetectionReport& r, TimingStats& timing) {
 }
 
 void ContactSetManager::install(const DetectionReport& r, TimingStats& timing) {
+    if (beforeInstall) beforeInstall(r.numPairs);  // may throw: then nothing has changed
     m_dynamics->install(r, timing);
     m_schedule.installed(r.order.step, r.order.margin, m_stats);
 }

@@ -47,6 +47,10 @@ class ContactSetManager {
     // Called just before each detection takes its snapshot of the state (synchronous or ordered):
     // the simulation checks the family conditions there (ChangeFamilyWhen). Empty: nothing.
     std::function<void()> beforeDetection;
+    // Called with a detection's pair count before its set replaces the one in use: the simulation
+    // checks there that the memory holds it (a deme::Error otherwise, with nothing changed). Empty:
+    // nothing.
+    std::function<void(size_t)> beforeInstall;
     // The host state's periodic box, for a sheared cell's orders (its shearTime is the time of the
     // state the orders are taken from).
     const PeriodicBox* period = nullptr;

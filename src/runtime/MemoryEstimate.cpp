@@ -107,20 +107,13 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     for (const std::vector<float>& w : s.wildcards.owner) b[(int)MemoryGroup::WILDCARDS] += 4 * w.size();
     for (const std::vector<float>& w : s.wildcards.geometry) b[(int)MemoryGroup::WILDCARDS] += 4 * w.size();
 
-    const unsigned int W = s.numWildcards;
     const size_t nT = s.triangles.size();
     const double entries = expectedSphereEntries(s, grid), triEntries = expectedTriangleEntries(s, grid);
     const size_t bins = (size_t)grid.numBins() + 1;
     size_t& contacts = b[(int)MemoryGroup::CONTACTS];
     size_t& detection = b[(int)MemoryGroup::DETECTION];
     if (onGpu) {
-        // Two sets (the one in use and the one history mapping reads from), the per-contact forces
-        // in the idle set's wildcards' memory (grown to hold them where a pair has fewer than three
-        // wildcards), and the pairs (ids, type) of the outbox kT fills (backend/cuda/CudaDynamics,
-        // CudaContactSets, DeviceHistoryMapping).
-        const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
-        const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;
-        contacts = e.pairs * (2 * bytesPerPair(s.contacts, W, false, false) + forceGrowth + 9);
+        contacts = contactSetBytes(s, true, e.pairs);
         // kT's snapshot (sphere centres, owner families), pair offsets; the bins' entries (an item
         // id each) and starts, from the counting sort (backend/cuda/CudaKinematics.cpp,
         // Work::detect; the bins an item covers are computed from its box, not stored). (kT on a
@@ -133,7 +126,7 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         // row of families per step, CudaStepBatch.cpp).
         b[(int)MemoryGroup::STEP_SCRATCH] = 16 * nO + MAX_BATCH_STEPS * NUM_FAMILIES * sizeof(FamilyStepMotion);
     } else {
-        contacts = e.pairs * bytesPerPair(s.contacts, W, true, true) + 8 * (nO + 1);  // + the owners' two starts
+        contacts = contactSetBytes(s, false, e.pairs);
         // The registry's entries and bins' starts, for spheres and for triangles (whose global
         // boxes, 2 double3, are kept too) (backend/cpu/ContactDetector).
         detection = (size_t)(4.0 * entries) + 4 * bins;
@@ -142,14 +135,31 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     return e;
 }
 
+size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs) {
+    const unsigned int W = s.numWildcards;
+    if (!onGpu)  // one set, B's share of the loads and the owners' contact index and two starts
+        return pairs * bytesPerPair(s.contacts, W, true, true) + 8 * (s.owners.size() + 1);
+    // Two sets (the one in use and the one history mapping reads from), the per-contact forces in
+    // the idle set's wildcards' memory (grown to hold them where a pair has fewer than three
+    // wildcards), and the pairs (ids, type) of the outbox kT fills (backend/cuda/CudaDynamics,
+    // CudaContactSets, DeviceHistoryMapping).
+    const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
+    const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;
+    return pairs * (2 * bytesPerPair(s.contacts, W, false, false) + forceGrowth + 9);
+}
+
+size_t memoryLimit(size_t available, const char* call) {
+    const char* limit = std::getenv("DEME_MEMORY_LIMIT");
+    if (!limit) return available;
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(limit, &end, 10);
+    if (end == limit || *end != '\0')
+        throwError(call, std::string("DEME_MEMORY_LIMIT is \"") + limit + "\", not a number of bytes");
+    return available == 0 || v < available ? (size_t)v : available;
+}
+
 void requireMemoryFor(const MemoryEstimate& e, size_t available, const std::string& where, const char* call) {
-    if (const char* limit = std::getenv("DEME_MEMORY_LIMIT")) {
-        char* end = nullptr;
-        const unsigned long long v = std::strtoull(limit, &end, 10);
-        if (end == limit || *end != '\0')
-            throwError(call, std::string("DEME_MEMORY_LIMIT is \"") + limit + "\", not a number of bytes");
-        if (v < available) available = (size_t)v;
-    }
+    available = memoryLimit(available, call);
     if (available == 0 || e.total() <= available) return;  // 0: not known
     std::ostringstream msg;
     msg << "the scene needs about " << e.total() << " bytes (" << gib(e.total()) << ") of " << where << " and "
@@ -162,6 +172,26 @@ void requireMemoryFor(const MemoryEstimate& e, size_t available, const std::stri
     }
     msg << ", with " << e.pairs << " contact pairs assumed (" << ESTIMATED_PAIRS_PER_SPHERE
         << " per sphere); use fewer or larger grains, or a device with more memory";
+    throwError(call, msg.str());
+}
+
+void requireRoomForContactSet(size_t pairs, size_t needed, const size_t held[NUM_MEMORY_GROUPS], size_t freeNow,
+                              const std::string& where, const char* call) {
+    const size_t heldContacts = held[(int)MemoryGroup::CONTACTS];
+    if (needed <= heldContacts) return;  // the set fits what the run holds for contacts already
+    size_t heldTotal = 0;
+    for (int g = 0; g < NUM_MEMORY_GROUPS; g++) heldTotal += held[g];
+    const size_t capacity = memoryLimit(freeNow ? heldTotal + freeNow : 0, call);
+    const size_t projected = heldTotal - heldContacts + needed;
+    if (capacity == 0 || projected <= capacity) return;  // 0: not known
+    std::ostringstream msg;
+    msg << "the contact set has grown to " << pairs << " pairs, which need about " << needed << " bytes ("
+        << gib(needed) << ") of " << where << " for contacts and history; the run would then hold " << projected
+        << " bytes (" << gib(projected) << ") of the " << capacity << " (" << gib(capacity)
+        << ") available (it holds " << heldTotal << " now, " << heldContacts
+        << " of them contacts and history). The state is that of the last step that ran, and "
+           "WriteCheckpoint saves it; use a smaller margin (SetMaxVelocity, SetExpandSafetyMultiplier, "
+           "SetExpandSafetyAdder), fewer or larger grains, or a device with more memory";
     throwError(call, msg.str());
 }
 

@@ -17,7 +17,8 @@ namespace deme {
 
 // The first contact set's size the estimate assumes: six pairs per sphere, what a dense packing
 // within the margin has (MIXER-BENCH early spheres, a lattice closer than the margin: 5.95; a
-// settled bed of spheres: 4-7). A set that grows beyond it later is an error naming the array.
+// settled bed of spheres: 4-7). A set that grows beyond what the memory holds later is an error
+// naming the set and its size (requireRoomForContactSet).
 constexpr double ESTIMATED_PAIRS_PER_SPHERE = 6.0;
 
 struct MemoryEstimate {
@@ -40,6 +41,24 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
 // is capped by the environment variable DEME_MEMORY_LIMIT (bytes) where set: a smaller machine, for
 // tests and for runs that must leave memory to others.
 void requireMemoryFor(const MemoryEstimate& e, size_t available, const std::string& where, const char* call);
+
+// The bytes of the contacts-and-history group (the table's) for a contact set of `pairs` pairs on
+// the backend whose steps keep their arrays on the GPU (onGpu) or on the host.
+size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs);
+
+// `available` capped by DEME_MEMORY_LIMIT where set (a deme::Error from `call` if it is not a
+// number of bytes); 0 (not known) becomes the limit.
+size_t memoryLimit(size_t available, const char* call);
+
+// Before a contact set of `pairs` pairs is installed (a detection found more pairs than the run
+// holds room for): throws a deme::Error from `call` naming the set, the bytes it needs (`needed`,
+// contactSetBytes) and what there is, when the run, holding `held` bytes per group now, would hold
+// more than `held` in all plus `freeNow` (the memory still free where the steps keep their arrays;
+// 0: not known, no check), capped by DEME_MEMORY_LIMIT. Nothing has changed then: the state is that
+// of the last step, and the solver can still save it (WriteCheckpoint) or go on with a smaller
+// margin. A set that fits what the run holds for contacts already is not checked.
+void requireRoomForContactSet(size_t pairs, size_t needed, const size_t held[NUM_MEMORY_GROUPS], size_t freeNow,
+                              const std::string& where, const char* call);
 
 // The bytes this machine can still give (MemAvailable of /proc/meminfo; 0 where unknown).
 size_t hostMemoryAvailable();

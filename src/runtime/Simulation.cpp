@@ -50,6 +50,16 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
                      dynamics.onGpu() ? dynamics.description() + " memory" : "host memory", "Initialize");
     m_contacts.start(settings, *m_backends.dynamics, *m_backends.kinematics);
     m_contacts.period = &m_state.frame.periodic;
+    // A contact set larger than the memory holds is an error naming it, before it is installed.
+    m_contacts.beforeInstall = [this](size_t pairs) {
+        const DynamicsBackend& d = *m_backends.dynamics;
+        size_t held[NUM_MEMORY_GROUPS] = {};
+        d.countRunMemory(held);
+        const size_t needed = contactSetBytes(m_state, d.onGpu(), pairs);
+        if (needed <= held[(int)MemoryGroup::CONTACTS]) return;  // no growth: nothing to ask the machine
+        requireRoomForContactSet(pairs, needed, held, d.memoryFree(),
+                                 d.onGpu() ? d.description() + " memory" : "host memory", "DoDynamics");
+    };
     // ChangeFamilyWhen is checked at each detection (docs/active-box.md says why).
     m_contacts.beforeDetection = [this] {
         if (!families.conditions().empty()) m_backends.dynamics->applyFamilyConditions(m_time, families);

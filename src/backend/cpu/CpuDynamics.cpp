@@ -113,6 +113,15 @@ void CpuDynamics::countHostMemory(MemoryStats& m) const {
             vectorBytes(m_subset.owners) + vectorBytes(m_subset.spheres) + vectorBytes(m_subset.reduced));
 }
 
+void CpuDynamics::countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const {
+    MemoryStats held;
+    countStateMemory(m_s, held);
+    countHostMemory(held);
+    for (int g = 0; g < NUM_MEMORY_GROUPS; g++) bytes[g] = held.hostBytes[g];
+}
+
+size_t CpuDynamics::memoryFree() const { return hostMemoryAvailable(); }
+
 size_t CpuDynamics::memoryAvailable() const {
     const size_t free = hostMemoryAvailable();
     if (free == 0) return 0;

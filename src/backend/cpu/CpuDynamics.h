@@ -40,6 +40,8 @@ class CpuDynamics : public DynamicsBackend {
     bool onGpu() const override { return false; }
     void countHostMemory(MemoryStats& m) const override;
     size_t memoryAvailable() const override;
+    void countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const override;
+    size_t memoryFree() const override;
 
     const CpuForceModel& model() const { return m_model; }
 

@@ -105,6 +105,10 @@ void CudaDynamics::beginRun(const Settings&, const FamilyRules& families) {
 
 std::string CudaDynamics::description() const { return "GPU " + std::to_string(m_device) + " (" + m_name + ")"; }
 
+void CudaDynamics::countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const {
+    for (int g = 0; g < NUM_MEMORY_GROUPS; g++) bytes[g] = deviceBytesInGroup((MemoryGroup)g);
+}
+
 size_t CudaDynamics::memoryAvailable() const {
     select();
     size_t freeBytes = 0, totalBytes = 0;

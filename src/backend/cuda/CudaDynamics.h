@@ -61,6 +61,8 @@ class CudaDynamics : public DynamicsBackend {
     std::string launchReport() const override;
     bool onGpu() const override { return true; }
     size_t memoryAvailable() const override;
+    void countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const override;
+    size_t memoryFree() const override { return memoryAvailable(); }
 
     // What kinematics orders snapshot, on this stream.
     const DeviceState& state() const { return m_state; }
