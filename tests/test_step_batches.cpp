@@ -282,6 +282,34 @@ TEST(CudaStepGraphs, LoadsClearedByIntegrationEqualAClearingKernelBitForBit) {
     expectTheSameWhether("DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION");
 }
 
+// GPU only: detection spread over several threads a sphere (the default below 2^18 spheres,
+// backend/cuda/DetectionLanes.h: registration and pair search in lanes of bin rows) gives the
+// trajectories of a thread an item, bit for bit: the same contact sets (here every sphere's and
+// dumbbell's floor contacts, which a sphere's first lane finds), so the same steps. The kernels'
+// lists of sphere pairs, lanes and wide spheres included, are held to the CPU's detector pair for
+// pair on the host (CudaDetectionKernels.*).
+TEST(CudaStepGraphs, DetectionInLanesEqualsAThreadAnItemBitForBit) {
+    if (!cuda::cudaBackendBuilt() || cuda::usableDevices().empty()) GTEST_SKIP() << "needs a GPU";
+    ScopedEnvironmentVariable backend("DEME_BACKEND", "cuda");
+    Trajectory one;
+    std::vector<float4> dumbbellsOne;
+    {
+        ScopedEnvironmentVariable binning("DEME_CUDA_BINNING_LANES", "1"), search("DEME_CUDA_SEARCH_LANES", "1"),
+            wide("DEME_CUDA_WIDE_SPHERES", "0");
+        one = inOneCall(false);
+        dumbbellsOne = fallingDumbbellPoses(6000);
+    }
+    ScopedEnvironmentVariable search("DEME_CUDA_SEARCH_LANES", "3");  // more than one lane whatever the rows
+    expectBitForBit(inOneCall(false), one);
+    const std::vector<float4> dumbbells = fallingDumbbellPoses(6000);
+    ASSERT_EQ(dumbbells.size(), dumbbellsOne.size());
+    for (size_t k = 0; k < dumbbells.size(); k++) {
+        EXPECT_EQ(dumbbells[k].x, dumbbellsOne[k].x) << k;
+        EXPECT_EQ(dumbbells[k].z, dumbbellsOne[k].z) << k;
+        EXPECT_EQ(dumbbells[k].w, dumbbellsOne[k].w) << k;
+    }
+}
+
 // GPU only: graphs of several steps (the default 8, and 7, whose batches of up to 30 steps leave
 // remainders, with batches ended early inside a graph) equal graphs of one step, bit for bit.
 TEST(CudaStepGraphs, GraphsOfSeveralStepsEqualOneStepGraphsBitForBit) {
