@@ -175,13 +175,14 @@ void requireMemoryFor(const MemoryEstimate& e, size_t available, const std::stri
     throwError(call, msg.str());
 }
 
-void requireRoomForContactSet(size_t pairs, size_t needed, const size_t held[NUM_MEMORY_GROUPS], size_t freeNow,
-                              const std::string& where, const char* call) {
+void requireRoomForContactSet(size_t pairs, size_t needed, const size_t held[NUM_MEMORY_GROUPS],
+                              const std::function<size_t()>& freeNow, const std::string& where, const char* call) {
     const size_t heldContacts = held[(int)MemoryGroup::CONTACTS];
     if (needed <= heldContacts) return;  // the set fits what the run holds for contacts already
     size_t heldTotal = 0;
     for (int g = 0; g < NUM_MEMORY_GROUPS; g++) heldTotal += held[g];
-    const size_t capacity = memoryLimit(freeNow ? heldTotal + freeNow : 0, call);
+    const size_t free = freeNow();
+    const size_t capacity = memoryLimit(free ? heldTotal + free : 0, call);
     const size_t projected = heldTotal - heldContacts + needed;
     if (capacity == 0 || projected <= capacity) return;  // 0: not known
     std::ostringstream msg;

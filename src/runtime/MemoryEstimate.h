@@ -8,6 +8,7 @@
 #include <deme/MemoryStats.h>
 
 #include <cstddef>
+#include <functional>
 #include <string>
 
 #include "kinematics/BinGrid.h"
@@ -53,12 +54,13 @@ size_t memoryLimit(size_t available, const char* call);
 // Before a contact set of `pairs` pairs is installed (a detection found more pairs than the run
 // holds room for): throws a deme::Error from `call` naming the set, the bytes it needs (`needed`,
 // contactSetBytes) and what there is, when the run, holding `held` bytes per group now, would hold
-// more than `held` in all plus `freeNow` (the memory still free where the steps keep their arrays;
-// 0: not known, no check), capped by DEME_MEMORY_LIMIT. Nothing has changed then: the state is that
+// more than `held` in all plus what `freeNow()` says is still free where the steps keep their arrays
+// (0: not known, no check), capped by DEME_MEMORY_LIMIT. Nothing has changed then: the state is that
 // of the last step, and the solver can still save it (WriteCheckpoint) or go on with a smaller
-// margin. A set that fits what the run holds for contacts already is not checked.
-void requireRoomForContactSet(size_t pairs, size_t needed, const size_t held[NUM_MEMORY_GROUPS], size_t freeNow,
-                              const std::string& where, const char* call);
+// margin. A set that fits what the run holds for contacts already is not checked, and the free
+// memory is not asked for (a steady run asks the machine nothing).
+void requireRoomForContactSet(size_t pairs, size_t needed, const size_t held[NUM_MEMORY_GROUPS],
+                              const std::function<size_t()>& freeNow, const std::string& where, const char* call);
 
 // The bytes this machine can still give (MemAvailable of /proc/meminfo; 0 where unknown).
 size_t hostMemoryAvailable();

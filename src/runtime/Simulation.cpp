@@ -29,6 +29,14 @@ void Simulation::log(Verbosity level, const std::string& msg) const {
        << msg << std::endl;
 }
 
+namespace {
+
+// Where a run's steps keep their arrays, for the memory errors: "GPU 0 (NVIDIA H200) memory" or
+// "host memory".
+std::string memoryPlace(const DynamicsBackend& d) { return d.onGpu() ? d.description() + " memory" : "host memory"; }
+
+}  // namespace
+
 Simulation::Simulation() = default;
 Simulation::~Simulation() = default;
 
@@ -46,8 +54,7 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     // A scene too large for the memory its steps use fails here, not in its first detection.
     const DynamicsBackend& dynamics = *m_backends.dynamics;
     m_memoryEstimate = estimateRunMemory(m_state, m_grid, dynamics.onGpu());
-    requireMemoryFor(m_memoryEstimate, dynamics.memoryAvailable(),
-                     dynamics.onGpu() ? dynamics.description() + " memory" : "host memory", "Initialize");
+    requireMemoryFor(m_memoryEstimate, dynamics.memoryAvailable(), memoryPlace(dynamics), "Initialize");
     m_contacts.start(settings, *m_backends.dynamics, *m_backends.kinematics);
     m_contacts.period = &m_state.frame.periodic;
     // A contact set larger than the memory holds is an error naming it, before it is installed.
@@ -55,10 +62,8 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
         const DynamicsBackend& d = *m_backends.dynamics;
         size_t held[NUM_MEMORY_GROUPS] = {};
         d.countRunMemory(held);
-        const size_t needed = contactSetBytes(m_state, d.onGpu(), pairs);
-        if (needed <= held[(int)MemoryGroup::CONTACTS]) return;  // no growth: nothing to ask the machine
-        requireRoomForContactSet(pairs, needed, held, d.memoryFree(),
-                                 d.onGpu() ? d.description() + " memory" : "host memory", "DoDynamics");
+        requireRoomForContactSet(pairs, contactSetBytes(m_state, d.onGpu(), pairs), held,
+                                 [&d] { return d.memoryFree(); }, memoryPlace(d), "DoDynamics");
     };
     // ChangeFamilyWhen is checked at each detection (docs/active-box.md says why).
     m_contacts.beforeDetection = [this] {

@@ -123,7 +123,7 @@ void CpuDynamics::countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const {
 size_t CpuDynamics::memoryFree() const { return hostMemoryAvailable(); }
 
 size_t CpuDynamics::memoryAvailable() const {
-    const size_t free = hostMemoryAvailable();
+    const size_t free = memoryFree();
     if (free == 0) return 0;
     MemoryStats held;
     countStateMemory(m_s, held);

@@ -288,21 +288,19 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
                searchWideFrom, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(), dst.geomA.data(),
                dst.geomB.data(), dst.type.data());
     }
-    if (total) {
+    if (total && nWide) {
         // The wide spheres' lanes fill their partners in no order; then each one's into contact-set
         // order.
-        if (nWide) {
-            wideCursor.resizeDiscarding(nWide);
-            wideCursor.zeroAsync(stream);
-            const bodyID_t* wide = wideSpheres.data();
-            const unsigned int* offsets = pairOffset.data();
-            launch(kPairSearchWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, args, wide, nWide,
-                   WIDE_SPHERE_LANES, (unsigned int*)nullptr, offsets, wideCursor.data(), dst.geomB.data());
-            launch(kPairRankWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, wide, nWide, WIDE_SPHERE_LANES,
-                   offsets, dst.geomA.data(), (const bodyID_t*)dst.geomB.data());
-            launch(kPairFinishWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, wide, nWide,
-                   WIDE_SPHERE_LANES, offsets, dst.geomA.data(), dst.geomB.data(), dst.type.data());
-        }
+        wideCursor.resizeDiscarding(nWide);
+        wideCursor.zeroAsync(stream);
+        const bodyID_t* wide = wideSpheres.data();
+        const unsigned int* offsets = pairOffset.data();
+        launch(kPairSearchWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, args, wide, nWide,
+               WIDE_SPHERE_LANES, (unsigned int*)nullptr, offsets, wideCursor.data(), dst.geomB.data());
+        launch(kPairRankWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, wide, nWide, WIDE_SPHERE_LANES,
+               offsets, dst.geomA.data(), (const bodyID_t*)dst.geomB.data());
+        launch(kPairFinishWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, wide, nWide,
+               WIDE_SPHERE_LANES, offsets, dst.geomA.data(), dst.geomB.data(), dst.type.data());
     }
     // Pairs found from the moving side with a dormant sphere of lower id: into (A, B) order.
     if (useDormant)

@@ -49,6 +49,16 @@ inline unsigned int envCount(const char* name, unsigned int lo, unsigned int hi,
                                      " to " + std::to_string(hi));
     return (unsigned int)n;
 }
+
+// One thread per row of a box of `rows` rows, at most `most`, below DETECTION_LANES_BELOW searched
+// spheres; else 1, and 1 with the active box's dormant registry (its searches take one thread a
+// sphere); the diagnostic switch `name` (1 to 64) sets the number instead, for any size.
+inline unsigned int lanesFor(unsigned int searched, bool dormantRegistry, unsigned int rows, unsigned int most,
+                             const char* name) {
+    if (dormantRegistry) return 1;
+    const unsigned int lanes = searched >= DETECTION_LANES_BELOW ? 1u : rows < most ? rows : most;
+    return envCount(name, 1, 64, lanes);
+}
 }  // namespace detail
 
 // Threads an item in registration, for `searched` spheres whose largest enlarged radius is
@@ -56,10 +66,8 @@ inline unsigned int envCount(const char* name, unsigned int lo, unsigned int hi,
 // spheres; else 1. With the active box's dormant registry 1. DEME_CUDA_BINNING_LANES (1 to 64) sets
 // the number instead, for any size (a diagnostic switch; 1 is a thread an item).
 inline unsigned int binningLanes(unsigned int searched, bool dormantRegistry, const BinGrid& g, double maxReach) {
-    if (dormantRegistry) return 1;
-    const unsigned int rows = maxBinRows(g, maxReach);
-    const unsigned int lanes = searched >= DETECTION_LANES_BELOW ? 1u : rows < MAX_BINNING_LANES ? rows : MAX_BINNING_LANES;
-    return detail::envCount("DEME_CUDA_BINNING_LANES", 1, 64, lanes);
+    return detail::lanesFor(searched, dormantRegistry, maxBinRows(g, maxReach), MAX_BINNING_LANES,
+                            "DEME_CUDA_BINNING_LANES");
 }
 
 // Threads a sphere in the pair search, for `searched` spheres of which the smallest enlarged radius
@@ -68,10 +76,8 @@ inline unsigned int binningLanes(unsigned int searched, bool dormantRegistry, co
 // largest: lanes beyond a sphere's rows have nothing to do but still take a thread's place in the
 // grid. DEME_CUDA_SEARCH_LANES (1 to 64) sets the number instead (a diagnostic switch).
 inline unsigned int searchLanes(unsigned int searched, bool dormantRegistry, const BinGrid& g, double minReach) {
-    if (dormantRegistry) return 1;
-    const unsigned int rows = maxBinRows(g, minReach);
-    const unsigned int lanes = searched >= DETECTION_LANES_BELOW ? 1u : rows < MAX_SEARCH_LANES ? rows : MAX_SEARCH_LANES;
-    return detail::envCount("DEME_CUDA_SEARCH_LANES", 1, 64, lanes);
+    return detail::lanesFor(searched, dormantRegistry, maxBinRows(g, minReach), MAX_SEARCH_LANES,
+                            "DEME_CUDA_SEARCH_LANES");
 }
 
 // The radius from which a sphere is wide: twice the grid's smallest bin edge, so that its box spans
