@@ -30,6 +30,61 @@
 
 namespace deme {
 
+// Histories of at most this many floats are copied into registers for the model (contactStep).
+constexpr unsigned int MAX_COPIED_HISTORY = 8;
+
+// A contact's W history floats between its slot and registers: as float4s on the GPU where W is a
+// multiple of four and the slot is aligned (one 16-byte access instead of four strided ones).
+template <unsigned int W>
+DEME_HD_INLINE void loadHistory(const float* slot, float* regs) {
+#ifdef __CUDA_ARCH__
+    if (W % 4 == 0 && (reinterpret_cast<size_t>(slot) & 15u) == 0) {
+        for (unsigned int w = 0; w < W; w += 4) {
+            const float4 v = *reinterpret_cast<const float4*>(slot + w);
+            regs[w] = v.x, regs[w + 1] = v.y, regs[w + 2] = v.z, regs[w + 3] = v.w;
+        }
+        return;
+    }
+#endif
+    for (unsigned int w = 0; w < W; w++) regs[w] = slot[w];
+}
+
+template <unsigned int W>
+DEME_HD_INLINE void storeHistory(const float* regs, float* slot) {
+#ifdef __CUDA_ARCH__
+    if (W % 4 == 0 && (reinterpret_cast<size_t>(slot) & 15u) == 0) {
+        for (unsigned int w = 0; w < W; w += 4)
+            *reinterpret_cast<float4*>(slot + w) = make_float4(regs[w], regs[w + 1], regs[w + 2], regs[w + 3]);
+        return;
+    }
+#endif
+    for (unsigned int w = 0; w < W; w++) slot[w] = regs[w];
+}
+
+template <unsigned int W>
+DEME_HD_INLINE void storeZeroHistory(float* slot) {
+    float zeros[W];
+    for (unsigned int w = 0; w < W; w++) zeros[w] = 0.f;
+    storeHistory<W>(zeros, slot);
+}
+
+// Whether a history is what clearing leaves: every float +0 (a -0 is stored over, so that skipping
+// the store changes no bit of any later step).
+template <unsigned int W>
+DEME_HD_INLINE bool historyIsZero(const float* regs) {
+    bool zero = true;
+    for (unsigned int w = 0; w < W; w++) {
+#ifdef __CUDA_ARCH__
+        const uint32_t bits = __float_as_uint(regs[w]);
+#else
+        uint32_t bits;
+        __builtin_memcpy(&bits, &regs[w], sizeof bits);
+#endif
+        zero = zero && bits == 0u;
+    }
+    return zero;
+}
+
 // What one contact exerts: the force on A (B gets -force) and the torques about each owner's
 // centre (global), and the two owners.
 struct ContactLoad {
@@ -44,9 +99,14 @@ template <class Model, bool SphereSphere, class S>
 DEME_HD_INLINE bool contactStep(S& s, const Model& model, size_t i, float time, float dt, bool& applied,
                                 ContactLoad& load) {
     auto& c = s.contacts;
-    // The wildcard count is a constant of the model, so history loops unroll.
+    // The wildcard count is a constant of the model, so history loops unroll. A short history is
+    // read once (after the gather: held across it, its registers would spill others), the model
+    // works on that copy in registers, and it is stored once; a long one is worked on where it lies.
     constexpr unsigned int W = Model::kNumContactWildcards;
+    constexpr bool kHistoryCopied = W > 0 && W <= MAX_COPIED_HISTORY;
+    constexpr unsigned int WC = kHistoryCopied ? W : 1;  // the copy's size (never zero)
     float* wc = W ? &c.wildcards[i * W] : nullptr;
+    float copied[WC];
     const uint8_t type = SphereSphere ? (uint8_t)SPHERE_SPHERE : c.type[i];
     bool gather = type != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
     if (!Model::kSeesApartPairs && (SphereSphere || type == SPHERE_SPHERE)) {
@@ -60,13 +120,21 @@ DEME_HD_INLINE bool contactStep(S& s, const Model& model, size_t i, float time, 
     const bool touching = gather && in.overlapDepth > 0.0;
     applied = Model::kSeesApartPairs ? gather : touching;
     if (!applied) {
-        // No call: no force, and the contact's history ends.
-        for (unsigned int w = 0; w < W; w++) wc[w] = 0.f;
+        // No call: no force, and the contact's history ends (stored only where some is left: most
+        // pairs that do not touch have none, and the store is saved).
+        if (kHistoryCopied) {
+            loadHistory<WC>(wc, copied);
+            if (!historyIsZero<WC>(copied)) storeZeroHistory<WC>(wc);
+        } else {
+            for (unsigned int w = 0; w < W; w++) wc[w] = 0.f;
+        }
         return false;
     }
     float3 force = make_float3(0.f), torque_only_force = make_float3(0.f), couple_torque = make_float3(0.f);
     bool persistent = Model::kWritesPersistent && c.persistent[i] != 0;
-    model(in, wc, force, torque_only_force, couple_torque, persistent);
+    if (kHistoryCopied) loadHistory<WC>(wc, copied);
+    model(in, kHistoryCopied ? copied : wc, force, torque_only_force, couple_torque, persistent);
+    if (kHistoryCopied) storeHistory<WC>(copied, wc);
     if (Model::kWritesPersistent) c.persistent[i] = persistent ? 1 : 0;
     const float3 total = force + torque_only_force;
     load.force = force;

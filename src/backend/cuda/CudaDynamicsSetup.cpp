@@ -19,6 +19,7 @@ CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(devi
     m_useGraphs = stepGraphsEnabled();
     m_overlapLaunches = overlappedLaunchesEnabled() && useDevice("Initialize", m_device).major >= 9;
     m_fusedStep = fusedStepEnabled();
+    m_analyticalInBlock = analyticalInBlockEnabled();
     m_graphSteps = stepsPerGraph();
     // Both contact sets' fields, their per-contact wildcards (the history) included.
     for (DeviceContacts& set : m_contacts)

@@ -72,12 +72,17 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     // stepped owners are integrated and placed.
     const unsigned int tStepped = stepThreadsFor(nStepped);
     if (m_fusedStep && nT == 0) {
-        // At least one block: it also ends the step.
+        // At least one block: it also ends the step. Where every owner is stepped, owner o is
+        // thread o, so the analytical owners (after the clumps) are one block's where their ids
+        // share a block: that block places their components.
+        const unsigned int firstBlock = m_numClumps / tStepped;
+        const bool oneBlock = m_subsetAll && m_numAnalyticalOwners > 0 && m_analyticalInBlock &&
+                              (m_numClumps + m_numAnalyticalOwners - 1) / tStepped == firstBlock;
         list.kernel(kIntegrateAndPlace, std::max(1u, blocksFor(nStepped, tStepped)), tStepped, 0, m_view,
                     m_control.data(), (const FamilyStepMotion*)m_motion.data(), consts,
                     (const double*)m_baseline.data(), ownerIds, nStepped, clearLoads,
-                    (const uint32_t*)m_ownerSphereStart.data(),
-                    m_numClumps, m_numAnalyticalOwners, m_domainDiagonal, red, m_componentSpeed.data(),
+                    (const uint32_t*)m_ownerSphereStart.data(), m_numClumps, m_numAnalyticalOwners,
+                    oneBlock ? firstBlock : NO_ANALYTICAL_BLOCK, m_domainDiagonal, red, m_componentSpeed.data(),
                     m_blocksDone.data());
         return;
     }

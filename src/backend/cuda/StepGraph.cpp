@@ -28,6 +28,11 @@ bool fusedStepEnabled() {
     return !(v && std::strcmp(v, "0") == 0);
 }
 
+bool analyticalInBlockEnabled() {
+    const char* v = std::getenv("DEME_CUDA_ANALYTICAL_IN_BLOCK");
+    return !(v && std::strcmp(v, "0") == 0);
+}
+
 bool loadsClearedByIntegration(unsigned int owners) {
     const char* v = std::getenv("DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION");
     if (v && *v) return std::strcmp(v, "0") != 0;

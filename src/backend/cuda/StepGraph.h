@@ -51,6 +51,9 @@ bool overlappedLaunchesEnabled();
 // Whether a step of a scene without triangles integrates and places in one kernel
 // (deme_integrate_and_place): DEME_CUDA_FUSED_STEP unset or not "0".
 bool fusedStepEnabled();
+// Whether that kernel's block that steps every analytical owner places their components (rather
+// than the block that finishes last): DEME_CUDA_ANALYTICAL_IN_BLOCK unset or not "0".
+bool analyticalInBlockEnabled();
 // Whether integration clears the loads it read for a scene of `owners` owners (instead of a kernel
 // at the start of every step): DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION "1" or "0", or by default for
 // scenes under 2^18 owners, where a step's kernels are latency bound and one fewer is worth 2-3 %

@@ -258,27 +258,36 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
 
 // Integration and placement in one kernel, for scenes without triangles (whose placement waits for
 // every owner): the thread that steps an owner places its spheres (ownerSphereStart: owner o's are
-// [start[o], start[o + 1]); null where spheres are their owners, state/SphereLayout.h), and the
-// block that finishes last steps the analytical owners' components (every owner's pose is then in
-// place) and ends the step. One kernel boundary fewer than deme_integrate and deme_place_and_finish,
-// and the spheres read their owner's new pose where it was just written.
+// [start[o], start[o + 1]); null where spheres are their owners, state/SphereLayout.h). The
+// analytical owners' components are placed once their owners' poses are: by the block that stepped
+// all of them (`analyticalBlock`, where one did: every owner stepped and the analytical ones within
+// one block's range), right after its owners, or else by the block that finishes last, which ends
+// the step. One kernel boundary fewer than deme_integrate and deme_place_and_finish, the spheres
+// read their owner's new pose where it was just written, and the step's serial tail is the tally.
 extern "C" __global__ void deme_integrate_and_place(StateView s, StepBatchControl* ctl,
                                                     const FamilyStepMotion* motion, StepConstants consts,
                                                     const double* travelBaseline, const bodyID_t* ids, unsigned int n,
                                                     unsigned int clearLoads, const uint32_t* ownerSphereStart,
                                                     unsigned int firstAnalyticalOwner,
-                                                    unsigned int numAnalyticalOwners, double domainDiagonal,
-                                                    StepReduction* red, float* componentSpeed,
+                                                    unsigned int numAnalyticalOwners, unsigned int analyticalBlock,
+                                                    double domainDiagonal, StepReduction* red, float* componentSpeed,
                                                     unsigned int* blocksDone) {
     beginDependentKernel();
     if (ctl->stop) return;
     const long long o = integrateOwner(s, ctl, motion, consts, travelBaseline, ids, n, clearLoads, red);
     if (o >= 0 && ownerSphereStart)
         for (uint32_t i = ownerSphereStart[o], end = ownerSphereStart[o + 1]; i < end; i++) placeSphere(s, i);
+    if (blockIdx.x == analyticalBlock) {
+        __syncthreads();  // the block's owners' poses are in place (a barrier orders the block's global writes)
+        stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h,
+                             domainDiagonal, travelBaseline, red);
+    }
     if (!lastBlockToFinish(blocksDone)) return;
-    stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h, domainDiagonal,
-                         travelBaseline, red);
-    __syncthreads();  // the analytical owners' travel in the reduction before the tally
+    if (analyticalBlock == NO_ANALYTICAL_BLOCK) {
+        stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h,
+                             domainDiagonal, travelBaseline, red);
+        __syncthreads();  // the analytical owners' travel in the reduction before the tally
+    }
     if (threadIdx.x == 0) finishStep(ctl, red);
 }
 

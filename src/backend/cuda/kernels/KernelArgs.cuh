@@ -31,4 +31,8 @@ enum KernelError : unsigned int {
 // address would serialise.
 constexpr unsigned int SHARED_LOAD_SLOTS = 64;
 
+// deme_integrate_and_place's `analyticalBlock` where no one block steps every analytical owner (the
+// block that finishes last places their components then).
+constexpr unsigned int NO_ANALYTICAL_BLOCK = 0xFFFFFFFFu;
+
 }  // namespace deme
