@@ -301,24 +301,13 @@ for step in "${steps[@]}"; do
         done
         ;;
     profile-step)
-        # Where a drum step's time goes: Nsight Compute's full sections (stall reasons, memory and
-        # atomic traffic, occupancy) for some force passes and fused owner steps after the warm-up,
-        # kernels launched one by one; then, where Nsight Systems is installed, the replayed steps'
-        # kernel trace (graphs traced node by node), for the gaps between kernels.
+        # Where a drum step's time goes: Nsight Compute's full sections (stall reasons, spills,
+        # occupancy) for some force passes and fused owner steps after the warm-up, kernels launched
+        # one by one (PROFILE_CASE=impact the impact, PROFILE_LAUNCHES how many).
         DEME_CUDA_GRAPHS=0 DEME_CUDA_PROFILE_FROM_STEP=20001 timeout 300 ncu --profile-from-start off --clock-control none \
             -k regex:'deme_force_pass|deme_integrate' --launch-count ${PROFILE_LAUNCHES:-4} --set full --import-source no \
             ./build-gpu/bench/small_systems ${PROFILE_CASE:-drum} 20000 300 cuda sync >"$OUT/ncu-step.txt" 2>"$OUT/ncu-step.err"
         echo "profile-step ncu: rc $? ($(wc -l <"$OUT/ncu-step.txt") lines)"
-        if command -v nsys >/dev/null; then
-            DEME_CUDA_PROFILE_FROM_STEP=20001 timeout 300 nsys profile --capture-range=cudaProfilerApi --cuda-graph-trace=node \
-                -o /tmp/step-trace -f true ./build-gpu/bench/small_systems ${PROFILE_CASE:-drum} 20000 2000 cuda sync >"$OUT/nsys.log" 2>&1
-            echo "profile-step nsys: rc $?"
-            nsys stats -r cuda_gpu_trace -f csv -o /tmp/step-trace /tmp/step-trace.nsys-rep >>"$OUT/nsys.log" 2>&1
-            gzip -c /tmp/step-trace_cuda_gpu_trace.csv >"$OUT/step-trace.csv.gz" 2>/dev/null
-            nsys stats -r cuda_gpu_kern_sum /tmp/step-trace.nsys-rep 2>&1 | tail -n 30
-        else
-            echo "profile-step: no nsys on this machine"
-        fi
         ;;
     compile)
         # A custom force model's Initialize cost on the GPU backend (NVRTC plus the host build).
