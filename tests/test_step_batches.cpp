@@ -329,6 +329,61 @@ TEST(CudaStepGraphs, AnalyticalOwnersPlacedByTheirBlockEqualTheLastBlockBitForBi
         if (std::fabs(own[k].y) < 1e-4f) EXPECT_NEAR(own[k].z, -0.3f + R + 0.005f, 5e-4f) << k / 2;
 }
 
+// 100 spheres falling freely from rest, far from each other and from every wall (no contacts at
+// all): their heights after `steps` steps.
+std::vector<float> freeFallHeights(int steps) {
+    DEMSolver sim;
+    sim.SetVerbosity("QUIET");
+    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.4, 0.01));
+    sim.InstructBoxDomainDimension(1.0, 1.0, 1.0);
+    std::vector<float3> pts;
+    for (int i = 0; i < 10; i++)
+        for (int j = 0; j < 10; j++) pts.push_back(make_float3(-0.45f + 0.1f * i, -0.45f + 0.1f * j, 0.4f));
+    auto grains = sim.AddClumps(sim.LoadSphereType((float)sphereMass(R, 2500), R, mat), pts);
+    sim.SetInitTimeStep(DT);
+    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    sim.Initialize();
+    auto t = sim.Track(grains);
+    sim.DoDynamics(steps * DT);
+    std::vector<float> z;
+    for (size_t k = 0; k < pts.size(); k++) z.push_back(t->Pos(k).z);
+    return z;
+}
+
+// GPU only: an owner step that reads its inputs before waiting for the force pass before it (the
+// default) gives the trajectories of one that reads everything after, bit for bit: the bouncing
+// spheres (prescribed motion, tracker loads, batches ended early), dumbbells landing on a plane,
+// spheres on a moving plane. An input read before the step that wrote it had ended would make the
+// runs differ. Where a step has no contacts, and so no force pass, the kernel before may be the last
+// step's integration, and nothing may be read early: spheres in free fall, against the exact fall.
+TEST(CudaStepGraphs, OwnerInputsReadBeforeTheForcePassEndsEqualReadAfterBitForBit) {
+    if (!cuda::cudaBackendBuilt() || cuda::usableDevices().empty()) GTEST_SKIP() << "needs a GPU";
+    ScopedEnvironmentVariable backend("DEME_BACKEND", "cuda");
+    expectTheSameWhether("DEME_CUDA_INPUTS_BEFORE_WAIT");
+    std::vector<float3> after;
+    std::vector<float> fallAfter;
+    {
+        ScopedEnvironmentVariable v("DEME_CUDA_INPUTS_BEFORE_WAIT", "0");
+        after = spheresOnATiltingLift(5000);
+        fallAfter = freeFallHeights(4000);
+    }
+    ScopedEnvironmentVariable v("DEME_CUDA_INPUTS_BEFORE_WAIT", "1");
+    const std::vector<float3> before = spheresOnATiltingLift(5000);
+    ASSERT_EQ(before.size(), after.size());
+    size_t differ = 0;
+    for (size_t k = 0; k < before.size(); k++) differ += !same(before[k], after[k]);
+    EXPECT_EQ(differ, 0u) << "sphere positions or velocities on the lift that differ";
+    const std::vector<float> fall = freeFallHeights(4000);
+    ASSERT_EQ(fall.size(), fallAfter.size());
+    // 4000 steps of h = 2e-5 s: velocity first, then position, so after n steps the fall is exactly
+    // g h^2 n (n + 1) / 2 (31.4 mm); float heights near 0.37 m resolve 3e-8 m.
+    const double h = DT, n = 4000, exact = 0.4 - 0.5 * 9.81 * h * h * n * (n + 1);
+    for (size_t k = 0; k < fall.size(); k++) {
+        EXPECT_EQ(fall[k], fallAfter[k]) << k;
+        EXPECT_NEAR(fall[k], exact, 1e-6) << k;
+    }
+}
+
 // GPU only: a step's loads cleared by the integration before it (the default under 2^18 owners)
 // give the trajectory of a kernel that clears them at every step's start, bit for bit. A load left
 // from the step before would push them apart.

@@ -70,7 +70,57 @@ DEME_HD_INLINE bool ownerAtRest(const S& s, const FamilyStepMotion* motion, size
            dot(s.owners.angVel[o], s.owners.angVel[o]) == 0.f;
 }
 
-// Advances owner o by one step and refreshes its cached pose. Written without branches (every
+// What owner o's step reads besides its contact loads: every field of it that a force pass leaves
+// alone. Apart from those loads, so that a GPU kernel may read it while the force pass before it
+// still runs (deme_integrate_and_place, kernels/Dynamics.cu), taking these loads' round trips off
+// the step's path.
+struct OwnerStepInputs {
+    FamilyStepMotion m;
+    bool dynamic;
+    float3 v0, w0;
+    float4 q0;
+    float3 extraAcc, extraAngAcc;
+    double3 x0;
+    voxelID_t voxel;
+    subVoxelPos_t subX, subY, subZ;
+    uint8_t type;
+    float extent;
+    double travel0, travelBaseline;
+    float3 moi;
+    float mass;
+};
+
+template <class S>
+DEME_HD_INLINE OwnerStepInputs loadOwnerStepInputs(const S& s, size_t o, const FamilyStepMotion& m,
+                                                   const StepConstants& c, double travelBaseline) {
+    const auto& ow = s.owners;
+    OwnerStepInputs in;
+    in.m = m;
+    in.dynamic = ow.dynamic[o] != 0 && !m.fixed;
+    in.v0 = ow.vel[o];
+    in.w0 = ow.angVel[o];
+    in.q0 = ow.oriQ[o];
+    const inertiaID_t inertia = ow.inertia[o];
+    // Tracker loads: the test is the same for every owner of a call (no divergence on a GPU).
+    const bool loads = c.extraAcc != nullptr;
+    in.extraAcc = loads ? c.extraAcc[o] : make_float3(0.f);
+    in.extraAngAcc = loads ? c.extraAngAcc[o] : make_float3(0.f);
+    in.x0 = s.cache.ownerPos[o];
+    in.voxel = ow.voxel[o];
+    in.subX = ow.subX[o];
+    in.subY = ow.subY[o];
+    in.subZ = ow.subZ[o];
+    in.type = ow.type[o];
+    in.extent = ow.extent[o];
+    in.travel0 = ow.travel[o];
+    in.travelBaseline = travelBaseline;
+    in.moi = s.massProps.moi[inertia];
+    in.mass = s.massProps.mass[inertia];
+    return in;
+}
+
+// Advances owner o by one step and refreshes its cached pose, from its inputs (above) and the
+// contact loads the force pass summed on it. Written without branches (every
 // path is computed, then selected) and as a function of its own, so that the owner sweep
 // vectorises: the vectoriser sees this function's locals only after inlining, whereas locals of an
 // `omp simd` body proper are privatised per lane. Every field it reads is read first, before any
@@ -79,30 +129,24 @@ DEME_HD_INLINE bool ownerAtRest(const S& s, const FamilyStepMotion* motion, size
 // memory round trip in every thread's path, and at lab scale (one wave of threads) the sweep's
 // time is that path.
 template <class S>
-DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion& m, const StepConstants& c,
-                                         double travelBaseline) {
+DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const OwnerStepInputs& in, const float3& force,
+                                         const float3& torque, const StepConstants& c) {
     auto& ow = s.owners;
     auto& k = s.cache;
-    // The owner's fields.
+    const FamilyStepMotion& m = in.m;
     const bool fixed = m.fixed != 0;
-    const bool dynamic = ow.dynamic[o] != 0 && !fixed;
-    const float3 v0 = ow.vel[o], w0 = ow.angVel[o];
-    const float4 q0 = ow.oriQ[o];
-    const inertiaID_t in = ow.inertia[o];
-    const float3 force = ow.contactForce[o], torque = ow.contactTorque[o];
-    // Tracker loads: the test is the same for every owner of a call (no divergence on a GPU).
-    const bool loads = c.extraAcc != nullptr;
-    const float3 extraAcc = loads ? c.extraAcc[o] : make_float3(0.f);
-    const float3 extraAngAcc = loads ? c.extraAngAcc[o] : make_float3(0.f);
-    const double3 x0 = k.ownerPos[o];
-    voxelID_t voxel = ow.voxel[o];
-    subVoxelPos_t subX = ow.subX[o], subY = ow.subY[o], subZ = ow.subZ[o];
-    const uint8_t type = ow.type[o];
-    const bool clump = type == OWNER_CLUMP, analytical = type == OWNER_ANALYTICAL;
-    const float extent = ow.extent[o];
-    const double travel0 = ow.travel[o];
-    const float3 moi = s.massProps.moi[in];
-    const float mass = s.massProps.mass[in];
+    const bool dynamic = in.dynamic;
+    const float3 v0 = in.v0, w0 = in.w0;
+    const float4 q0 = in.q0;
+    const float3 extraAcc = in.extraAcc, extraAngAcc = in.extraAngAcc;
+    const double3 x0 = in.x0;
+    voxelID_t voxel = in.voxel;
+    subVoxelPos_t subX = in.subX, subY = in.subY, subZ = in.subZ;
+    const bool clump = in.type == OWNER_CLUMP, analytical = in.type == OWNER_ANALYTICAL;
+    const float extent = in.extent;
+    const double travel0 = in.travel0, travelBaseline = in.travelBaseline;
+    const float3 moi = in.moi;
+    const float mass = in.mass;
 
     // Forces and torques (discarded below for owners they do not move).
     const float3 invMoi = make_float3(1.f / moi.x, 1.f / moi.y, 1.f / moi.z);
@@ -166,6 +210,16 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     // of the step serves both, instead of a scratch array written by every owner every step.
     k.ownerAngVelGlobal[o] = large ? wMid : rotateToGlobal(q, w);
     return r;
+}
+
+// Owner o's step as one call: its inputs, then its loads (the CPU's sweep; a GPU kernel whose force
+// pass may still run loads the inputs first, then waits, then reads the loads).
+template <class S>
+DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion& m, const StepConstants& c,
+                                         double travelBaseline) {
+    const OwnerStepInputs in = loadOwnerStepInputs(s, o, m, c, travelBaseline);
+    const float3 force = s.owners.contactForce[o], torque = s.owners.contactTorque[o];
+    return stepOwner(s, o, in, force, torque, c);
 }
 
 // The exact orientation step of an owner that stepOwner flagged STEP_LARGE_ROTATION (its midpoint

@@ -108,6 +108,7 @@ class CudaDynamics : public DynamicsBackend {
     DeviceBuffer<uint32_t> m_ownerSphereStart;
     bool m_fusedStep = true;
     bool m_analyticalInBlock = true;  // DEME_CUDA_ANALYTICAL_IN_BLOCK (StepGraph.h)
+    bool m_inputsBeforeWait = true;   // DEME_CUDA_INPUTS_BEFORE_WAIT (StepGraph.h)
     // One step's launches, without and with stored contact forces, and their graphs: plain steps
     // go in graphs of m_graphSteps steps (StepGraph.h), the rest of a batch one step a graph.
     LaunchList m_plainStep, m_storingStep;

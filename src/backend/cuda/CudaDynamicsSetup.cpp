@@ -20,6 +20,7 @@ CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(devi
     m_overlapLaunches = overlappedLaunchesEnabled() && useDevice("Initialize", m_device).major >= 9;
     m_fusedStep = fusedStepEnabled();
     m_analyticalInBlock = analyticalInBlockEnabled();
+    m_inputsBeforeWait = inputsBeforeWaitEnabled();
     m_graphSteps = stepsPerGraph();
     // Both contact sets' fields, their per-contact wildcards (the history) included.
     for (DeviceContacts& set : m_contacts)

@@ -69,8 +69,11 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     const unsigned int tForce = settings.threadsPerBlock ? settings.threadsPerBlock : stepThreadsFor(m_numContacts);
     m_model.record(list, stepView, ctl, m_numClumps, nO - m_numClumps, red, tForce);
     // Contact forces were summed onto every owner (dormant ones too: trackers read them); only the
-    // stepped owners are integrated and placed.
+    // stepped owners are integrated and placed. Right after a force pass, which writes none of an
+    // owner step's inputs but its loads, the integration reads them before it waits for the pass
+    // (kernels/Dynamics.cu, startOwnerStep).
     const unsigned int tStepped = stepThreadsFor(nStepped);
+    const unsigned int inputsBeforeWait = m_inputsBeforeWait && stepView.numContacts > 0 ? 1u : 0u;
     if (m_fusedStep && nT == 0) {
         // At least one block: it also ends the step. Where every owner is stepped, owner o is
         // thread o, so the analytical owners (after the clumps) are one block's where their ids
@@ -80,7 +83,7 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
                               (m_numClumps + m_numAnalyticalOwners - 1) / tStepped == firstBlock;
         list.kernel(kIntegrateAndPlace, std::max(1u, blocksFor(nStepped, tStepped)), tStepped, 0, m_view,
                     m_control.data(), (const FamilyStepMotion*)m_motion.data(), consts,
-                    (const double*)m_baseline.data(), ownerIds, nStepped, clearLoads,
+                    (const double*)m_baseline.data(), ownerIds, nStepped, inputsBeforeWait, clearLoads,
                     (const uint32_t*)m_ownerSphereStart.data(), m_numClumps, m_numAnalyticalOwners,
                     oneBlock ? firstBlock : NO_ANALYTICAL_BLOCK, m_domainDiagonal, red, m_componentSpeed.data(),
                     m_blocksDone.data());
@@ -88,7 +91,7 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     }
     list.kernel(kIntegrate, blocksFor(nStepped, tStepped), tStepped, 0, m_view, m_control.data(),
                 (const FamilyStepMotion*)m_motion.data(), consts, (const double*)m_baseline.data(), ownerIds, nStepped,
-                clearLoads, red);
+                inputsBeforeWait, clearLoads, red);
     // At least one block: it also ends the step.
     const unsigned int tPlaced = stepThreadsFor((unsigned long long)nPlaced + nT);
     const unsigned int placeBlocks = std::max(1u, blocksFor((unsigned long long)nPlaced + nT, tPlaced));

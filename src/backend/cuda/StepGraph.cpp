@@ -33,6 +33,11 @@ bool analyticalInBlockEnabled() {
     return !(v && std::strcmp(v, "0") == 0);
 }
 
+bool inputsBeforeWaitEnabled() {
+    const char* v = std::getenv("DEME_CUDA_INPUTS_BEFORE_WAIT");
+    return !(v && std::strcmp(v, "0") == 0);
+}
+
 bool loadsClearedByIntegration(unsigned int owners) {
     const char* v = std::getenv("DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION");
     if (v && *v) return std::strcmp(v, "0") != 0;

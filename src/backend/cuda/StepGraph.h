@@ -54,6 +54,10 @@ bool fusedStepEnabled();
 // Whether that kernel's block that steps every analytical owner places their components (rather
 // than the block that finishes last): DEME_CUDA_ANALYTICAL_IN_BLOCK unset or not "0".
 bool analyticalInBlockEnabled();
+// Whether an owner step right after a force pass reads its inputs (all but the loads) before it
+// waits for that pass (kernels/Dynamics.cu, startOwnerStep): DEME_CUDA_INPUTS_BEFORE_WAIT unset or
+// not "0".
+bool inputsBeforeWaitEnabled();
 // Whether integration clears the loads it read for a scene of `owners` owners (instead of a kernel
 // at the start of every step): DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION "1" or "0", or by default for
 // scenes under 2^18 owners, where a step's kernels are latency bound and one fewer is worth 2-3 %

@@ -152,18 +152,58 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
 DEME_BUILT_IN_FORCE_PASSES(, )
 DEME_BUILT_IN_FORCE_PASSES(_r64, __maxnreg__(64))
 
-// Owner ids[k]'s step (every owner if ids is null; the active box leaves fixed owners at rest out,
-// deme_stepped_flags), the first part of the two integration kernels below, with the step's maxima
-// and first fault combined per warp. An owner whose rotation this step was too large for the series
-// step takes the exact (scalar) step at once (rare; the CPU does these in a sweep of their own so
-// that its main sweep vectorises). The step's prescriptions are the batch's table's row for it
-// (motion[stepsDone * NUM_FAMILIES + family], codegen/FamilyMotionSource.h). With clearLoads the
+// What thread k of an owner step reads before its owner's contact loads: the owner ids[k] (k if ids
+// is null; the active box leaves fixed owners at rest out, deme_stepped_flags) and its step's inputs
+// (dynamics/OwnerStep.h), with the step's prescriptions from the batch's table's row for it
+// (motion[stepsDone * NUM_FAMILIES + family], codegen/FamilyMotionSource.h). owner is -1 for a
+// thread past the end.
+struct OwnerStepStart {
+    long long owner;
+    OwnerStepInputs in;
+};
+
+__device__ inline OwnerStepStart loadOwnerStepStart(const StateView& s, const StepBatchControl* ctl,
+                                                    const FamilyStepMotion* motion, const StepConstants& consts,
+                                                    const double* travelBaseline, const bodyID_t* ids,
+                                                    unsigned int n) {
+    OwnerStepStart st;
+    st.owner = -1;
+    const size_t k = globalIndex();
+    if (k >= n) return st;
+    const size_t o = ids ? (size_t)ids[k] : k;
+    const FamilyStepMotion* stepMotion = motion + (size_t)ctl->stepsDone * NUM_FAMILIES;
+    st.owner = (long long)o;
+    st.in = loadOwnerStepInputs(s, o, stepMotion[s.owners.family[o]], consts, travelBaseline[o]);
+    return st;
+}
+
+// The start of the owner-step kernels below: the dependent launch's wait (DependentLaunch.cuh) and
+// the owner's inputs. Where the kernel before is the force pass (inputsBeforeWait), which writes
+// none of the inputs -- they were last written by the step before, which had ended before that
+// pass could start -- they are read before the wait: their round trips overlap the pass's last
+// blocks instead of lengthening the step. Anything else before (no force pass where there are no
+// contacts: then the kernel before may be the last step's integration) and they are read after it.
+// Returns false where the batch has stopped.
+__device__ inline bool startOwnerStep(const StateView& s, const StepBatchControl* ctl, const FamilyStepMotion* motion,
+                                      const StepConstants& consts, const double* travelBaseline,
+                                      const bodyID_t* ids, unsigned int n, unsigned int inputsBeforeWait,
+                                      OwnerStepStart& st) {
+    if (inputsBeforeWait) st = loadOwnerStepStart(s, ctl, motion, consts, travelBaseline, ids, n);
+    beginDependentKernel();
+    if (ctl->stop) return false;
+    if (!inputsBeforeWait) st = loadOwnerStepStart(s, ctl, motion, consts, travelBaseline, ids, n);
+    return true;
+}
+
+// Owner st.owner's step, the first part of the two integration kernels below, with the step's
+// maxima and first fault combined per warp. An owner whose rotation this step was too large for
+// the series step takes the exact (scalar) step at once (rare; the CPU does these in a sweep of
+// their own so that its main sweep vectorises). With clearLoads the
 // owner's contact loads are cleared once read, ready for the next step's force pass (not in a step
 // whose loads the host reads after it, the storing step, nor where deme_clear_loads clears them at
 // every step's start). Returns the owner stepped, or -1 for a thread past the end.
-__device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, const FamilyStepMotion* motion,
-                                           const StepConstants& consts, const double* travelBaseline,
-                                           const bodyID_t* ids, unsigned int n, unsigned int clearLoads,
+__device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, const OwnerStepStart& st,
+                                           const StepConstants& consts, unsigned int clearLoads,
                                            StepReduction* red) {
     const size_t k = globalIndex();
     // The force phase has ended (the kernels of a stream run one after the other).
@@ -171,11 +211,10 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
     double travel = 0.0;
     float speed = 0.f;
     unsigned int fault = NO_FAULT, large = 0u;
-    long long stepped = -1;
-    if (k < n) {
-        const size_t o = ids ? (size_t)ids[k] : k;
-        const FamilyStepMotion* stepMotion = motion + (size_t)ctl->stepsDone * NUM_FAMILIES;
-        const OwnerStepResult r = stepOwner(s, o, stepMotion[s.owners.family[o]], consts, travelBaseline[o]);
+    if (st.owner >= 0) {
+        const size_t o = (size_t)st.owner;
+        const float3 force = s.owners.contactForce[o], torque = s.owners.contactTorque[o];
+        const OwnerStepResult r = stepOwner(s, o, st.in, force, torque, consts);
         s.integrationScratch.flags[o] = r.flags;
         travel = r.travelSinceDetection > 0.0 ? r.travelSinceDetection : 0.0;
         speed = r.speed;
@@ -186,7 +225,6 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
             s.owners.contactForce[o] = make_float3(0.f);
             s.owners.contactTorque[o] = make_float3(0.f);
         }
-        stepped = (long long)o;
     }
     for (int off = 16; off > 0; off >>= 1) {
         travel = fmax(travel, __shfl_down_sync(0xFFFFFFFFu, travel, off));
@@ -200,7 +238,7 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
         if (fault != NO_FAULT) atomicMin(&red->firstFault, fault);
         if (large) red->anyLargeRotation = 1u;
     }
-    return stepped;
+    return st.owner;
 }
 
 // Whether this block is the grid's last to get here (`blocksDone` counts them, and is zero again
@@ -224,10 +262,11 @@ __device__ inline bool lastBlockToFinish(unsigned int* blocksDone) {
 // deme_place_and_finish after it.
 extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, const FamilyStepMotion* motion,
                                           StepConstants consts, const double* travelBaseline, const bodyID_t* ids,
-                                          unsigned int n, unsigned int clearLoads, StepReduction* red) {
-    beginDependentKernel();
-    if (ctl->stop) return;
-    integrateOwner(s, ctl, motion, consts, travelBaseline, ids, n, clearLoads, red);
+                                          unsigned int n, unsigned int inputsBeforeWait, unsigned int clearLoads,
+                                          StepReduction* red) {
+    OwnerStepStart st;
+    if (!startOwnerStep(s, ctl, motion, consts, travelBaseline, ids, n, inputsBeforeWait, st)) return;
+    integrateOwner(s, ctl, st, consts, clearLoads, red);
 }
 
 // A step's last kernel after deme_integrate: the cached poses after integration -- spheres ids[0,
@@ -267,14 +306,15 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
 extern "C" __global__ void deme_integrate_and_place(StateView s, StepBatchControl* ctl,
                                                     const FamilyStepMotion* motion, StepConstants consts,
                                                     const double* travelBaseline, const bodyID_t* ids, unsigned int n,
-                                                    unsigned int clearLoads, const uint32_t* ownerSphereStart,
+                                                    unsigned int inputsBeforeWait, unsigned int clearLoads,
+                                                    const uint32_t* ownerSphereStart,
                                                     unsigned int firstAnalyticalOwner,
                                                     unsigned int numAnalyticalOwners, unsigned int analyticalBlock,
                                                     double domainDiagonal, StepReduction* red, float* componentSpeed,
                                                     unsigned int* blocksDone) {
-    beginDependentKernel();
-    if (ctl->stop) return;
-    const long long o = integrateOwner(s, ctl, motion, consts, travelBaseline, ids, n, clearLoads, red);
+    OwnerStepStart st;
+    if (!startOwnerStep(s, ctl, motion, consts, travelBaseline, ids, n, inputsBeforeWait, st)) return;
+    const long long o = integrateOwner(s, ctl, st, consts, clearLoads, red);
     if (o >= 0 && ownerSphereStart)
         for (uint32_t i = ownerSphereStart[o], end = ownerSphereStart[o + 1]; i < end; i++) placeSphere(s, i);
     if (blockIdx.x == analyticalBlock) {
