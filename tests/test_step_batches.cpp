@@ -273,6 +273,20 @@ TEST(CudaStepGraphs, FusedIntegrationAndPlacementEqualTwoKernelsBitForBit) {
     EXPECT_LT(lowest, -0.13f);
 }
 
+// Spheres of radius R and 2500 kg/m^3 of material `mat` at `pts`, added to `sim`, which is then
+// initialised and run for `steps` steps under gravity: their tracker.
+template <class Material>
+std::shared_ptr<DEMTracker> spheresRunFor(DEMSolver& sim, const Material& mat, const std::vector<float3>& pts,
+                                          int steps) {
+    auto grains = sim.AddClumps(sim.LoadSphereType((float)sphereMass(R, 2500), R, mat), pts);
+    sim.SetInitTimeStep(DT);
+    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
+    sim.Initialize();
+    auto t = sim.Track(grains);
+    sim.DoDynamics(steps * DT);
+    return t;
+}
+
 // 200 spheres resting far apart on a plane that rises at 5 cm/s and tilts at 0.2 rad/s about x (a
 // prescribed external object, owner 200: past the first block of the step's owners), each with the
 // plane as its one contact. Their positions and velocities after `steps` steps.
@@ -291,18 +305,21 @@ std::vector<float3> spheresOnATiltingLift(int steps) {
     for (int i = 0; i < 15 && pts.size() < 200; i++)
         for (int j = 0; j < 15 && pts.size() < 200; j++)
             pts.push_back(make_float3(-0.35f + 0.05f * i, -0.35f + 0.05f * j, -0.3f + R));
-    auto grains = sim.AddClumps(sim.LoadSphereType((float)sphereMass(R, 2500), R, mat), pts);
-    sim.SetInitTimeStep(DT);
-    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
-    sim.Initialize();
-    auto t = sim.Track(grains);
-    sim.DoDynamics(steps * DT);
+    auto t = spheresRunFor(sim, mat, pts, steps);
     std::vector<float3> out;
     for (size_t k = 0; k < pts.size(); k++) {
         out.push_back(t->Pos(k));
         out.push_back(t->Vel(k));
     }
     return out;
+}
+
+// The same samples (positions, velocities) bit for bit.
+void expectSameSamples(const std::vector<float3>& a, const std::vector<float3>& b, const char* what) {
+    ASSERT_EQ(a.size(), b.size());
+    size_t differ = 0;
+    for (size_t k = 0; k < a.size(); k++) differ += !same(a[k], b[k]);
+    EXPECT_EQ(differ, 0u) << what << " that differ";
 }
 
 // GPU only: a moving analytical owner's components placed by the block of the fused step that stepped
@@ -319,10 +336,7 @@ TEST(CudaStepGraphs, AnalyticalOwnersPlacedByTheirBlockEqualTheLastBlockBitForBi
     }
     ScopedEnvironmentVariable v("DEME_CUDA_ANALYTICAL_IN_BLOCK", "1");
     const std::vector<float3> own = spheresOnATiltingLift(5000);
-    ASSERT_EQ(own.size(), last.size());
-    size_t differ = 0;
-    for (size_t k = 0; k < own.size(); k++) differ += !same(own[k], last[k]);
-    EXPECT_EQ(differ, 0u) << "sphere positions or velocities that differ";
+    expectSameSamples(own, last, "sphere positions or velocities");
     // The lift carried them: 0.1 s at 5 cm/s is 5 mm up at x = 0 (the tilt about x leaves their
     // heights at y = 0 alone); the spheres at y = 0 have risen with it.
     for (size_t k = 0; k < own.size(); k += 2)
@@ -339,12 +353,7 @@ std::vector<float> freeFallHeights(int steps) {
     std::vector<float3> pts;
     for (int i = 0; i < 10; i++)
         for (int j = 0; j < 10; j++) pts.push_back(make_float3(-0.45f + 0.1f * i, -0.45f + 0.1f * j, 0.4f));
-    auto grains = sim.AddClumps(sim.LoadSphereType((float)sphereMass(R, 2500), R, mat), pts);
-    sim.SetInitTimeStep(DT);
-    sim.SetGravitationalAcceleration(make_float3(0, 0, -9.81f));
-    sim.Initialize();
-    auto t = sim.Track(grains);
-    sim.DoDynamics(steps * DT);
+    auto t = spheresRunFor(sim, mat, pts, steps);
     std::vector<float> z;
     for (size_t k = 0; k < pts.size(); k++) z.push_back(t->Pos(k).z);
     return z;
@@ -368,11 +377,7 @@ TEST(CudaStepGraphs, OwnerInputsReadBeforeTheForcePassEndsEqualReadAfterBitForBi
         fallAfter = freeFallHeights(4000);
     }
     ScopedEnvironmentVariable v("DEME_CUDA_INPUTS_BEFORE_WAIT", "1");
-    const std::vector<float3> before = spheresOnATiltingLift(5000);
-    ASSERT_EQ(before.size(), after.size());
-    size_t differ = 0;
-    for (size_t k = 0; k < before.size(); k++) differ += !same(before[k], after[k]);
-    EXPECT_EQ(differ, 0u) << "sphere positions or velocities on the lift that differ";
+    expectSameSamples(spheresOnATiltingLift(5000), after, "sphere positions or velocities on the lift");
     const std::vector<float> fall = freeFallHeights(4000);
     ASSERT_EQ(fall.size(), fallAfter.size());
     // 4000 steps of h = 2e-5 s: velocity first, then position, so after n steps the fall is exactly
