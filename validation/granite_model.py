@@ -136,9 +136,10 @@ def affine_modulus(links_per_shell, kn_over_e, radius=RADIUS, nu_micro=NU_ROCK, 
     return 1.0 / S[axis, axis], -S[other, axis] / S[axis, axis]
 
 
-def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1):
-    """The specimen (an HCP block of touching spheres filling the box of half sizes `half`) between two
-    plates, the bonds made. Returns (solver, block batch, plate trackers, lattice positions)."""
+def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1, positions=None):
+    """The specimen (an HCP block of touching spheres filling the box of half sizes `half`, or the
+    given sphere centres) between two plates, the bonds made. Returns (solver, block batch, plate
+    trackers, positions)."""
     sim = deme.DEMSolver()
     sim.SetVerbosity("ERROR")
     model = sim.DefineContactForceModel(GRANITE_MODEL)
@@ -154,7 +155,9 @@ def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1):
     a = 2.0 * RADIUS
     # GRANITE_C_AXIS=x: the lattice's stacking axis along x (the sampler stacks its layers along z),
     # so that the block is loaded across its layers' stacking rather than along it.
-    if os.environ.get("GRANITE_C_AXIS", "z") == "x":
+    if positions is not None:
+        pts = np.asarray(positions, dtype=np.float64)
+    elif os.environ.get("GRANITE_C_AXIS", "z") == "x":
         pts = np.asarray(deme.HCPSampler(a).SampleBox([0, 0, 0], [half[2], half[1], half[0]]), dtype=np.float64)
         pts = pts[:, [2, 1, 0]]
     else:
@@ -185,11 +188,12 @@ def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1):
     return sim, block, (sim.Track(bottom), sim.Track(top)), pts
 
 
-def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, samples, jitter=0.0):
+def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, samples, jitter=0.0, positions=None):
     """Runs the test; returns a dict with the stress-strain curve (strain from the outer layers'
     mean heights, stress = mean plate load over the specimen's cross-section), the number of bonds
     and the final positions and crack flags."""
-    sim, block, (tr_bottom, tr_top), pts = build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter)
+    sim, block, (tr_bottom, tr_top), pts = build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter,
+                                                 positions=positions)
     sim.DoDynamics(dt)  # the model links the pairs within range at its first call
     bonds0 = sim.GetNumPersistentContacts()
     tr = sim.Track(block)
@@ -199,6 +203,11 @@ def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, sample
     width_x = pts[:, 0].max() - pts[:, 0].min() + 2 * RADIUS
     width_y = pts[:, 1].max() - pts[:, 1].min() + 2 * RADIUS
     area = width_x * width_y
+    if positions is not None:
+        # A packing cut from a larger one (granite_packing.py): as much of its spheres' volume sticks
+        # out of the box their centres were taken from as the cut-off spheres' reaches in, so that
+        # box's section is the specimen's.
+        area = 4.0 * half[0] * half[1]
 
     low_ids, high_ids = np.flatnonzero(low), np.flatnonzero(high)
 
