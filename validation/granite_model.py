@@ -136,10 +136,13 @@ def affine_modulus(links_per_shell, kn_over_e, radius=RADIUS, nu_micro=NU_ROCK, 
     return 1.0 / S[axis, axis], -S[other, axis] / S[axis, axis]
 
 
-def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1, positions=None):
+def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1, positions=None, sigma_t=SIGMA_T,
+          plates=True, cohesion=COHESION):
     """The specimen (an HCP block of touching spheres filling the box of half sizes `half`, or the
-    given sphere centres) between two plates, the bonds made. Returns (solver, block batch, plate
-    trackers, positions)."""
+    given sphere centres) between two plates, the bonds made, its spheres' micro tensile strength
+    `sigma_t`. Families 3 and 4 are ready for grips (pull): held, and pulled up at `plate_speed`.
+    Without `plates` there are none. Returns (solver, block batch, plate trackers or None,
+    positions)."""
     sim = deme.DEMSolver()
     sim.SetVerbosity("ERROR")
     model = sim.DefineContactForceModel(GRANITE_MODEL)
@@ -148,7 +151,7 @@ def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1, p
     model.SetPerContactWildcards(["bond", "overlap0", "ut_x", "ut_y", "ut_z"])
     model.SetPerOwnerWildcards(["cracked"])
     rock = sim.LoadMaterial({"E": E_ROCK, "nu": NU_ROCK, "CoR": 0.5, "mu": MU_ROCK, "E_micro": e_micro,
-                             "sigma_t": SIGMA_T, "cohesion": COHESION, "gamma_int": gamma_int})
+                             "sigma_t": sigma_t, "cohesion": cohesion, "gamma_int": gamma_int})
     plate = sim.LoadMaterial({"E": E_PLATE, "nu": NU_PLATE, "CoR": 0.5, "mu": MU_PLATE, "E_micro": 0.0,
                               "sigma_t": 0.0, "cohesion": 0.0, "gamma_int": 0.0})
     sim.SetMaterialPropertyPair("mu", rock, plate, MU_PLATE)
@@ -169,12 +172,15 @@ def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1, p
     sim.InstructBoxDomainDimension(span, span, span)
     mass = RHO * 4.0 / 3.0 * math.pi * RADIUS ** 3
     block = sim.AddClumps(sim.LoadSphereType(mass, RADIUS, rock), pts)
-    bottom = sim.AddBCPlane([0, 0, z_lo - RADIUS], [0, 0, 1], plate)
-    top = sim.AddBCPlane([0, 0, z_hi + RADIUS], [0, 0, -1], plate)
-    bottom.SetFamily(1)
-    top.SetFamily(2)
+    if plates:
+        bottom = sim.AddBCPlane([0, 0, z_lo - RADIUS], [0, 0, 1], plate)
+        top = sim.AddBCPlane([0, 0, z_hi + RADIUS], [0, 0, -1], plate)
+        bottom.SetFamily(1)
+        top.SetFamily(2)
     sim.SetFamilyFixed(1)
     sim.SetFamilyPrescribedLinVel(2, "0", "0", f"{-plate_speed!r}")
+    sim.SetFamilyFixed(3)
+    sim.SetFamilyPrescribedLinVel(4, "0", "0", f"{plate_speed!r}")
     # Pairs within the interaction range must be in the contact set when the bonds are made.
     sim.SetFamilyExtraMargin(0, 0.5 * gamma_int * RADIUS + 0.02 * RADIUS)
     sim.SetGravitationalAcceleration([0, 0, 0])
@@ -185,15 +191,16 @@ def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1, p
     sim.Initialize()
     sim.MarkFamilyPersistentContact(0, 0)
     sim.SetFamilyContactWildcardValue(0, 0, "bond", 1.0)
-    return sim, block, (sim.Track(bottom), sim.Track(top)), pts
+    return sim, block, (sim.Track(bottom), sim.Track(top)) if plates else None, pts
 
 
-def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, samples, jitter=0.0, positions=None):
+def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, samples, jitter=0.0, positions=None,
+             sigma_t=SIGMA_T, cohesion=COHESION):
     """Runs the test; returns a dict with the stress-strain curve (strain from the outer layers'
     mean heights, stress = mean plate load over the specimen's cross-section), the number of bonds
     and the final positions and crack flags."""
     sim, block, (tr_bottom, tr_top), pts = build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter,
-                                                 positions=positions)
+                                                 positions=positions, sigma_t=sigma_t, cohesion=cohesion)
     sim.DoDynamics(dt)  # the model links the pairs within range at its first call
     bonds0 = sim.GetNumPersistentContacts()
     tr = sim.Track(block)
@@ -245,6 +252,37 @@ def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, sample
     return {"strain": np.array(strain), "stress": np.array(stress), "bonds": np.array(bonds), "spheres": n,
             "area": area, "height": h0, "positions": np.array(positions, dtype=np.float64), "cracked": cracked,
             "removed": sim.GetNumRemovedClumps()}
+
+
+def pull(deme, half, gamma_int, e_micro, speed, dt, end_strain, samples, positions, sigma_t=SIGMA_T):
+    """Direct tension of the specimen: once the bonds are made, its outer layers of spheres (within
+    R/2 of the lowest and highest centres) become grips, the lower one held (family 3), the upper one
+    pulled up at `speed` (family 4); no plates. Strain: the
+    grips' separation over its start; stress: the bonds' pull on the upper grip over the section
+    (positive in tension). Returns a dict with the curve and the peak."""
+    sim, block, _, pts = build(deme, half, gamma_int, e_micro, speed, dt, positions=positions, sigma_t=sigma_t,
+                               plates=False)
+    sim.DoDynamics(dt)  # the model links the pairs within range at its first call
+    tr = sim.Track(block)
+    low = pts[:, 2] < pts[:, 2].min() + 0.5 * RADIUS
+    high = pts[:, 2] > pts[:, 2].max() - 0.5 * RADIUS
+    families = np.where(low, 3, np.where(high, 4, 0)).astype(int)
+    tr.SetFamilies(families.tolist())
+    area = 4.0 * half[0] * half[1] if positions is not None else (
+        (pts[:, 0].max() - pts[:, 0].min() + 2 * RADIUS) * (pts[:, 1].max() - pts[:, 1].min() + 2 * RADIUS))
+    h0 = float(pts[high, 2].mean() - pts[low, 2].mean())
+    t_end = end_strain * h0 / speed
+    strain, stress, bonds = [0.0], [0.0], [sim.GetNumPersistentContacts()]
+    for k in range(1, samples + 1):
+        sim.DoDynamics(t_end / samples)
+        forces = tr.ContactForces()
+        strain.append(speed * k * t_end / samples / h0)
+        stress.append(-float(forces[high, 2].sum()) / area)
+        bonds.append(sim.GetNumPersistentContacts())
+    stress = np.array(stress)
+    ipk = int(np.argmax(stress))
+    return {"strain": np.array(strain), "stress": stress, "bonds": np.array(bonds), "peak": float(stress[ipk]),
+            "peak_strain": float(strain[ipk]), "spheres": len(pts)}
 
 
 def initial_modulus(strain, stress, lo=0.05 * UCS, hi=0.25 * UCS):

@@ -22,8 +22,9 @@ the plate at 0.2 m/s (2.5 MPa of overstress), to 1.5 % strain. GRANITE_C_AXIS=x 
 that its stacking axis lies across the load (E_micro then from the modulus in that direction;
 validation/README.md says what it showed). GRANITE_PACKING=random cuts the specimen from a dense
 random packing of equal spheres instead (validation/granite_packing.py; GRANITE_PACKING_SEED its
-seed) and calibrates E_micro on the elastic part of a first run at the judged gamma_int (the
-lattice's affine modulus does not hold for it).
+seed), calibrates E_micro on the elastic part of a first run at the judged gamma_int (the
+lattice's affine modulus does not hold for it) and the micro tensile strength to the rock's 9.3 MPa
+in a direct tension test (granite_model.pull), as Scholtes & Donze calibrate theirs.
 
 Reference: the granite's UCS 200 MPa and Young's modulus 60 GPa (Potyondy & Cundall 2004, the paper's
 table); the paper reached 8 % and 5 % at gamma_int = 1.1. Verdicts (gamma_int = 1.1): the peak
@@ -52,19 +53,26 @@ else:
 # GRANITE_PACKING=random: the specimen cut from a dense random packing (validation/granite_packing.py)
 # instead of the lattice. The lattice's affine modulus does not hold for it, so E_micro is calibrated
 # on the elastic part of one run at the judged gamma_int: every bond's stiffness is proportional to
-# E_micro (k_t = nu k_n), and below the first bond failures so is the specimen's modulus.
-positions = None
+# E_micro (k_t = nu k_n), and below the first bond failures so is the specimen's modulus. As in
+# Scholtes & Donze, the micro tensile strength is then calibrated to the rock's tensile strength (the
+# table's 9.3 MPa) in a direct tension test of the same specimen (granite_model.pull: the specimen's
+# tensile strength is proportional to it, the cohesion hardly acting in tension); the peak in
+# compression is the prediction.
+positions, sigma_t = None, gm.SIGMA_T
 if os.environ.get("GRANITE_PACKING", "hcp") == "random":
     import granite_packing as gp  # noqa: E402
     seed = int(os.environ.get("GRANITE_PACKING_SEED", "1"))
     positions, solid, walls = gp.random_packing(deme, half, gm.RADIUS, gm.RHO, seed=seed, log=print)
     probe = gm.compress(deme, half, max(gammas), gm.E_ROCK, speed, 1e-7, 0.004, 40, positions=positions)
     e_micro = gm.E_ROCK * gm.E_ROCK / gm.initial_modulus(probe["strain"], probe["stress"])
+    tension = gm.pull(deme, half, max(gammas), e_micro, 0.02, 1e-7, 0.0006, 120, positions)
+    sigma_t = gm.SIGMA_T * gm.SIGMA_T / tension["peak"]
     print(f"random packing (seed {seed}): {len(positions)} spheres, solid fraction {solid:.3f}; "
-          f"E_micro calibrated to {e_micro / 1e9:.1f} GPa")
+          f"E_micro calibrated to {e_micro / 1e9:.1f} GPa; tensile strength {tension['peak'] / 1e6:.2f} MPa "
+          f"with the micro 9.3 MPa, so the micro tensile strength calibrated to {sigma_t / 1e6:.2f} MPa")
 runs = {}
 for g in gammas:
-    r = gm.compress(deme, half, g, e_micro, speed, 1e-7, end_strain, 100, positions=positions)
+    r = gm.compress(deme, half, g, e_micro, speed, 1e-7, end_strain, 100, positions=positions, sigma_t=sigma_t)
     r["modulus"] = gm.initial_modulus(r["strain"], r["stress"])
     ipk = int(np.argmax(r["stress"]))
     r["peak"], r["peak_strain"] = float(r["stress"][ipk]), float(r["strain"][ipk])
