@@ -11,32 +11,23 @@ namespace deme::cuda {
 
 namespace {
 constexpr const char* CALL = "DoDynamics";
-}
 
-bool stepGraphsEnabled() {
-    const char* v = std::getenv("DEME_CUDA_GRAPHS");
+// A diagnostic switch that is on unless the variable is "0".
+bool onUnlessZero(const char* variable) {
+    const char* v = std::getenv(variable);
     return !(v && std::strcmp(v, "0") == 0);
 }
+}  // namespace
 
-bool overlappedLaunchesEnabled() {
-    const char* v = std::getenv("DEME_CUDA_OVERLAP_LAUNCHES");
-    return !(v && std::strcmp(v, "0") == 0);
-}
+bool stepGraphsEnabled() { return onUnlessZero("DEME_CUDA_GRAPHS"); }
 
-bool fusedStepEnabled() {
-    const char* v = std::getenv("DEME_CUDA_FUSED_STEP");
-    return !(v && std::strcmp(v, "0") == 0);
-}
+bool overlappedLaunchesEnabled() { return onUnlessZero("DEME_CUDA_OVERLAP_LAUNCHES"); }
 
-bool analyticalInBlockEnabled() {
-    const char* v = std::getenv("DEME_CUDA_ANALYTICAL_IN_BLOCK");
-    return !(v && std::strcmp(v, "0") == 0);
-}
+bool fusedStepEnabled() { return onUnlessZero("DEME_CUDA_FUSED_STEP"); }
 
-bool inputsBeforeWaitEnabled() {
-    const char* v = std::getenv("DEME_CUDA_INPUTS_BEFORE_WAIT");
-    return !(v && std::strcmp(v, "0") == 0);
-}
+bool analyticalInBlockEnabled() { return onUnlessZero("DEME_CUDA_ANALYTICAL_IN_BLOCK"); }
+
+bool inputsBeforeWaitEnabled() { return onUnlessZero("DEME_CUDA_INPUTS_BEFORE_WAIT"); }
 
 bool loadsClearedByIntegration(unsigned int owners) {
     const char* v = std::getenv("DEME_CUDA_LOADS_CLEARED_BY_INTEGRATION");
