@@ -194,6 +194,21 @@ def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1, p
     return sim, block, (sim.Track(bottom), sim.Track(top)) if plates else None, pts
 
 
+def outer_layers(pts):
+    """Masks of the outer layers of spheres, within R/2 of the lowest and of the highest centres (whole
+    lattice layers when the stacking axis is z, the outer rows of every layer when it is x)."""
+    return pts[:, 2] < pts[:, 2].min() + 0.5 * RADIUS, pts[:, 2] > pts[:, 2].max() - 0.5 * RADIUS
+
+
+def section_area(pts, half, cut):
+    """The specimen's cross-section: the lattice's extent plus a diameter each way, or, for a packing
+    cut from a larger one (granite_packing.py), the box its centres were taken from (as much of its
+    spheres' volume sticks out of that box as the cut-off spheres' reaches in)."""
+    if cut:
+        return 4.0 * half[0] * half[1]
+    return (pts[:, 0].max() - pts[:, 0].min() + 2 * RADIUS) * (pts[:, 1].max() - pts[:, 1].min() + 2 * RADIUS)
+
+
 def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, samples, jitter=0.0, positions=None,
              sigma_t=SIGMA_T, cohesion=COHESION):
     """Runs the test; returns a dict with the stress-strain curve (strain from the outer layers'
@@ -204,18 +219,8 @@ def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, sample
     sim.DoDynamics(dt)  # the model links the pairs within range at its first call
     bonds0 = sim.GetNumPersistentContacts()
     tr = sim.Track(block)
-    # The outer layers of spheres (within R/2 of the lowest and highest centres: whole lattice layers
-    # when the stacking axis is z, the outer rows of every layer when it is x).
-    low, high = pts[:, 2] < pts[:, 2].min() + 0.5 * RADIUS, pts[:, 2] > pts[:, 2].max() - 0.5 * RADIUS
-    width_x = pts[:, 0].max() - pts[:, 0].min() + 2 * RADIUS
-    width_y = pts[:, 1].max() - pts[:, 1].min() + 2 * RADIUS
-    area = width_x * width_y
-    if positions is not None:
-        # A packing cut from a larger one (granite_packing.py): as much of its spheres' volume sticks
-        # out of the box their centres were taken from as the cut-off spheres' reaches in, so that
-        # box's section is the specimen's.
-        area = 4.0 * half[0] * half[1]
-
+    low, high = outer_layers(pts)
+    area = section_area(pts, half, positions is not None)
     low_ids, high_ids = np.flatnonzero(low), np.flatnonzero(high)
 
     def mean_z(ids):
@@ -257,19 +262,17 @@ def compress(deme, half, gamma_int, e_micro, plate_speed, dt, end_strain, sample
 def pull(deme, half, gamma_int, e_micro, speed, dt, end_strain, samples, positions, sigma_t=SIGMA_T):
     """Direct tension of the specimen: once the bonds are made, its outer layers of spheres (within
     R/2 of the lowest and highest centres) become grips, the lower one held (family 3), the upper one
-    pulled up at `speed` (family 4); no plates. Strain: the
-    grips' separation over its start; stress: the bonds' pull on the upper grip over the section
-    (positive in tension). Returns a dict with the curve and the peak."""
+    pulled up at `speed` (family 4); no plates. Strain: the grips' separation over its start; stress:
+    the bonds' pull on the upper grip over the section (positive in tension). Returns a dict with the
+    curve and the peak."""
     sim, block, _, pts = build(deme, half, gamma_int, e_micro, speed, dt, positions=positions, sigma_t=sigma_t,
                                plates=False)
     sim.DoDynamics(dt)  # the model links the pairs within range at its first call
     tr = sim.Track(block)
-    low = pts[:, 2] < pts[:, 2].min() + 0.5 * RADIUS
-    high = pts[:, 2] > pts[:, 2].max() - 0.5 * RADIUS
+    low, high = outer_layers(pts)
     families = np.where(low, 3, np.where(high, 4, 0)).astype(int)
     tr.SetFamilies(families.tolist())
-    area = 4.0 * half[0] * half[1] if positions is not None else (
-        (pts[:, 0].max() - pts[:, 0].min() + 2 * RADIUS) * (pts[:, 1].max() - pts[:, 1].min() + 2 * RADIUS))
+    area = section_area(pts, half, positions is not None)
     h0 = float(pts[high, 2].mean() - pts[low, 2].mean())
     t_end = end_strain * h0 / speed
     strain, stress, bonds = [0.0], [0.0], [sim.GetNumPersistentContacts()]

@@ -16,43 +16,37 @@ so that inclined bonds carry shear whatever the load's direction. Made here as f
 Returns the centres (an N x 3 array), the solid fraction inside the specimen's box and the walls'
 final pressure.
 """
+import itertools
 import math
 
 import numpy as np
 
 
-def random_sequential(rng, lo, hi, radius, count, tries=200000):
+def random_sequential(rng, lo, hi, radius, count, tries_per_sphere=2000):
     """`count` centres in the box [lo, hi] (centres at least a radius from each face) with no two closer
-    than two radii, placed one after the other at random (a cell grid finds the neighbours)."""
+    than two radii, placed one after the other at random (a cell grid of one diameter finds the
+    neighbours)."""
     lo, hi = np.asarray(lo, float) + radius, np.asarray(hi, float) - radius
     cell = 2.0 * radius
     dims = np.maximum(1, np.ceil((hi - lo) / cell).astype(int))
     grid = {}
     pts = []
-    attempts = 0
-    while len(pts) < count:
-        attempts += 1
-        if attempts > tries * max(1, count // 1000):
-            raise RuntimeError(f"random_sequential: placed {len(pts)} of {count} spheres")
+    near = list(itertools.product((-1, 0, 1), repeat=3))
+
+    def overlaps(p, c):
+        return any(np.sum((p - q) ** 2) < cell * cell for d in near
+                   for q in grid.get((c[0] + d[0], c[1] + d[1], c[2] + d[2]), ()))
+
+    for attempt in range(tries_per_sphere * count):
+        if len(pts) == count:
+            break
         p = lo + rng.random(3) * (hi - lo)
-        c = np.minimum(((p - lo) / cell).astype(int), dims - 1)
-        ok = True
-        for dx in (-1, 0, 1):
-            for dy in (-1, 0, 1):
-                for dz in (-1, 0, 1):
-                    for q in grid.get((c[0] + dx, c[1] + dy, c[2] + dz), ()):
-                        if np.sum((p - q) ** 2) < cell * cell:
-                            ok = False
-                            break
-                    if not ok:
-                        break
-                if not ok:
-                    break
-            if not ok:
-                break
-        if ok:
+        c = tuple(np.minimum(((p - lo) / cell).astype(int), dims - 1))
+        if not overlaps(p, c):
             pts.append(p)
-            grid.setdefault((c[0], c[1], c[2]), []).append(p)
+            grid.setdefault(c, []).append(p)
+    if len(pts) < count:
+        raise RuntimeError(f"random_sequential: placed {len(pts)} of {count} spheres")
     return np.array(pts)
 
 
@@ -100,7 +94,7 @@ def random_packing(deme, half, radius, density, seed=1, margin_diameters=2.0, fr
     dt = 0.1 * math.pi * radius * math.sqrt(density / g) / (0.1631 * 0.3 + 0.8766)
     sim.SetInitTimeStep(dt)
     sim.Initialize()
-    trackers = [(sim.Track(w), axis, sign) for w, axis, sign in walls]
+    trackers = [(sim.Track(w), axis) for w, axis, _ in walls]
     tr = sim.Track(grains)
 
     def box_half(time):  # the walls' half-distances (they all move in step)
@@ -109,7 +103,7 @@ def random_packing(deme, half, radius, density, seed=1, margin_diameters=2.0, fr
     def wall_pressure(time):
         box = box_half(time)
         total = 0.0
-        for t, axis, _ in trackers:
+        for t, axis in trackers:
             other = [2.0 * box[b] for b in range(3) if b != axis]
             total += abs(t.ContactForce()[axis]) / (other[0] * other[1])
         return total / 6.0
