@@ -1,13 +1,15 @@
-// The CPU's force reduction: A's owner takes its loads in the force pass itself (each thread owns
-// whole runs of owners' contacts), B's owner in the reduction from the per-contact force and torque.
+// The CPU's force reduction: A's owner takes its loads in the force pass itself, B's owner in the
+// reduction from its slots in the windows of the blocks of owners (backend/cpu/ForcePassLoop.h).
 // Checked on a compressed block of three-sphere clumps between walls, with thousands of pairs so that
-// the pass splits them among threads and chunks: every owner's sums obey Newton's third law and the
-// balance of angular momentum (a pair's loads cancel, whatever owner takes them), and they are the
-// same bit for bit for 1, 2 and 3 threads.
+// the pass splits them among threads, blocks and chunks: every owner's sums obey Newton's third law
+// and the balance of angular momentum (a pair's loads cancel, whatever owner takes them), and they
+// are the same bit for bit for 1, 2 and 3 threads. Then the per-contact forces a storing pass keeps,
+// in both of its forms, against each other and against the owners' sums.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <string>
@@ -16,9 +18,11 @@
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
 #include "backend/cpu/CpuForceModel.h"
+#include "backend/cpu/ForcePassLoop.h"
 #include "backend/cpu/Integration.h"
 #include "backend/cpu/StandaloneContactSet.h"
 #include "parallel/Parallel.h"
+#include "runtime/ContactForceView.h"
 
 using namespace deme;
 
@@ -73,15 +77,16 @@ struct Loads {
 
 // The block's contact set, one force pass (the built-in Hertz-Mindlin model) and the reduction with
 // `threads` threads; every owner's contact force and torque.
-Loads passAndReduce(const Scene& scene, int threads, SimState* out = nullptr) {
+Loads passAndReduce(const Scene& scene, int threads, SimState* out = nullptr, ForceStore store = ForceStore::NONE,
+                    double margin = 2e-4) {
     const int before = cpuThreadCount();
     setCpuThreadCount(threads);
     const ModelLayout layout =
         resolveModelLayout(DEMForceModel(DEMForceModel::Kind::FRICTIONAL_HERTZIAN), scene, "test");
     SimState s = assembleScene(scene, layout);
     const CpuForceModel model = loadCpuForceModel(layout, "test");
-    detectAndInstallContacts(s, 2e-4);
-    model.pass(s, 0.0, 1e-6);
+    detectAndInstallContacts(s, margin);
+    model.pass(s, 0.0, 1e-6, store);
     IntegrationSubset all;
     reduceContactForces(s, all);
     setCpuThreadCount(before);
@@ -100,6 +105,7 @@ TEST(ForceReduction, OwnersSumsCancelAndDoNotDependOnTheThreadCount) {
     // Large enough that the pass splits its contacts among threads and each thread's share among
     // several chunks (parallel/Parallel.h, backend/cpu/ForcePassLoop.h).
     ASSERT_GT(s.contacts.size(), 8 * PARALLEL_MIN_ITEMS);
+    ASSERT_GT(s.owners.size(), 3 * FORCE_PASS_BLOCK_OWNERS);
     size_t wallPairs = 0;
     for (uint8_t t : s.contacts.type) wallPairs += t == SPHERE_ANALYTICAL;
     ASSERT_GT(wallPairs, 100u);
@@ -130,5 +136,77 @@ TEST(ForceReduction, OwnersSumsCancelAndDoNotDependOnTheThreadCount) {
             ASSERT_EQ(std::memcmp(&many.force[o], &one.force[o], sizeof(float3)), 0) << "owner " << o;
             ASSERT_EQ(std::memcmp(&many.torque[o], &one.torque[o], sizeof(float3)), 0) << "owner " << o;
         }
+    }
+}
+
+// A storing pass keeps every pair's force (a packed set: ContactArrays::force) or those of the pairs
+// with one (ContactArrays::stored), which the readers' view spreads over the set: the two read the
+// same, bit for bit, for any thread count; a pass that stores none leaves nothing to read. Summed
+// onto the owners (+f on A, -f on B), the forces are the owners' contact forces (Newton's third law
+// at every owner, to the float rounding of summing in another order).
+TEST(ForceReduction, StoredForcesReadTheSameInBothFormsAndSumToTheOwnersForces) {
+    const Scene scene = compressedBlock();
+    SimState every, pairs, none;
+    const Loads loads = passAndReduce(scene, 2, &every, ForceStore::EVERY_PAIR);
+    passAndReduce(scene, 3, &pairs, ForceStore::PAIRS_WITH_FORCE);
+    passAndReduce(scene, 2, &none, ForceStore::NONE);
+    const size_t n = every.contacts.size();
+    ASSERT_EQ(every.contacts.force.size(), n);
+    EXPECT_EQ(every.contacts.stored.count(), 0u);
+    EXPECT_TRUE(pairs.contacts.force.empty());
+    EXPECT_TRUE(none.contacts.force.empty());
+    EXPECT_EQ(none.contacts.stored.count(), 0u);
+    const ContactForceView fe(every.contacts), fp(pairs.contacts), fn(none.contacts);
+    size_t loaded = 0;
+    std::vector<double3> sum(every.owners.size(), make_double3(0, 0, 0));
+    double scale = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        const float3 asEvery = fe[i], asPairs = fp[i];
+        ASSERT_EQ(std::memcmp(&asEvery, &asPairs, sizeof(float3)), 0) << "contact " << i;
+        EXPECT_EQ(fn[i].x, 0.f);
+        const bool has = fe[i].x != 0.f || fe[i].y != 0.f || fe[i].z != 0.f;
+        loaded += has;
+        const double3 f = toD(fe[i]);
+        const bodyID_t a = every.spheres.owner[every.contacts.geomA[i]], b = contactOwnerB(every, i);
+        sum[a] = sum[a] + f;
+        sum[b] = sum[b] - f;
+        scale = std::max(scale, length(f));
+    }
+    EXPECT_EQ(pairs.contacts.stored.count(), loaded);
+    ASSERT_GT(loaded, n / 4);  // half the pairs of the compressed block touch
+    ASSERT_LT(loaded, n);      // and some within the margin do not
+    for (size_t o = 0; o < sum.size(); o++)
+        EXPECT_LT(length(sum[o] - toD(loads.force[o])), 1e-4 * scale) << "owner " << o;
+}
+
+// A set whose pairs are all apart (the margin reaches them, the spheres do not touch), as in a flow
+// detected with a wide margin: a storing pass keeps nothing, and the set holds no load per pair (the
+// windows hold one slot per B owner of a block, not one per pair).
+TEST(ForceReduction, PairsApartKeepNoLoads) {
+    const Scene scene = compressedBlock();
+    SimState s;
+    // Three-sphere clumps 2.1 R apart: within 4 R of each other, so a margin of 5 R finds pairs
+    // between spheres that do not touch; the ones that do are dropped by moving the clumps apart.
+    Scene apart = scene;
+    const std::vector<float3> pos = apart.batches[0]->GetPositions();
+    std::vector<float3> spread;
+    for (const float3& p : pos) spread.push_back(p * 2.5f + make_float3(2e-3f, 0.f, 2e-3f));  // off the walls
+    apart.batches[0] = std::make_shared<DEMClumpBatch>(
+        std::vector<std::shared_ptr<DEMClumpTemplate>>(pos.size(), scene.templates[0]), spread);
+    apart.domainSize = make_float3(0.15f);
+    passAndReduce(apart, 2, &s, ForceStore::PAIRS_WITH_FORCE, 5.0 * kRadius);
+    const ContactArrays& c = s.contacts;
+    ASSERT_GT(c.size(), s.owners.size());
+    EXPECT_EQ(c.stored.count(), 0u);
+    EXPECT_TRUE(c.force.empty());
+    // Slots: at most one per (block, B owner), so fewer than the owners times the blocks a B owner
+    // can be in; here about one and a half per owner.
+    EXPECT_LT(c.window.size(), 2 * s.owners.size());
+    std::cout << "[ windows  ] " << (double)c.window.size() / (double)s.owners.size() << " slots per owner, "
+              << (double)c.size() / (double)s.owners.size() << " pairs per owner" << std::endl;
+    EXPECT_EQ(c.bSlot.size(), c.size());
+    for (size_t o = 0; o < s.owners.size(); o++) {
+        EXPECT_EQ(s.owners.contactForce[o].x, 0.f);
+        EXPECT_EQ(s.owners.contactForce[o].z, 0.f);
     }
 }

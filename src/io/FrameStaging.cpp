@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "dynamics/ContactInputsGather.h"
+#include "runtime/ContactForceView.h"
 #include "runtime/Simulation.h"
 #include "runtime/StressMeasure.h"
 #include "state/SphereLayout.h"
@@ -151,6 +152,7 @@ OutputFrame stageClumpFrame(const Simulation& sim) {
 OutputFrame stageContactFrame(const Simulation& sim) {
     const SimState& s = sim.stateWithContacts();
     const long nc = (long)s.contacts.size();
+    const ContactForceView forces(s.contacts);
     const float time = (float)sim.time(), dt = (float)sim.settings.dt;
     // Pairs in contact, and pairs a custom model gives a force at a distance. Two passes (which
     // pairs, then their rows) keep both parallel and the rows in contact-set order.
@@ -158,7 +160,7 @@ OutputFrame stageContactFrame(const Simulation& sim) {
 #pragma omp parallel for schedule(static) if (nc > PARALLEL_MIN_ROWS)
     for (long c = 0; c < nc; c++) {
         const uint8_t type = s.contacts.type[c];
-        const float3 F = s.contacts.force[c];
+        const float3 F = forces[c];
         const bool counts = type != SPHERE_TRIANGLE || (s.contacts.meshState[c] & 1u);
         const bool loaded = F.x != 0.f || F.y != 0.f || F.z != 0.f;
         bool k = counts && loaded;
@@ -203,7 +205,7 @@ OutputFrame stageContactFrame(const Simulation& sim) {
         ownerA.values<int32_t>()[k] = (int32_t)s.ownerInternalToUser[in.AOwner];
         ownerB.values<int32_t>()[k] = (int32_t)s.ownerInternalToUser[in.BOwner];
         putPoint(point, k, in.contactPnt);
-        put3(force, k, s.contacts.force[c]);
+        put3(force, k, forces[c]);
         put3(normal, k, in.B2A);
         overlap.values<double>()[k] = in.overlapDepth;
     }

@@ -93,8 +93,8 @@ struct StepBatchRequest {
     unsigned long long maxSteps = 1;
     double time = 0.0;
     double margin = 0.0;
-    // Per-contact forces stored in the batch's last step (the host may read them after it); the
-    // CPU stores them in every step.
+    // Per-contact forces stored in the batch's last step (the host may read them after it), on
+    // both backends; the other steps store none.
     bool storeContactForcesAtEnd = true;
 };
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <type_traits>
 
@@ -35,16 +36,17 @@ struct SizedBytes {
 };
 
 // Contact pairs: the bytes one pair takes in one contact set (W wildcard floats), the CPU's
-// bookkeeping included where `host`; the per-contact force only where `withForce`.
-size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host, bool withForce) {
+// bookkeeping included where `host`. Not the per-contact force: the GPU keeps it in the idle set's
+// memory (contactSetBytes), the CPU only for the pairs with a force, at the end of a call.
+size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host) {
+    const void* notPerPair[] = {&c.force,  &c.meshContacts, &c.meshContactGroups, &c.ownerAStart, &c.blockWindowStart,
+                                &c.window, &c.ownerBStart,  &c.ownerBSlots};
     size_t b = 0;
     forEachContactField(c, c, [&](const auto& v, const auto&, FieldRole role) {
         const void* f = &v;
         if (f == &c.wildcards) b += W * elementBytes(v);
-        else if (f == &c.force) b += withForce ? elementBytes(v) : 0;
-        else if (f == &c.meshContacts || f == &c.meshContactGroups || f == &c.ownerAStart ||
-                 f == &c.ownerBStart)
-            return;  // not per pair
+        else if (std::find(std::begin(notPerPair), std::end(notPerPair), f) != std::end(notPerPair))
+            return;  // per owner, per block, per slot, per mesh contact or per pair with a force
         else if (role != FieldRole::HOST || host) b += elementBytes(v);
     });
     return b;
@@ -137,15 +139,20 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
 
 size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs) {
     const unsigned int W = s.numWildcards;
-    if (!onGpu)  // one set, B's share of the loads and the owners' contact index and two starts
-        return pairs * bytesPerPair(s.contacts, W, true, true) + 8 * (s.owners.size() + 1);
+    if (!onGpu) {
+        // One set with each pair's window slot; per owner its two starts and its window slots (a
+        // force, a torque and the owner's entry each; backend/cpu/ForcePassLoop.h).
+        const size_t slots = (size_t)(ESTIMATED_WINDOW_SLOTS_PER_OWNER * (double)s.owners.size());
+        return pairs * bytesPerPair(s.contacts, W, true) + 8 * (s.owners.size() + 1) +
+               slots * (2 * sizeof(float3) + sizeof(uint32_t));
+    }
     // Two sets (the one in use and the one history mapping reads from), the per-contact forces in
     // the idle set's wildcards' memory (grown to hold them where a pair has fewer than three
     // wildcards), and the pairs (ids, type) of the outbox kT fills (backend/cuda/CudaDynamics,
     // CudaContactSets, DeviceHistoryMapping).
     const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
     const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;
-    return pairs * (2 * bytesPerPair(s.contacts, W, false, false) + forceGrowth + 9);
+    return pairs * (2 * bytesPerPair(s.contacts, W, false) + forceGrowth + 9);
 }
 
 size_t memoryLimit(size_t available, const char* call) {

@@ -21,6 +21,9 @@ namespace deme {
 // settled bed of spheres: 4-7). A set that grows beyond what the memory holds later is an error
 // naming the set and its size (requireRoomForContactSet).
 constexpr double ESTIMATED_PAIRS_PER_SPHERE = 6.0;
+// The CPU's force reduction: window slots per owner (one per distinct B owner of a block's contacts,
+// backend/cpu/ForcePassLoop.h); MIXER-BENCH early spheres hold 1.5.
+constexpr double ESTIMATED_WINDOW_SLOTS_PER_OWNER = 1.5;
 
 struct MemoryEstimate {
     size_t bytes[NUM_MEMORY_GROUPS] = {};

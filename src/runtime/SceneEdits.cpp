@@ -5,6 +5,7 @@
 
 #include <deme/Error.h>
 
+#include "runtime/MemoryAccounting.h"
 #include "state/SphereLayoutChoice.h"
 
 namespace deme {
@@ -51,12 +52,15 @@ void rebuildOwnerRanges(SimState& s) {
 void resizeDerived(SimState& s) {
     s.integrationScratch.flags.assign(s.owners.size(), 0);
     ContactArrays& c = s.contacts;
-    c.meshContacts.clear();
-    c.meshContactGroups.clear();
-    c.torqueB.clear();
-    c.ownerAStart.clear();
-    c.ownerBStart.clear();
-    c.ownerBEntries.clear();
+    releaseVector(c.meshContacts);
+    releaseVector(c.meshContactGroups);
+    releaseVector(c.ownerAStart);
+    releaseVector(c.bSlot);
+    releaseVector(c.blockWindowStart);
+    releaseVector(c.window);
+    releaseVector(c.ownerBStart);
+    releaseVector(c.ownerBSlots);
+    c.stored = StoredContactForces();
 }
 
 }  // namespace

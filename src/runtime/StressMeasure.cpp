@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "dynamics/ContactInputsGather.h"
+#include "runtime/ContactForceView.h"
 
 namespace deme {
 
@@ -57,23 +58,22 @@ std::vector<StressTensor> measureStressField(const SimState& s, const double3& l
     }
     // Contact part: each grain's side of its contacts, -(arm (x) force on the grain) / V.
     const ContactArrays& ct = s.contacts;
-    if (!ct.force.empty()) {
-        for (size_t i = 0; i < ct.size(); i++) {
-            const float3 f = ct.force[i];
-            if (f.x == 0.f && f.y == 0.f && f.z == 0.f) continue;
-            ContactInputs in;
-            gatherContactInputsOfType(s, i, ct.type[i], 0.f, 0.f, in);
-            const double3 force = to_double3(f);  // on A; B feels -force
-            if (in.AOwner < numClumps && cellOfOwner[in.AOwner] >= 0) {
-                StressTensor& t = out[cellOfOwner[in.AOwner]];
-                addOuter(t.contact, to_double3(in.armA), force, -1.0 / cellVolume);
-                t.contacts++;
-            }
-            if (in.BOwner < numClumps && cellOfOwner[in.BOwner] >= 0) {
-                StressTensor& t = out[cellOfOwner[in.BOwner]];
-                addOuter(t.contact, to_double3(in.armB), force, 1.0 / cellVolume);
-                t.contacts++;
-            }
+    const ContactForceView forces(ct);
+    for (size_t i = 0; i < ct.size(); i++) {
+        const float3 f = forces[i];
+        if (f.x == 0.f && f.y == 0.f && f.z == 0.f) continue;
+        ContactInputs in;
+        gatherContactInputsOfType(s, i, ct.type[i], 0.f, 0.f, in);
+        const double3 force = to_double3(f);  // on A; B feels -force
+        if (in.AOwner < numClumps && cellOfOwner[in.AOwner] >= 0) {
+            StressTensor& t = out[cellOfOwner[in.AOwner]];
+            addOuter(t.contact, to_double3(in.armA), force, -1.0 / cellVolume);
+            t.contacts++;
+        }
+        if (in.BOwner < numClumps && cellOfOwner[in.BOwner] >= 0) {
+            StressTensor& t = out[cellOfOwner[in.BOwner]];
+            addOuter(t.contact, to_double3(in.armB), force, 1.0 / cellVolume);
+            t.contacts++;
         }
     }
     for (StressTensor& t : out) {

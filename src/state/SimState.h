@@ -46,8 +46,27 @@ struct AnalyticalArrays : AnalyticalFields<HostArray> {
 struct TriangleArrays : TriangleFields<HostArray> {
     size_t size() const { return owner.size(); }
 };
+// The CPU's per-contact forces of the last step that stored them (the last of a DoDynamics call):
+// the pairs with a force only, contact index and force on A, in one list per thread of the force
+// pass (backend/cpu/ForcePassLoop.h; runtime/ContactForceView.h reads them by contact). Emptied,
+// with its capacity kept, by every pass; released where the set is rebuilt by an edit.
+struct StoredContactForces {
+    std::vector<std::vector<uint32_t>> index;
+    std::vector<std::vector<float3>> force;
+    size_t count() const {
+        size_t n = 0;
+        for (const std::vector<uint32_t>& v : index) n += v.size();
+        return n;
+    }
+    void clear() {
+        for (std::vector<uint32_t>& v : index) v.clear();
+        for (std::vector<float3>& v : force) v.clear();
+    }
+};
+
 struct ContactArrays : ContactFields<HostArray> {
     size_t size() const { return geomA.size(); }
+    StoredContactForces stored;  // the CPU's (a GPU run's host copy has `force` per contact)
 };
 using KinematicCache = CacheFields<HostArray>;
 using IntegrationScratch = ScratchFields<HostArray>;

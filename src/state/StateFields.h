@@ -13,6 +13,15 @@
 
 #include <deme/VariableTypes.h>
 
+namespace deme {
+// A slot of the CPU's force reduction (DEME_CONTACT_FIELDS): the forces on A of a block's contacts
+// with one B owner, and minus their torques about it, summed (global frame); side by side, so that
+// a contact's two sums are one cache line.
+struct WindowLoad {
+    float3 force, negTorque;
+};
+}  // namespace deme
+
 // Owners (paper §2.4): clumps, then analytical objects, then meshes, in a space-filling-curve order.
 #define DEME_OWNER_FIELDS(X)                                                                               \
     X(voxel, voxelID_t, EVOLVES)    /* compact position (§2.3): voxel index ... */                        \
@@ -86,16 +95,21 @@
     X(persistent, uint8_t, EVOLVES)                                                                     \
     /* Sphere-triangle contacts: bit 0 set if it counted this step, bit 1 if in the previous one. */    \
     X(meshState, uint8_t, EVOLVES)                                                                      \
-    X(force, float3, EVOLVES)            /* on A, global (the GPU stores it in steps the host reads) */ \
+    X(force, float3, EVOLVES)            /* on A, global, of a storing step (ContactForceView.h) */     \
     X(meshContacts, uint32_t, HOST)      /* indices of the sphere-triangle contacts */                  \
     X(meshContactGroups, uint32_t, HOST) /* where each sphere's run in meshContacts starts, + end */    \
-    /* The CPU's force reduction. A's owner takes its loads in the force pass itself (the set is  */    \
-    /* sorted by A, and each thread owns whole owners' runs of contacts, from ownerAStart); what  */    \
-    /* B takes is stored per contact: the force (above) and torqueB, about B's centre, global.    */    \
-    X(torqueB, float3, HOST)                                                                            \
-    X(ownerAStart, uint32_t, HOST) /* contacts [ownerAStart[o], ownerAStart[o + 1]) have A in o */      \
-    X(ownerBStart, uint32_t, HOST) /* owner o is B in contacts ownerBEntries[ownerBStart[o] ..] */      \
-    X(ownerBEntries, uint32_t, HOST)
+    /* The CPU's force reduction (backend/cpu/ForcePassLoop.h). The set is sorted by A, and A is  */    \
+    /* always a sphere, so each owner's contacts as A are one run (ownerAStart), which the force  */    \
+    /* pass adds to A's owner in contact order. B's share is summed per block of A's owners: each */    \
+    /* block has a window of slots, one per distinct B owner of its contacts (blockWindowStart;   */    \
+    /* bSlot per contact), and the reduction adds an owner's slots in block order (ownerBStart,   */    \
+    /* ownerBSlots). So no load is stored per contact.                                            */    \
+    X(ownerAStart, uint32_t, HOST)      /* contacts [ownerAStart[o], ownerAStart[o + 1]) have A in o */ \
+    X(bSlot, uint32_t, HOST)            /* the window slot of the contact's B owner */                  \
+    X(blockWindowStart, uint32_t, HOST) /* block k's slots: [blockWindowStart[k], ... [k + 1]) */       \
+    X(window, WindowLoad, HOST)         /* per slot: B's owner's loads from the block's contacts */     \
+    X(ownerBStart, uint32_t, HOST)      /* owner o takes slots ownerBSlots[ownerBStart[o] ..] as B */   \
+    X(ownerBSlots, uint32_t, HOST)
 
 // Quantities derived from the owner state, refreshed after every integration step (and after any
 // host-side edit) so that the force pass and contact detection read them instead of recomputing

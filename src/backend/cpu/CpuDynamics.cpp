@@ -28,7 +28,13 @@ StepBatchResult CpuDynamics::steps(const StepBatchRequest& batch, const Settings
     StepBatchControl c = beginStepBatch(batch.time, settings.dt, batch.margin);
     StepBatchResult r;
     while (c.stepsDone < batch.maxSteps && !c.stop) {
-        r.last = step(c.time, settings, families, timing);
+        // Per-contact forces are kept by the step a call may end after (as on the GPU): every
+        // pair's where most touched in the step before, else those of the pairs with a force.
+        ForceStore store = ForceStore::NONE;
+        if (batch.storeContactForcesAtEnd && c.stepsDone + 1 == batch.maxSteps)
+            store = 4 * m_lastRealContacts > 3 * m_s.contacts.size() ? ForceStore::EVERY_PAIR
+                                                                     : ForceStore::PAIRS_WITH_FORCE;
+        r.last = step(c.time, settings, families, timing, store);
         finishBatchStep(c, tallyOf(r.last));
     }
     r.steps = c.stepsDone;
@@ -37,8 +43,8 @@ StepBatchResult CpuDynamics::steps(const StepBatchRequest& batch, const Settings
     return r;
 }
 
-StepOutcome CpuDynamics::step(double time, const Settings& settings, const FamilyRules& families,
-                              TimingStats& timing) {
+StepOutcome CpuDynamics::step(double time, const Settings& settings, const FamilyRules& families, TimingStats& timing,
+                              ForceStore store) {
     StepOutcome out;
     // A sheared cell's image offset: the step's forces see the one at its start, its wrap the one at
     // its end (physics/Periodic.h); afterwards the state is at time + dt.
@@ -52,8 +58,8 @@ StepOutcome CpuDynamics::step(double time, const Settings& settings, const Famil
     {
         PhaseTimer t(timing, Phase::FORCE);
         resolveMeshContacts(m_s);
-        const ForcePassResult r = m_model.pass(m_s, time, settings.dt);
-        out.realContacts = r.realContacts;
+        const ForcePassResult r = m_model.pass(m_s, time, settings.dt, store);
+        out.realContacts = m_lastRealContacts = r.realContacts;
         out.realSphereSphere = r.realSphereSphere;
     }
     {

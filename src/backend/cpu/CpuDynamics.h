@@ -47,7 +47,8 @@ class CpuDynamics : public DynamicsBackend {
 
   private:
     // One step from `time` (per-contact forces are stored in every step).
-    StepOutcome step(double time, const Settings& settings, const FamilyRules& families, TimingStats& timing);
+    StepOutcome step(double time, const Settings& settings, const FamilyRules& families, TimingStats& timing,
+                     ForceStore store);
 
     SimState& m_s;
     CpuForceModel m_model;
@@ -57,6 +58,7 @@ class CpuDynamics : public DynamicsBackend {
     // their rules may have changed since it was made.
     IntegrationSubset m_subset;
     bool m_subsetStale = true;
+    size_t m_lastRealContacts = 0;  // pairs touching in the last force pass (how to store forces)
     // Owners' travel at the snapshot of the set in use (baseline) and of the last order.
     std::vector<double> m_baseline, m_orderBaseline;
 };

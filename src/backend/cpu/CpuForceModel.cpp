@@ -19,7 +19,7 @@ CpuForceModel loadCpuForceModel(const ModelLayout& layout, const char* call) {
             break;
     }
     jit::HostCompileResult r = jit::compileHostModule(call, generateForceModelSource(layout));
-    m.pass = r.module.function<ForcePassResult(SimState&, double, double)>(kGeneratedForcePassSymbol);
+    m.pass = r.module.function<ForcePassResult(SimState&, double, double, ForceStore)>(kGeneratedForcePassSymbol);
     m.module = std::make_shared<jit::CompiledModule>(std::move(r.module));
     m.cacheHit = r.cacheHit;
     m.compileSeconds = r.compileSeconds;

@@ -2,6 +2,9 @@
 
 #include <deme/Error.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "parallel/Parallel.h"
 #include "backend/cpu/ForcePassLoop.h"
 #include "physics/BuiltInForceModels.h"
@@ -14,18 +17,18 @@ PairTable pairTable(const std::vector<float>& table, unsigned int n) { return Pa
 
 }  // namespace
 
-ForcePassResult frictionalHertzForcePass(SimState& s, double time, double dt) {
+ForcePassResult frictionalHertzForcePass(SimState& s, double time, double dt, ForceStore store) {
     const MaterialTables& mt = s.materials;
     const unsigned int n = mt.count;
     const FrictionalHertzModel model{pairTable(mt.mu, n), pairTable(mt.Crr, n), pairTable(mt.E_eff, n),
                                      pairTable(mt.G_eff, n), pairTable(mt.beta_CoR, n)};
-    return runForcePass(s, model, time, dt);
+    return runForcePass(s, model, time, dt, store);
 }
 
-ForcePassResult frictionlessHertzForcePass(SimState& s, double time, double dt) {
+ForcePassResult frictionlessHertzForcePass(SimState& s, double time, double dt, ForceStore store) {
     const MaterialTables& mt = s.materials;
     const FrictionlessHertzModel model{pairTable(mt.E_eff, mt.count), pairTable(mt.beta_CoR, mt.count)};
-    return runForcePass(s, model, time, dt);
+    return runForcePass(s, model, time, dt, store);
 }
 
 void buildOwnerContactIndex(SimState& s) {
@@ -44,19 +47,49 @@ void buildOwnerContactIndex(SimState& s) {
         c.ownerAStart[o + 1]++;
     }
     for (size_t o = 0; o < nOwners; o++) c.ownerAStart[o + 1] += c.ownerAStart[o];
-    // B's side: per owner, its contacts as B in contact order (a fixed order for its sums). B's
-    // owner is looked up twice rather than kept: a list of them would be 4 B per pair more at the
-    // moment a new set's memory peaks.
-    c.ownerBStart.assign(nOwners + 1, 0);
-    for (size_t i = 0; i < n; i++) {
-        const bodyID_t o = contactOwnerB(s, i);
-        if (o >= nOwners) throwError("contact detection", "internal: a contact's owner is not in the state");
-        c.ownerBStart[o + 1]++;
+    // B's side: per block of A's owners, the distinct owners its contacts have as B (the block's
+    // window, ascending), and each contact's slot in it.
+    const size_t nBlocks = forcePassBlocks(nOwners);
+    std::vector<std::vector<bodyID_t>> window(nBlocks);
+#pragma omp parallel for schedule(dynamic, 4) if (n > PARALLEL_MIN_ITEMS)
+    for (long k = 0; k < (long)nBlocks; k++) {
+        size_t begin, end;
+        forcePassBlockRange(c, (size_t)k, nOwners, begin, end);
+        std::vector<bodyID_t>& w = window[k];
+        w.resize(end - begin);
+        for (size_t i = begin; i < end; i++) w[i - begin] = contactOwnerB(s, i);
+        std::sort(w.begin(), w.end());
+        w.erase(std::unique(w.begin(), w.end()), w.end());
+        w.shrink_to_fit();
     }
+    c.blockWindowStart.assign(nBlocks + 1, 0);
+    for (size_t k = 0; k < nBlocks; k++) {
+        if (!window[k].empty() && window[k].back() >= nOwners)
+            throwError("contact detection", "internal: a contact's owner is not in the state");
+        c.blockWindowStart[k + 1] = c.blockWindowStart[k] + (uint32_t)window[k].size();
+    }
+    const size_t nSlots = c.blockWindowStart[nBlocks];
+    c.bSlot.resize(n);
+#pragma omp parallel for schedule(dynamic, 4) if (n > PARALLEL_MIN_ITEMS)
+    for (long k = 0; k < (long)nBlocks; k++) {
+        size_t begin, end;
+        forcePassBlockRange(c, (size_t)k, nOwners, begin, end);
+        const std::vector<bodyID_t>& w = window[k];
+        for (size_t i = begin; i < end; i++)
+            c.bSlot[i] = c.blockWindowStart[k] +
+                         (uint32_t)(std::lower_bound(w.begin(), w.end(), contactOwnerB(s, i)) - w.begin());
+    }
+    // Per owner, its slots in block order (a fixed order for its sums).
+    c.ownerBStart.assign(nOwners + 1, 0);
+    for (const std::vector<bodyID_t>& w : window)
+        for (bodyID_t o : w) c.ownerBStart[o + 1]++;
     for (size_t o = 0; o < nOwners; o++) c.ownerBStart[o + 1] += c.ownerBStart[o];
-    c.ownerBEntries.resize(n);
+    c.ownerBSlots.resize(nSlots);
     std::vector<uint32_t> fill(c.ownerBStart.begin(), c.ownerBStart.end() - 1);
-    for (size_t i = 0; i < n; i++) c.ownerBEntries[fill[contactOwnerB(s, i)]++] = (uint32_t)i;
+    for (size_t k = 0; k < nBlocks; k++)
+        for (size_t j = 0; j < window[k].size(); j++)
+            c.ownerBSlots[fill[window[k][j]]++] = c.blockWindowStart[k] + (uint32_t)j;
+    c.window.assign(nSlots, WindowLoad{make_float3(0.f), make_float3(0.f)});
 }
 
 }  // namespace deme

@@ -1,14 +1,14 @@
 // The CPU's force pass as a template over the contact force model: every pair of the active-contact
-// set takes the per-contact step of dynamics/ContactStep.h (where the rules are), and its force on A
-// and the torque about B's owner are stored per contact for the reduction, A's owner takes its share
-// in the pass itself; both sum each owner's contacts in a fixed order (bit-identical for any thread
-// count). The built-in models
-// (ForcePass.cpp) and the code generated for a user's model at run time (forcemodel/CodeGen.cpp)
-// instantiate this same loop, so a model written as a snippet computes bit for bit what the same
-// model built into the library does (test ForceModelBitIdentity).
+// set takes the per-contact step of dynamics/ContactStep.h (where the rules are); A's owner takes
+// its share in the pass itself, B's owner's share is summed per block of owners for the reduction
+// (backend/cpu/Integration.cpp); both in a fixed order (bit-identical for any thread count). The
+// built-in models (ForcePass.cpp) and the code generated for a user's model at run time
+// (forcemodel/CodeGen.cpp) instantiate this same loop, so a model written as a snippet computes bit
+// for bit what the same model built into the library does (test ForceModelBitIdentity).
 #pragma once
 
 #include <algorithm>
+#include <vector>
 
 #include "parallel/Parallel.h"
 #include "dynamics/ContactStep.h"
@@ -17,85 +17,154 @@
 
 namespace deme {
 
-// One contact of the set (dynamics/ContactStep.h): the force on A and the torque about B's owner are
-// stored per contact (B's owner sums them in the reduction); the torque about A's owner is handed
-// back for the pass to add to A's owner at once. Instantiated separately for sphere-sphere contacts
-// (most of any granular scene) so that the compiler drops the other geometry branches from that path.
+// One contact of the set (dynamics/ContactStep.h): its force on A and torques about A's and B's
+// owners, into the chunk's arrays. Instantiated separately for sphere-sphere contacts (most of any
+// granular scene) so that the compiler drops the other geometry branches from that path.
 template <class Model, bool SphereSphere>
-DEME_HD_INLINE bool forcePassContact(SimState& s, const Model& model, size_t i, float time, float dt,
-                                     float3& torqueA) {
-    ContactArrays& c = s.contacts;
+DEME_HD_INLINE bool forcePassContact(SimState& s, const Model& model, size_t i, float time, float dt, float3& force,
+                                     float3& torqueA, float3& torqueB) {
     bool applied;
     ContactLoad load;
     const bool touching = contactStep<Model, SphereSphere>(s, model, i, time, dt, applied, load);
-    c.force[i] = applied ? load.force : make_float3(0.f);
-    c.torqueB[i] = applied ? load.torqueB : make_float3(0.f);
+    force = applied ? load.force : make_float3(0.f);
     torqueA = applied ? load.torqueA : make_float3(0.f);
+    torqueB = applied ? load.torqueB : make_float3(0.f);
     return touching;
 }
 
-// Contacts per step of a thread's sweep: short enough for its A torques to stay in the cache.
+// Contacts per step of a block's sweep: short enough for their loads to stay in the cache.
 constexpr size_t FORCE_PASS_CHUNK = 256;
 
-// Thread t's share of the contacts: about n / T of them, cut only where A's owner changes, so
-// that every owner's contacts as A fall to one thread.
-inline void ownerAlignedRange(const SimState& s, int t, int T, size_t& begin, size_t& end) {
-    const ContactArrays& c = s.contacts;
-    const size_t n = c.size();
-    auto ownerRunStart = [&](size_t k) -> size_t {
-        if (k == 0 || k >= n) return k < n ? k : n;
-        return c.ownerAStart[s.spheres.owner[c.geomA[k]]];
-    };
-    threadRange(n, t, T, begin, end);
-    begin = ownerRunStart(begin);
-    end = ownerRunStart(end);
+// A's owners per block of the pass. The blocks are the unit of the threads' work and of B's sums
+// (each block's window), and their size is fixed, so that the sums are grouped the same way for
+// any thread count. 512 owners of a space-filling-curve order are a compact clump of grains: their
+// B owners are mostly their own, and the window 1.5-1.7 slots per owner (docs/memory.md).
+constexpr size_t FORCE_PASS_BLOCK_OWNERS = 512;
+
+inline size_t forcePassBlocks(size_t nOwners) {
+    return (nOwners + FORCE_PASS_BLOCK_OWNERS - 1) / FORCE_PASS_BLOCK_OWNERS;
 }
 
-template <class Model>
-ForcePassResult runForcePass(SimState& s, const Model& model, double time, double dt) {
+// The contacts of block k: those whose A owner is in it (the set is sorted by A's owner).
+inline void forcePassBlockRange(const ContactArrays& c, size_t k, size_t nOwners, size_t& begin, size_t& end) {
+    begin = c.ownerAStart[k * FORCE_PASS_BLOCK_OWNERS];
+    end = c.ownerAStart[std::min(nOwners, (k + 1) * FORCE_PASS_BLOCK_OWNERS)];
+}
+
+// Thread t's blocks [first, last): about n / T of the contacts, cut at block boundaries. The same
+// blocks go to the same thread in every step (and the owners to about the thread that integrates
+// them), so that a contact's history and its owners' state stay in that core's cache.
+inline void forcePassThreadBlocks(const SimState& s, int t, int T, size_t& first, size_t& last) {
     const ContactArrays& c = s.contacts;
+    const size_t n = c.size(), nBlocks = c.blockWindowStart.empty() ? 0 : c.blockWindowStart.size() - 1;
+    auto blockAt = [&](size_t k) -> size_t {
+        if (k == 0) return 0;
+        if (k >= n) return nBlocks;
+        return s.spheres.owner[c.geomA[k]] / FORCE_PASS_BLOCK_OWNERS;
+    };
+    size_t begin, end;
+    threadRange(n, t, T, begin, end);
+    first = blockAt(begin);
+    last = t + 1 == T ? nBlocks : blockAt(end);
+}
+
+// A chunk's pairs with a force, appended to the thread's list of stored forces: gathered without
+// branches in the cache, then copied as two runs.
+inline void storeChunkForces(StoredContactForces& st, int thread, size_t b, size_t m, const float3* force) {
+    uint32_t index[FORCE_PASS_CHUNK];
+    float3 value[FORCE_PASS_CHUNK];
+    size_t count = 0;
+    for (size_t j = 0; j < m; j++) {
+        index[count] = (uint32_t)(b + j);
+        value[count] = force[j];
+        count += force[j].x != 0.f || force[j].y != 0.f || force[j].z != 0.f;
+    }
+    st.index[thread].insert(st.index[thread].end(), index, index + count);
+    st.force[thread].insert(st.force[thread].end(), value, value + count);
+}
+
+// One force pass. Each block of owners takes its contacts in chunks: the loads of a chunk are
+// computed (sphere pairs as one vectorisable sweep), then added in contact order to A's owner and to
+// the window slot of B's owner. Every owner thus sums its loads in a fixed order (A's contacts here,
+// then its slots in block order in the reduction), bit-identical for any thread count. A pair whose
+// model exerts nothing adds +0 to its slot, which changes no sum: nor do the pairs a wider margin or
+// a different detection frequency brings. `store` says which pairs' forces on A it keeps for readers.
+template <class Model>
+ForcePassResult runForcePass(SimState& s, const Model& model, double time, double dt, ForceStore store) {
+    ContactArrays& c = s.contacts;
     OwnerArrays& ow = s.owners;
-    const size_t n = c.size();
+    const size_t n = c.size(), nOwners = ow.size();
     const float t = (float)time, h = (float)dt;
     const int T = n > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
+    // The last storing step's forces go as the next step starts (the lists' capacity stays, and
+    // the per-pair array while steps keep storing into it).
+    StoredContactForces& stored = c.stored;
+    stored.clear();
+    const bool storePairs = store == ForceStore::PAIRS_WITH_FORCE, storeAll = store == ForceStore::EVERY_PAIR;
+    if (storePairs && stored.index.size() < (size_t)T) {
+        stored.index.resize(T);
+        stored.force.resize(T);
+    }
+    if (storeAll)
+        c.force.resize(n);
+    else if (!c.force.empty())
+        std::vector<float3>().swap(c.force);
+    const uint32_t* bSlot = c.bSlot.data();
+    WindowLoad* window = c.window.data();
     size_t real = 0, realSS = 0;
 #pragma omp parallel num_threads(T) if (T > 1) reduction(+ : real, realSS)
     {
-        size_t begin, end;
-        ownerAlignedRange(s, cpuThreadIndex(), T, begin, end);
-        float3 torqueA[FORCE_PASS_CHUNK];
-        bodyID_t owner = 0;
-        float3 F = make_float3(0.f), tau = make_float3(0.f);
-        for (size_t b = begin; b < end; b += FORCE_PASS_CHUNK) {
-            const size_t m = std::min(FORCE_PASS_CHUNK, end - b);
-            // Sphere pairs first, as one vectorisable sweep (masked lanes for other types) ...
+        const int thread = T > 1 ? cpuThreadIndex() : 0;
+        float3 chunkForce[FORCE_PASS_CHUNK], torqueA[FORCE_PASS_CHUNK], torqueB[FORCE_PASS_CHUNK];
+        size_t firstBlock, lastBlock;
+        forcePassThreadBlocks(s, thread, T, firstBlock, lastBlock);
+        for (size_t k = firstBlock; k < lastBlock; k++) {
+            size_t begin, end;
+            forcePassBlockRange(c, k, nOwners, begin, end);
+            for (uint32_t w = c.blockWindowStart[k]; w < c.blockWindowStart[k + 1]; w++)
+                window[w].force = window[w].negTorque = make_float3(0.f);
+            bodyID_t owner = 0;
+            float3 F = make_float3(0.f), tau = make_float3(0.f);
+            for (size_t b = begin; b < end; b += FORCE_PASS_CHUNK) {
+                const size_t m = std::min(FORCE_PASS_CHUNK, end - b);
+                // The forces go straight to the per-pair array where the step keeps every pair's.
+                float3* force = storeAll ? c.force.data() + b : chunkForce;
+                // Sphere pairs first, as one vectorisable sweep (masked lanes for other types) ...
 #pragma omp simd reduction(+ : realSS)
-            for (size_t j = 0; j < m; j++)
-                if (c.type[b + j] == SPHERE_SPHERE)
-                    realSS += forcePassContact<Model, true>(s, model, b + j, t, h, torqueA[j]);
-            // ... then the rest ...
-            for (size_t j = 0; j < m; j++)
-                if (c.type[b + j] != SPHERE_SPHERE)
-                    real += forcePassContact<Model, false>(s, model, b + j, t, h, torqueA[j]);
-            // ... and A's loads onto A's owner in contact order: the sums do not depend on the
-            // thread count. The reduction adds what the owner takes as B.
-            for (size_t j = 0; j < m; j++) {
-                const bodyID_t o = s.spheres.owner[c.geomA[b + j]];
-                if (o != owner || b + j == begin) {
-                    if (b + j != begin) {
-                        ow.contactForce[owner] = F;
-                        ow.contactTorque[owner] = tau;
+                for (size_t j = 0; j < m; j++)
+                    if (c.type[b + j] == SPHERE_SPHERE)
+                        realSS +=
+                            forcePassContact<Model, true>(s, model, b + j, t, h, force[j], torqueA[j], torqueB[j]);
+                // ... then the rest ...
+                for (size_t j = 0; j < m; j++)
+                    if (c.type[b + j] != SPHERE_SPHERE)
+                        real += forcePassContact<Model, false>(s, model, b + j, t, h, force[j], torqueA[j], torqueB[j]);
+                // ... and the loads, in contact order, onto A's owner and B's slot.
+                for (size_t j = 0; j < m; j++) {
+                    const size_t i = b + j;
+                    const bodyID_t o = s.spheres.owner[c.geomA[i]];
+                    if (o != owner || i == begin) {
+                        if (i != begin) {
+                            ow.contactForce[owner] = F;
+                            ow.contactTorque[owner] = tau;
+                        }
+                        owner = o;
+                        F = tau = make_float3(0.f);
                     }
-                    owner = o;
-                    F = tau = make_float3(0.f);
+                    F += force[j];
+                    tau += torqueA[j];
                 }
-                F += c.force[b + j];
-                tau += torqueA[j];
+                for (size_t j = 0; j < m; j++) {
+                    const uint32_t w = bSlot[b + j];
+                    window[w].force += force[j];
+                    window[w].negTorque -= torqueB[j];
+                }
+                if (storePairs) storeChunkForces(stored, thread, b, m, force);
             }
-        }
-        if (end > begin) {
-            ow.contactForce[owner] = F;
-            ow.contactTorque[owner] = tau;
+            if (end > begin) {
+                ow.contactForce[owner] = F;
+                ow.contactTorque[owner] = tau;
+            }
         }
     }
     return ForcePassResult{real + realSS, realSS};

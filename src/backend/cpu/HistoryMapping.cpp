@@ -82,7 +82,6 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     // `fresh` now holds the old set's ids (swapped out above): released, not kept until the next
     // detection (9 B per pair of the set for the whole run, docs/memory.md).
     fresh = DetectedContacts();
-    c.force.assign(nNew, make_float3(0.f));
     indexContactSet(s);
 }
 
@@ -98,8 +97,9 @@ void indexContactSet(SimState& s) {
         c.meshContacts.push_back((uint32_t)i);
     }
     c.meshContactGroups.push_back((uint32_t)c.meshContacts.size());
-    c.force.resize(nNew, make_float3(0.f));
-    c.torqueB.assign(nNew, make_float3(0.f));
+    // Forces stored for the set before read as none until a step stores this set's.
+    c.stored.clear();
+    std::vector<float3>().swap(c.force);
     buildOwnerContactIndex(s);
 }
 

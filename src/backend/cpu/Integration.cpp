@@ -22,14 +22,16 @@ void reduceContactForces(SimState& s, const IntegrationSubset& subset) {
 #pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
     for (size_t k = 0; k < n; k++) {
         const size_t o = ids ? (size_t)ids[k] : k;
-        // What the owner took as A in the force pass (runForcePass), then its contacts as B.
+        // What the owner took as A in the force pass (runForcePass), then as B: its slots in the
+        // blocks' windows, in block order. (The windows hold the forces on A and minus the torques
+        // on B, so that an empty slot, +0, subtracts to nothing whatever the sum's sign.)
         const bool asA = c.ownerAStart[o + 1] > c.ownerAStart[o];
         float3 F = asA ? ow.contactForce[o] : make_float3(0.f);
         float3 tau = asA ? ow.contactTorque[o] : make_float3(0.f);
         for (uint32_t e = c.ownerBStart[o]; e < c.ownerBStart[o + 1]; e++) {
-            const uint32_t ci = c.ownerBEntries[e];
-            F -= c.force[ci];
-            tau += c.torqueB[ci];
+            const uint32_t w = c.ownerBSlots[e];
+            F -= c.window[w].force;
+            tau -= c.window[w].negTorque;
         }
         ow.contactForce[o] = F;
         ow.contactTorque[o] = tau;
