@@ -54,6 +54,30 @@ TEST(ContactDetection, MatchesBruteForceExactly) {
     EXPECT_EQ(cases, 18);
 }
 
+// The bins of one detection are kept for the next where they are small, and let go at its end
+// where they are larger than the detector keeps (a large scene's steps between detections hold
+// none); the pairs are the same either way, and so are those of the next detection.
+TEST(ContactDetection, LargeBinsAreLetGoAfterEachDetection) {
+    const DetectionRules dr;
+    const Scene scene = randomScene(4, 1500);
+    SimState s = detectionState(scene, "ContactDetection");
+    const BinGrid grid = makeBinGrid(s, 0.0);
+    ContactDetector keeping, releasing;
+    releasing.keepBinsUpTo(0);
+    for (int round = 0; round < 2; round++) {
+        DetectedContacts kept, released;
+        double binning = 0.0, search = 0.0;
+        keeping.detect(s, grid, 1e-4, dr.rules.contactMask(), dr.extra, kept, binning, search);
+        releasing.detect(s, grid, 1e-4, dr.rules.contactMask(), dr.extra, released, binning, search);
+        ASSERT_GT(kept.size(), 500u);
+        EXPECT_EQ(kept.geomA, released.geomA);
+        EXPECT_EQ(kept.geomB, released.geomB);
+        EXPECT_EQ(kept.type, released.type);
+        EXPECT_GT(keeping.bytes(), 1500 * sizeof(uint32_t));  // entries and bins' starts
+        EXPECT_LT(releasing.bytes(), 1500u);                  // the per-thread lists' headers only
+    }
+}
+
 namespace {
 
 // A small granular column poured onto a floor; returns every clump's final position and velocity.

@@ -73,8 +73,9 @@ DEME_BACKEND_TEST(MemoryStatsGroups, GroupsHoldTheirArraysAndAddUp) {
     for (size_t b : m.deviceBytes) deviceSum += b;
     EXPECT_EQ(m.deviceTotal(), deviceSum);
     if (!onGpu()) {
-        // The CPU steps on the host arrays: the contact set and the detector's bins are there.
-        // Pairs, type and Hertz-Mindlin's tangential history (3 floats) per contact.
+        // The CPU steps on the host arrays: the contact set and the detector's bins (kept between
+        // detections in so small a scene) are there. Pairs, type and Hertz-Mindlin's tangential
+        // history (3 floats) per contact.
         EXPECT_GE(m.host(MemoryGroup::CONTACTS), contacts * (2 * sizeof(bodyID_t) + 1 + 3 * sizeof(float)));
         EXPECT_GT(m.host(MemoryGroup::DETECTION), n * sizeof(uint32_t));
         EXPECT_EQ(m.deviceTotal(), 0u);

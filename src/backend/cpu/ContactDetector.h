@@ -30,6 +30,10 @@ struct BinRegistry {
     void build(const BinGrid& grid, const bodyID_t* ids, size_t n, Box&& box);
     BinsView view() const { return BinsView{start.data(), entries.data()}; }
     size_t bytes() const { return vectorBytes(start) + vectorBytes(entries); }
+    void release() {
+        releaseVector(start);
+        releaseVector(entries);
+    }
 };
 
 template <class Box>
@@ -62,6 +66,11 @@ class ContactDetector {
         m_dormant.setFamilies(dormant, prescribed, live);
     }
     const DormantCache& dormantCache() const { return m_dormant; }
+    // A detection's bins are let go at its end where they hold more than this many bytes (and kept
+    // for the next one otherwise): a large scene keeps no bins through the steps between, a small
+    // one no allocation per detection (docs/memory.md).
+    static constexpr size_t KEEP_BINS_UP_TO = 32u << 20;
+    void keepBinsUpTo(size_t bytes) { m_keepBinsUpTo = bytes; }
     // The scratch it keeps between detections (MemoryGroup::DETECTION).
     size_t bytes() const {
         size_t b = m_dormant.bytes() + vectorBytes(m_keys) + m_spheres.bytes() + m_triangles.bytes() +
@@ -75,8 +84,9 @@ class ContactDetector {
     void sortPairs(const SimState& s, DetectedContacts& out);
     DormantCache m_dormant;
     std::vector<uint64_t> m_keys;
-    // Scratch buffers reused between detections.
+    // One detection's bins (rebuilt by every detection).
     BinRegistry m_spheres, m_triangles;
+    size_t m_keepBinsUpTo = KEEP_BINS_UP_TO;
     std::vector<double3> m_triLo, m_triHi;
     std::vector<DetectedContacts> m_threadOut;  // each thread's pairs, only while a detection runs
     size_t m_lastPairs = 0;                     // how many the last detection found
