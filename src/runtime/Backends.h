@@ -165,6 +165,10 @@ class DynamicsBackend {
     // history of the set it replaces (wildcards, mesh state, persistent pairs); travel is measured
     // from the order's snapshot from now on.
     virtual void install(const DetectionReport& report, TimingStats& timing) = 0;
+    // A detection whose set is installed before the next step (synchronous) is about to run: what
+    // only the steps read of the set in use may go now (the CPU's reduction index, rebuilt by the
+    // installation, or by the next step if the installation fails), lowering the detection's peak.
+    virtual void beforeDetectNow() {}
     virtual size_t numContacts() const = 0;
     // Checkpoint and restart. travelAtSnapshot: every owner's travel at the snapshot of the set in
     // use. resumeContactSet: after upload(s), the set in use is s.contacts as it is (history and

@@ -64,6 +64,7 @@ void ContactSetManager::detectNow(const Settings& settings, unsigned long long s
     m_schedule.beforeSyncDetection(settings.asyncDetection, step, m_stats, timing.seconds[(int)Phase::FORCE]);
     if (beforeDetection) beforeDetection();
     m_dynamics->markOrderBaseline();
+    m_dynamics->beforeDetectNow();
     DetectionReport r;
     m_kinematics->detectNow(orderFor(settings, step, maxSpeed), r);
     account(r, timing);

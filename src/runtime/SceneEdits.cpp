@@ -5,7 +5,6 @@
 
 #include <deme/Error.h>
 
-#include "runtime/MemoryAccounting.h"
 #include "state/SphereLayoutChoice.h"
 
 namespace deme {
@@ -52,15 +51,7 @@ void rebuildOwnerRanges(SimState& s) {
 void resizeDerived(SimState& s) {
     s.integrationScratch.flags.assign(s.owners.size(), 0);
     ContactArrays& c = s.contacts;
-    releaseVector(c.meshContacts);
-    releaseVector(c.meshContactGroups);
-    releaseVector(c.ownerAStart);
-    releaseVector(c.bSlot);
-    releaseVector(c.blockWindowStart);
-    releaseVector(c.window);
-    releaseVector(c.ownerBStart);
-    releaseVector(c.ownerBSlots);
-    c.stored = StoredContactForces();
+    c.releaseIndex();
 }
 
 }  // namespace

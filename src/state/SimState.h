@@ -5,6 +5,7 @@
 // are between geometries.
 #pragma once
 
+#include <type_traits>
 #include <vector>
 
 #include <deme/VariableTypes.h>
@@ -67,6 +68,21 @@ struct StoredContactForces {
 struct ContactArrays : ContactFields<HostArray> {
     size_t size() const { return geomA.size(); }
     StoredContactForces stored;  // the CPU's (a GPU run's host copy has `force` per contact)
+    // Lets go of what belongs to one set as it was indexed (backend/cpu/HistoryMapping.h): the
+    // sphere-triangle runs, the force reduction's index and windows, the stored forces.
+    void releaseIndex() {
+        auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
+        release(meshContacts);
+        release(meshContactGroups);
+        release(ownerAStart);
+        release(bSlot);
+        release(blockWindowStart);
+        release(window);
+        release(ownerBStart);
+        release(ownerBSlots);
+        release(force);
+        stored = StoredContactForces();
+    }
 };
 using KinematicCache = CacheFields<HostArray>;
 using IntegrationScratch = ScratchFields<HostArray>;

@@ -80,26 +80,11 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
         }
     }
 
-    // 3. Concatenate in thread order: the result is sorted by (A, B), or is sorted so below.
-    size_t total = 0;
-    for (const auto& t : m_threadOut) total += t.size();
-    out.geomA.resize(total);
-    out.geomB.resize(total);
-    out.type.resize(total);
-    size_t at = 0;
-    for (auto& t : m_threadOut) {
-        std::copy(t.geomA.begin(), t.geomA.end(), out.geomA.begin() + at);
-        std::copy(t.geomB.begin(), t.geomB.end(), out.geomB.begin() + at);
-        std::copy(t.type.begin(), t.type.end(), out.type.begin() + at);
-        at += t.size();
-        t = DetectedContacts();  // released: they would hold a second copy of every pair until next time
-    }
-    m_lastPairs = total;
-    if (dormant) sortPairs(s, out);
     // The bins are rebuilt by every detection: large ones are let go until the next instead of held
-    // through the steps between (the early mixer's 58 B per sphere). Allocating them again makes a
-    // detection's binning slower by a third or a half (its pages are new), about 1 % of the steps of
-    // a packed bed detected every 85 steps; so small ones, whose bytes do not matter, stay.
+    // through the steps between (the early mixer's 58 B per sphere), and before the pairs are
+    // copied below (a detection's peak). Allocating them again makes a detection's binning slower
+    // by a third or a half (its pages are new), about 1 % of the steps of a packed bed detected
+    // every 85 steps; so small ones, whose bytes do not matter, stay.
     const size_t binBytes = m_spheres.bytes() + m_triangles.bytes() + vectorBytes(m_triLo) + vectorBytes(m_triHi);
     if (binBytes > m_keepBinsUpTo) {
         m_spheres.release();
@@ -107,6 +92,27 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
         releaseVector(m_triLo);
         releaseVector(m_triHi);
     }
+
+    // 3. Concatenate in thread order: the result is sorted by (A, B), or is sorted so below. One
+    // field at a time, each thread's list of it let go once copied, so that the pairs are held
+    // twice over one field's bytes at most (4 B per pair, not 9).
+    size_t total = 0;
+    for (const auto& t : m_threadOut) total += t.size();
+    auto gather = [&](auto& outField, auto field) {
+        outField.resize(total);
+        size_t at = 0;
+        for (DetectedContacts& t : m_threadOut) {
+            auto& part = t.*field;
+            std::copy(part.begin(), part.end(), outField.begin() + at);
+            at += part.size();
+            releaseVector(part);
+        }
+    };
+    gather(out.geomA, &DetectedContacts::geomA);
+    gather(out.geomB, &DetectedContacts::geomB);
+    gather(out.type, &DetectedContacts::type);
+    m_lastPairs = total;
+    if (dormant) sortPairs(s, out);
     releaseVector(m_keys);
     searchSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 }

@@ -46,6 +46,9 @@ StepBatchResult CpuDynamics::steps(const StepBatchRequest& batch, const Settings
 StepOutcome CpuDynamics::step(double time, const Settings& settings, const FamilyRules& families, TimingStats& timing,
                               ForceStore store) {
     StepOutcome out;
+    // The set's index, where a detection let it go and no installation followed (one that failed
+    // its memory check: CpuDynamics::beforeDetectNow), or an edit did.
+    if (m_s.contacts.ownerAStart.size() != m_s.owners.size() + 1) indexContactSet(m_s);
     // A sheared cell's image offset: the step's forces see the one at its start, its wrap the one at
     // its end (physics/Periodic.h); afterwards the state is at time + dt.
     m_s.frame.periodic.shearTime = time;

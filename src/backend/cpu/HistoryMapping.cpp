@@ -5,6 +5,7 @@
 #include "backend/cpu/ForcePass.h"
 #include "kinematics/HistoryRules.h"
 #include "parallel/Parallel.h"
+#include "runtime/MemoryAccounting.h"
 
 namespace deme {
 
@@ -56,6 +57,10 @@ void mergePersistentPairs(const ContactArrays& c, DetectedContacts& fresh) {
 void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     ContactArrays& c = s.contacts;
     const unsigned int W = s.numWildcards;
+    // The old set's reduction index and stored forces are rebuilt for the new set below: let go
+    // before the new set's arrays are made, while the old set's pairs and history are still held
+    // (an installation's peak).
+    c.releaseIndex();
     const bool anyPersistent = std::find(c.persistent.begin(), c.persistent.end(), 1) != c.persistent.end();
     if (anyPersistent) mergePersistentPairs(c, fresh);
     const size_t nNew = fresh.size();
@@ -79,15 +84,21 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     c.wildcards.swap(wildcards);
     c.meshState.swap(meshState);
     c.persistent.swap(persistent);
-    // `fresh` now holds the old set's ids (swapped out above): released, not kept until the next
-    // detection (9 B per pair of the set for the whole run, docs/memory.md).
+    // `fresh` now holds the old set's ids, and the locals its history (swapped out above):
+    // released, not kept until the next detection (9 B per pair of the set for the whole run,
+    // docs/memory.md), nor through the indexing below (18 B per pair more at the peak).
     fresh = DetectedContacts();
+    releaseVector(wildcards);
+    releaseVector(meshState);
+    releaseVector(persistent);
     indexContactSet(s);
 }
 
 void indexContactSet(SimState& s) {
     ContactArrays& c = s.contacts;
     const size_t nNew = c.size();
+    // Forces stored for another set (before a checkpoint was read into this one) read as none.
+    c.stored = StoredContactForces();
     c.meshContacts.clear();
     c.meshContactGroups.clear();
     for (size_t i = 0; i < nNew; i++) {
@@ -97,9 +108,6 @@ void indexContactSet(SimState& s) {
         c.meshContacts.push_back((uint32_t)i);
     }
     c.meshContactGroups.push_back((uint32_t)c.meshContacts.size());
-    // Forces stored for the set before read as none until a step stores this set's.
-    c.stored.clear();
-    std::vector<float3>().swap(c.force);
     buildOwnerContactIndex(s);
 }
 
