@@ -1,9 +1,9 @@
 #include "backend/cpu/ForcePass.h"
 
-#include <deme/Error.h>
-
 #include <algorithm>
 #include <vector>
+
+#include <deme/Error.h>
 
 #include "parallel/Parallel.h"
 #include "backend/cpu/ForcePassLoop.h"

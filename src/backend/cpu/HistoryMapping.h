@@ -12,9 +12,9 @@ namespace deme {
 // are sorted, so each new pair finds its old self by binary search, and the merge keeps the order.
 void installDetectedContacts(SimState& s, DetectedContacts& fresh);
 
-// The per-set bookkeeping of s.contacts' pairs as they are (the sphere-triangle runs, per-contact
-// force and torque arrays, the owners' index of the force pass and reduction): part of every
-// installation, and of a restart that resumes a set.
+// The per-set bookkeeping of s.contacts' pairs as they are (the sphere-triangle runs, the force
+// reduction's index and windows; ContactArrays::releaseIndex lets it go): part of every
+// installation, of a restart that resumes a set, and of a step that finds it missing.
 void indexContactSet(SimState& s);
 
 }  // namespace deme
