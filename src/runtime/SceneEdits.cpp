@@ -51,7 +51,7 @@ void rebuildOwnerRanges(SimState& s) {
 void resizeDerived(SimState& s) {
     s.integrationScratch.flags.assign(s.owners.size(), 0);
     ContactArrays& c = s.contacts;
-    c.releaseIndex();
+    c.resetIndex(true);
 }
 
 }  // namespace

@@ -65,23 +65,40 @@ struct StoredContactForces {
     }
 };
 
+// Arrays the CPU rebuilds at every detection (its bins, a set's index) are let go between
+// detections, or before the arrays that replace them are made, where they hold more than this:
+// a large scene's memory at its peak, and no new pages per detection for a small one (whose bytes
+// do not matter; allocating them again made a 60,000-sphere bed's binning a third slower).
+constexpr size_t KEEP_REBUILT_ARRAYS_UP_TO = 32u << 20;
+
 struct ContactArrays : ContactFields<HostArray> {
     size_t size() const { return geomA.size(); }
     StoredContactForces stored;  // the CPU's (a GPU run's host copy has `force` per contact)
-    // Lets go of what belongs to one set as it was indexed (backend/cpu/HistoryMapping.h): the
-    // sphere-triangle runs, the force reduction's index and windows, the stored forces.
-    void releaseIndex() {
-        auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
-        release(meshContacts);
-        release(meshContactGroups);
-        release(ownerAStart);
-        release(bSlot);
-        release(blockWindowStart);
-        release(window);
-        release(ownerBStart);
-        release(ownerBSlots);
-        release(force);
-        stored = StoredContactForces();
+    // Empties what belongs to one set as it was indexed (backend/cpu/HistoryMapping.h): the
+    // sphere-triangle runs, the force reduction's index and windows, the stored forces; their
+    // memory is let go too where it is large (KEEP_REBUILT_ARRAYS_UP_TO) or `release` says so.
+    void resetIndex(bool release = false) {
+        const size_t bytes = sizeof(uint32_t) * (meshContacts.capacity() + meshContactGroups.capacity() +
+                                                 ownerAStart.capacity() + bSlot.capacity() +
+                                                 blockWindowStart.capacity() + ownerBStart.capacity() +
+                                                 ownerBSlots.capacity()) +
+                             sizeof(WindowLoad) * window.capacity() + sizeof(float3) * force.capacity();
+        release = release || bytes > KEEP_REBUILT_ARRAYS_UP_TO;
+        auto reset = [release](auto& v) {
+            if (release) std::decay_t<decltype(v)>().swap(v);
+            else v.clear();
+        };
+        reset(meshContacts);
+        reset(meshContactGroups);
+        reset(ownerAStart);
+        reset(bSlot);
+        reset(blockWindowStart);
+        reset(window);
+        reset(ownerBStart);
+        reset(ownerBSlots);
+        reset(force);
+        if (release) stored = StoredContactForces();
+        else stored.clear();
     }
 };
 using KinematicCache = CacheFields<HostArray>;

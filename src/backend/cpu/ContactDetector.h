@@ -69,7 +69,6 @@ class ContactDetector {
     // A detection's bins are let go at its end where they hold more than this many bytes (and kept
     // for the next one otherwise): a large scene keeps no bins through the steps between, a small
     // one no allocation per detection (docs/memory.md).
-    static constexpr size_t KEEP_BINS_UP_TO = 32u << 20;
     void keepBinsUpTo(size_t bytes) { m_keepBinsUpTo = bytes; }
     // The scratch it keeps between detections (MemoryGroup::DETECTION).
     size_t bytes() const {
@@ -86,7 +85,7 @@ class ContactDetector {
     std::vector<uint64_t> m_keys;
     // One detection's bins (rebuilt by every detection).
     BinRegistry m_spheres, m_triangles;
-    size_t m_keepBinsUpTo = KEEP_BINS_UP_TO;
+    size_t m_keepBinsUpTo = KEEP_REBUILT_ARRAYS_UP_TO;
     std::vector<double3> m_triLo, m_triHi;
     std::vector<DetectedContacts> m_threadOut;  // each thread's pairs, only while a detection runs
     size_t m_lastPairs = 0;                     // how many the last detection found

@@ -33,7 +33,7 @@ class CpuDynamics : public DynamicsBackend {
     void markOrderBaseline() override;
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;
-    void beforeDetectNow() override { m_s.contacts.releaseIndex(); }
+    void beforeDetectNow() override { m_s.contacts.resetIndex(); }
     size_t numContacts() const override { return m_s.contacts.size(); }
     bool travelAtSnapshot(std::vector<double>& travel) const override;
     bool resumeContactSet(const SimState& s, const std::vector<double>& travel) override;

@@ -57,10 +57,10 @@ void mergePersistentPairs(const ContactArrays& c, DetectedContacts& fresh) {
 void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     ContactArrays& c = s.contacts;
     const unsigned int W = s.numWildcards;
-    // The old set's reduction index and stored forces are rebuilt for the new set below: let go
-    // before the new set's arrays are made, while the old set's pairs and history are still held
-    // (an installation's peak).
-    c.releaseIndex();
+    // The old set's reduction index and stored forces are rebuilt for the new set below: emptied,
+    // and let go where large, before the new set's arrays are made, while the old set's pairs and
+    // history are still held (an installation's peak).
+    c.resetIndex();
     const bool anyPersistent = std::find(c.persistent.begin(), c.persistent.end(), 1) != c.persistent.end();
     if (anyPersistent) mergePersistentPairs(c, fresh);
     const size_t nNew = fresh.size();

@@ -13,7 +13,7 @@ namespace deme {
 void installDetectedContacts(SimState& s, DetectedContacts& fresh);
 
 // The per-set bookkeeping of s.contacts' pairs as they are (the sphere-triangle runs, the force
-// reduction's index and windows; ContactArrays::releaseIndex lets it go): part of every
+// reduction's index and windows; ContactArrays::resetIndex empties it): part of every
 // installation, of a restart that resumes a set, and of a step that finds it missing.
 void indexContactSet(SimState& s);
 
