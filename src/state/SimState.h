@@ -78,15 +78,17 @@ struct ContactArrays : ContactFields<HostArray> {
     // sphere-triangle runs, the force reduction's index and windows, the stored forces; their
     // memory is let go too where it is large (KEEP_REBUILT_ARRAYS_UP_TO) or `release` says so.
     void resetIndex(bool release = false) {
-        const size_t bytes = sizeof(uint32_t) * (meshContacts.capacity() + meshContactGroups.capacity() +
-                                                 ownerAStart.capacity() + bSlot.capacity() +
-                                                 blockWindowStart.capacity() + ownerBStart.capacity() +
-                                                 ownerBSlots.capacity()) +
-                             sizeof(WindowLoad) * window.capacity() + sizeof(float3) * force.capacity();
+        const size_t bytes =
+            sizeof(uint32_t) *
+                (meshContacts.capacity() + meshContactGroups.capacity() + ownerAStart.capacity() + bSlot.capacity() +
+                 blockWindowStart.capacity() + ownerBStart.capacity() + ownerBSlots.capacity()) +
+            sizeof(WindowLoad) * window.capacity() + sizeof(float3) * force.capacity();
         release = release || bytes > KEEP_REBUILT_ARRAYS_UP_TO;
         auto reset = [release](auto& v) {
-            if (release) std::decay_t<decltype(v)>().swap(v);
-            else v.clear();
+            if (release)
+                std::decay_t<decltype(v)>().swap(v);
+            else
+                v.clear();
         };
         reset(meshContacts);
         reset(meshContactGroups);
@@ -97,8 +99,10 @@ struct ContactArrays : ContactFields<HostArray> {
         reset(ownerBStart);
         reset(ownerBSlots);
         reset(force);
-        if (release) stored = StoredContactForces();
-        else stored.clear();
+        if (release)
+            stored = StoredContactForces();
+        else
+            stored.clear();
     }
 };
 using KinematicCache = CacheFields<HostArray>;
