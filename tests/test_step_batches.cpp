@@ -359,6 +359,22 @@ std::vector<float> freeFallHeights(int steps) {
     return z;
 }
 
+// GPU only: the force pass of a scene without meshes, whose per-contact step leaves the triangle
+// branch out (the default there), gives the trajectories of the pass of every type, bit for bit:
+// the bouncing spheres, dumbbells landing on a plane, spheres on a moving plane.
+TEST(CudaStepGraphs, NoMeshForcePassEqualsThePassOfEveryTypeBitForBit) {
+    if (!cuda::cudaBackendBuilt() || cuda::usableDevices().empty()) GTEST_SKIP() << "needs a GPU";
+    ScopedEnvironmentVariable backend("DEME_BACKEND", "cuda");
+    expectTheSameWhether("DEME_CUDA_NO_MESH_PASS");
+    std::vector<float3> every;
+    {
+        ScopedEnvironmentVariable v("DEME_CUDA_NO_MESH_PASS", "0");
+        every = spheresOnATiltingLift(5000);
+    }
+    ScopedEnvironmentVariable v("DEME_CUDA_NO_MESH_PASS", "1");
+    expectSameSamples(spheresOnATiltingLift(5000), every, "sphere positions or velocities on the lift");
+}
+
 // GPU only: an owner step that reads its inputs before waiting for the force pass before it (the
 // default) gives the trajectories of one that reads everything after, bit for bit: the bouncing
 // spheres (prescribed motion, tracker loads, batches ended early), dumbbells landing on a plane,

@@ -92,12 +92,18 @@ struct ContactLoad {
     bodyID_t ownerA, ownerB;
 };
 
+// A contact's type not known to the caller (contactStepOfType), or known not to be a sphere and a
+// triangle (a scene without meshes): the triangle's branch drops out of the path.
+constexpr uint8_t ANY_CONTACT_TYPE = 0xFF;
+constexpr uint8_t NO_TRIANGLE_CONTACT = 0xFE;
+
 // Contact i's step. Returns whether the pair touches (overlap > 0: a real contact); `applied` says
-// whether `load` holds what it exerts (the model was called). `SphereSphere`: the caller knows the
-// pair is a sphere pair, so the other geometry branches drop out of that path.
-template <class Model, bool SphereSphere, class S>
-DEME_HD_INLINE bool contactStep(S& s, const Model& model, size_t i, float time, float dt, bool& applied,
-                                ContactLoad& load) {
+// whether `load` holds what it exerts (the model was called). `KnownType`: the contact's type where
+// the caller knows it (the other geometry branches drop out of that path), else ANY_CONTACT_TYPE.
+template <class Model, uint8_t KnownType, class S>
+DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, float time, float dt, bool& applied,
+                                      ContactLoad& load) {
+    constexpr bool SphereSphere = KnownType == SPHERE_SPHERE;
     auto& c = s.contacts;
     // The wildcard count is a constant of the model, so history loops unroll. A short history is
     // read once (after the gather: held across it, its registers would spill others), the model
@@ -107,7 +113,10 @@ DEME_HD_INLINE bool contactStep(S& s, const Model& model, size_t i, float time, 
     constexpr unsigned int WC = kHistoryCopied ? W : 1;  // the copy's size (never zero)
     float* wc = W ? &c.wildcards[i * W] : nullptr;
     float copied[WC];
-    const uint8_t type = SphereSphere ? (uint8_t)SPHERE_SPHERE : c.type[i];
+    const uint8_t stored = KnownType < NO_TRIANGLE_CONTACT ? KnownType : c.type[i];
+    const uint8_t type = KnownType == NO_TRIANGLE_CONTACT
+                             ? (stored == SPHERE_SPHERE ? (uint8_t)SPHERE_SPHERE : (uint8_t)SPHERE_ANALYTICAL)
+                             : stored;
     bool gather = type != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
     if (!Model::kSeesApartPairs && (SphereSphere || type == SPHERE_SPHERE)) {
         const double3 pA = sphereCentre(s, c.geomA[i]);
@@ -150,6 +159,14 @@ DEME_HD_INLINE bool contactStep(S& s, const Model& model, size_t i, float time, 
     load.ownerA = in.AOwner;
     load.ownerB = in.BOwner;
     return touching;
+}
+
+// The same, where the caller knows at most that the pair is a sphere pair.
+template <class Model, bool SphereSphere, class S>
+DEME_HD_INLINE bool contactStep(S& s, const Model& model, size_t i, float time, float dt, bool& applied,
+                                ContactLoad& load) {
+    return contactStepOfType<Model, SphereSphere ? (uint8_t)SPHERE_SPHERE : ANY_CONTACT_TYPE>(s, model, i, time, dt,
+                                                                                              applied, load);
 }
 
 }  // namespace deme

@@ -40,15 +40,25 @@ void DeviceForceModel::load(const std::string& call, const ModelLayout& layout, 
     // blocks for a few spilled values); DEME_CUDA_FORCE_REGS=0 takes the uncapped ones.
     const char* regs = std::getenv("DEME_CUDA_FORCE_REGS");
     const std::string variant = regs && std::string(regs) == "0" ? "" : "_r64";
+    // A built-in model's pass for scenes without meshes leaves the triangle branch out
+    // (kernels/ForcePassKernel.cuh); DEME_CUDA_NO_MESH_PASS=0 keeps the pass of every type.
+    const char* noMesh = std::getenv("DEME_CUDA_NO_MESH_PASS");
+    const bool withNoMesh = !(noMesh && std::string(noMesh) == "0");
+    std::string name;
     switch (layout.kind) {
         case DEMForceModel::Kind::FRICTIONAL_HERTZIAN:
-            m_kernel = dynamics.kernel("deme_force_pass_frictional_hertz" + variant);
-            return;
+            name = "deme_force_pass_frictional_hertz";
+            break;
         case DEMForceModel::Kind::FRICTIONLESS_HERTZIAN:
-            m_kernel = dynamics.kernel("deme_force_pass_frictionless_hertz" + variant);
-            return;
+            name = "deme_force_pass_frictionless_hertz";
+            break;
         default:
             break;
+    }
+    if (!name.empty()) {
+        m_kernel = dynamics.kernel(name + variant);
+        if (withNoMesh) m_noMeshKernel = dynamics.kernel(name + "_no_mesh" + variant);
+        return;
     }
     const CudaCompileResult r =
         compileCudaSource(call, kGeneratedForceKernelProgram, generateCudaForceModelSource(layout), options);
@@ -115,7 +125,8 @@ void DeviceForceModel::record(LaunchList& list, const StateView& view, const Ste
                               unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red,
                               unsigned int threadsPerBlock) const {
     if (view.numContacts == 0) return;
-    list.kernel(m_kernel, blocksFor(view.numContacts, threadsPerBlock), threadsPerBlock, 0, view, ctl, m_params,
+    const CudaKernel& pass = view.numTriangles == 0 && m_noMeshKernel.handle ? m_noMeshKernel : m_kernel;
+    list.kernel(pass, blocksFor(view.numContacts, threadsPerBlock), threadsPerBlock, 0, view, ctl, m_params,
                 firstNonClump, numNonClump, red);
 }
 

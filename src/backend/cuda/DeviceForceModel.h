@@ -46,6 +46,7 @@ class DeviceForceModel {
   private:
     CudaModule m_module;  // a custom model's; built-in kernels live in the dynamics module
     CudaKernel m_kernel;
+    CudaKernel m_noMeshKernel;  // a built-in model's pass for scenes without meshes (no handle: none)
     DeviceBuffer<float> m_mu, m_Crr, m_E_eff, m_G_eff, m_beta_CoR, m_props, m_pairProps, m_ownerWildcards,
         m_geometryWildcards;
     ForceModelParams m_params{};

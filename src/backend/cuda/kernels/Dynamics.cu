@@ -133,24 +133,27 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
 // The _r64 variants, the ones used (DeviceForceModel.cpp), cap the registers at 64: four blocks of 256
 // threads fit a multiprocessor instead of two, for 48 bytes spilled (to L1). Measured on one H200:
 // +5 % steps per second on both SMALL-SYSTEMS cases (BENCHMARKS.md).
-#define DEME_BUILT_IN_FORCE_PASSES(SUFFIX, ATTR)                                                               \
+#define DEME_BUILT_IN_FORCE_PASSES(SUFFIX, ATTR, NO_TRIANGLES)                                                 \
     extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                 \
         StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,             \
         unsigned int numNonClump, StepReduction* red) {                                                        \
         const unsigned int n = p.numMaterials;                                                                 \
         const FrictionalHertzModel model{PairTable{p.mu, n}, PairTable{p.Crr, n}, PairTable{p.E_eff, n},      \
                                          PairTable{p.G_eff, n}, PairTable{p.beta_CoR, n}};                    \
-        forcePassKernel(s, model, ctl, firstNonClump, numNonClump, red);                                       \
+        forcePassKernel<FrictionalHertzModel, NO_TRIANGLES>(s, model, ctl, firstNonClump, numNonClump, red);  \
     }                                                                                                          \
     extern "C" __global__ void ATTR deme_force_pass_frictionless_hertz##SUFFIX(                               \
         StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,             \
         unsigned int numNonClump, StepReduction* red) {                                                        \
         const unsigned int n = p.numMaterials;                                                                 \
         const FrictionlessHertzModel model{PairTable{p.E_eff, n}, PairTable{p.beta_CoR, n}};                  \
-        forcePassKernel(s, model, ctl, firstNonClump, numNonClump, red);                                       \
+        forcePassKernel<FrictionlessHertzModel, NO_TRIANGLES>(s, model, ctl, firstNonClump, numNonClump, red); \
     }
-DEME_BUILT_IN_FORCE_PASSES(, )
-DEME_BUILT_IN_FORCE_PASSES(_r64, __maxnreg__(64))
+DEME_BUILT_IN_FORCE_PASSES(, , false)
+DEME_BUILT_IN_FORCE_PASSES(_r64, __maxnreg__(64), false)
+// Scenes without meshes (DeviceForceModel::record).
+DEME_BUILT_IN_FORCE_PASSES(_no_mesh, , true)
+DEME_BUILT_IN_FORCE_PASSES(_no_mesh_r64, __maxnreg__(64), true)
 
 // What thread k of an owner step reads before its owner's contact loads: the owner ids[k] (k if ids
 // is null; the active box leaves fixed owners at rest out, deme_stepped_flags) and its step's inputs
