@@ -53,7 +53,9 @@ class CudaForceModelNvrtc : public deme_test::ScratchDirTest {
     void expectUserKernel(const CudaCompileResult& r) {
         EXPECT_EQ(r.kind, GpuImageKind::Ptx);
         EXPECT_NE(r.image.find(".target sm_90"), std::string::npos);
-        EXPECT_NE(r.image.find(".entry " + std::string(kGeneratedForceKernelSymbol)), std::string::npos);
+        EXPECT_NE(r.image.find(".entry " + std::string(kGeneratedForceKernelSymbol) + "("), std::string::npos);
+        // and the pass of scenes without meshes
+        EXPECT_NE(r.image.find(".entry " + std::string(kGeneratedNoMeshForceKernelSymbol) + "("), std::string::npos);
     }
     std::optional<jit::KernelCache> cache;
 };

@@ -12,6 +12,8 @@ namespace deme {
 
 // Name of the generated kernel; it takes the built-in force passes' arguments (kernels/Dynamics.cu).
 constexpr const char* kGeneratedForceKernelSymbol = "deme_force_pass_user";
+// The same pass for scenes without meshes (the triangle branch left out: kernels/ForcePassKernel.cuh).
+constexpr const char* kGeneratedNoMeshForceKernelSymbol = "deme_force_pass_user_no_mesh";
 // The program name NVRTC compiles the source under (and names in messages outside the user's code).
 constexpr const char* kGeneratedForceKernelProgram = "deme_generated_force_model.cu";
 

@@ -40,8 +40,8 @@ void DeviceForceModel::load(const std::string& call, const ModelLayout& layout, 
     // blocks for a few spilled values); DEME_CUDA_FORCE_REGS=0 takes the uncapped ones.
     const char* regs = std::getenv("DEME_CUDA_FORCE_REGS");
     const std::string variant = regs && std::string(regs) == "0" ? "" : "_r64";
-    // A built-in model's pass for scenes without meshes leaves the triangle branch out
-    // (kernels/ForcePassKernel.cuh); DEME_CUDA_NO_MESH_PASS=0 keeps the pass of every type.
+    // A pass for scenes without meshes leaves the triangle branch out (kernels/ForcePassKernel.cuh);
+    // DEME_CUDA_NO_MESH_PASS=0 keeps the pass of every type.
     const char* noMesh = std::getenv("DEME_CUDA_NO_MESH_PASS");
     const bool withNoMesh = !(noMesh && std::string(noMesh) == "0");
     std::string name;
@@ -66,6 +66,7 @@ void DeviceForceModel::load(const std::string& call, const ModelLayout& layout, 
     m_fromCache = r.cacheHit;
     m_module = CudaModule(call, r.image);
     m_kernel = m_module.kernel(kGeneratedForceKernelSymbol);
+    if (withNoMesh) m_noMeshKernel = m_module.kernel(kGeneratedNoMeshForceKernelSymbol);
 }
 
 void DeviceForceModel::upload(const SimState& s) {
