@@ -21,6 +21,13 @@ DEME_HD_INLINE bool insideBox(const double3& x, const double3& lo, const double3
 DEME_HD_INLINE bool finiteFloat(float x) { return fabsf(x) <= 3.402823466e38f; }
 DEME_HD_INLINE bool finite3(const float3& v) { return finiteFloat(v.x) && finiteFloat(v.y) && finiteFloat(v.z); }
 
+// |v|, the square root taken only where it is not zero: on a GPU a correctly rounded square root of
+// zero takes its slow path (a call), and owners at rest or not turning are common. The same value.
+DEME_HD_INLINE float lengthOrZero(const float3& v) {
+    const float l2 = dot(v, v);
+    return l2 > 0.f ? sqrtf(l2) : 0.f;
+}
+
 DEME_HD_INLINE float3 applyMask(const float3& free, const float3& prescribed, uint8_t mask) {
     return make_float3((mask & 1) ? prescribed.x : free.x, (mask & 2) ? prescribed.y : free.y,
                        (mask & 4) ? prescribed.z : free.z);
@@ -189,7 +196,7 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const OwnerStepInputs& 
 
     // Travel bounds the motion of every point of the geometry (analytical owners: see below).
     const bool travels = !fixed && !analytical;
-    const float speed = length(v) + length(w) * extent;
+    const float speed = lengthOrZero(v) + lengthOrZero(w) * extent;
     r.speed = travels ? speed : 0.f;
     const double travel = travel0 + (double)(r.speed * c.h);
     r.travelSinceDetection = travels ? travel - travelBaseline : -1.0;

@@ -41,9 +41,12 @@ DEME_HD inline float4 quatMultiply(const float4& a, const float4& b) {
                        a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z);
 }
 
+// One division and four products: on a GPU a correctly rounded division of a zero (the components of
+// an owner that has not turned about an axis) takes the division's slow path, one call per
+// component in every owner step.
 DEME_HD inline float4 quatNormalize(const float4& q) {
-    const float n = sqrtf(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-    return make_float4(q.x / n, q.y / n, q.z / n, q.w / n);
+    const float inv = 1.f / sqrtf(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    return make_float4(q.x * inv, q.y * inv, q.z * inv, q.w * inv);
 }
 
 // Largest squared half angle per step for which orientationStepSeries is accurate to float

@@ -309,6 +309,16 @@ for step in "${steps[@]}"; do
             ./build-gpu/bench/small_systems ${PROFILE_CASE:-drum} 20000 300 cuda sync >"$OUT/ncu-step.txt" 2>"$OUT/ncu-step.err"
         echo "profile-step ncu: rc $? ($(wc -l <"$OUT/ncu-step.txt") lines)"
         ;;
+    profile-sass)
+        # One kernel of a drum step instruction by instruction (PROFILE_KERNEL, default the fused owner
+        # step): Nsight Compute's source page as SASS with each instruction's executions and warp
+        # stall samples (where a lab-scale step's serial path spends its time), after the warm-up.
+        DEME_CUDA_GRAPHS=0 DEME_CUDA_PROFILE_FROM_STEP=20001 timeout 300 ncu --profile-from-start off --clock-control none \
+            -k regex:"${PROFILE_KERNEL:-deme_integrate_and_place}" --launch-count 1 --set full --import-source no \
+            --page source --print-source sass --csv \
+            ./build-gpu/bench/small_systems ${PROFILE_CASE:-drum} 20000 300 cuda sync >"$OUT/ncu-sass.csv" 2>"$OUT/ncu-sass.err"
+        echo "profile-sass ncu: rc $? ($(wc -l <"$OUT/ncu-sass.csv") lines)"
+        ;;
     compile)
         # A custom force model's Initialize cost on the GPU backend (NVRTC plus the host build).
         ./build-gpu/bench/model_compile - cuda 2>&1 | tee -a "$OUT/compile.jsonl" | tail -n 3

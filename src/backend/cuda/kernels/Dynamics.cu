@@ -184,17 +184,23 @@ __device__ inline OwnerStepStart loadOwnerStepStart(const StateView& s, const St
 // the owner's inputs. Where the kernel before is the force pass (inputsBeforeWait), which writes
 // none of the inputs -- they were last written by the step before, which had ended before that
 // pass could start -- they are read before the wait: their round trips overlap the pass's last
-// blocks instead of lengthening the step. Anything else before (no force pass where there are no
-// contacts: then the kernel before may be the last step's integration) and they are read after it.
-// Returns false where the batch has stopped.
+// blocks instead of lengthening the step. So is the batch's stop flag (the pass only reads it), so
+// that the loads' wait after the wait is one round trip, not two in a row. Anything else before (no
+// force pass where there are no contacts: then the kernel before may be the last step's
+// integration) and they are read after it. Returns false where the batch has stopped.
 __device__ inline bool startOwnerStep(const StateView& s, const StepBatchControl* ctl, const FamilyStepMotion* motion,
                                       const StepConstants& consts, const double* travelBaseline,
                                       const bodyID_t* ids, unsigned int n, unsigned int inputsBeforeWait,
                                       OwnerStepStart& st) {
-    if (inputsBeforeWait) st = loadOwnerStepStart(s, ctl, motion, consts, travelBaseline, ids, n);
+    unsigned int stop = 0u;
+    if (inputsBeforeWait) {
+        st = loadOwnerStepStart(s, ctl, motion, consts, travelBaseline, ids, n);
+        stop = ctl->stop;
+    }
     beginDependentKernel();
+    if (inputsBeforeWait) return stop == 0u;
     if (ctl->stop) return false;
-    if (!inputsBeforeWait) st = loadOwnerStepStart(s, ctl, motion, consts, travelBaseline, ids, n);
+    st = loadOwnerStepStart(s, ctl, motion, consts, travelBaseline, ids, n);
     return true;
 }
 
@@ -244,21 +250,37 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
     return st.owner;
 }
 
-// Whether this block is the grid's last to get here (`blocksDone` counts them, and is zero again
-// once the last has). Called by every thread of the block; each block's global writes before it are
-// visible to the last block after it.
+// A device-scope acquire-release fence: enough to order a block's writes before its count and a
+// count before the reads of the block that saw it last (a release and an acquire pattern of the
+// PTX memory model), and lighter than __threadfence's sequentially consistent one.
+__device__ inline void fenceAcqRelDevice() { asm volatile("fence.acq_rel.gpu;" ::: "memory"); }
+
+// Counts this block as done (thread 0, after the barrier that ends the block's writes); true in the
+// block that is the grid's last (`blocksDone` counts them, and is zero again once the last has).
+// Each block's global writes before the barrier are visible to the last one after this.
+__device__ inline bool countBlockDone(unsigned int* blocksDone) {
+    fenceAcqRelDevice();
+    if (atomicAdd(blocksDone, 1u) != gridDim.x - 1) return false;
+    *blocksDone = 0u;
+    fenceAcqRelDevice();  // between seeing the count and reading what the other blocks wrote
+    return true;
+}
+
+// Whether this block is the grid's last to get here, for every thread of the block.
 __device__ inline bool lastBlockToFinish(unsigned int* blocksDone) {
     __shared__ bool lastBlock;
     __syncthreads();
-    if (threadIdx.x == 0) {
-        __threadfence();
-        lastBlock = atomicAdd(blocksDone, 1u) == gridDim.x - 1;
-    }
+    if (threadIdx.x == 0) lastBlock = countBlockDone(blocksDone);
     __syncthreads();
-    if (!lastBlock) return false;
-    if (threadIdx.x == 0) *blocksDone = 0u;
-    __threadfence();  // between seeing the count and reading what the other blocks wrote
-    return true;
+    return lastBlock;
+}
+
+// The same where only thread 0 of the last block goes on: the other threads of every block return
+// once the block's writes are done, without waiting on the count's round trips, and their
+// multiprocessor's room is the next kernel's sooner.
+__device__ inline bool lastBlockToFinishThread0(unsigned int* blocksDone) {
+    __syncthreads();
+    return threadIdx.x == 0 && countBlockDone(blocksDone);
 }
 
 // Integration of the stepped owners, one thread each (integrateOwner); the spheres are placed by
@@ -295,7 +317,7 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
     if (blockIdx.x == 0)
         stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, h, domainDiagonal,
                              travelBaseline, red);
-    if (lastBlockToFinish(blocksDone) && threadIdx.x == 0) finishStep(ctl, red);
+    if (lastBlockToFinishThread0(blocksDone)) finishStep(ctl, red);
 }
 
 // Integration and placement in one kernel, for scenes without triangles (whose placement waits for
@@ -325,12 +347,14 @@ extern "C" __global__ void deme_integrate_and_place(StateView s, StepBatchContro
         stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h,
                              domainDiagonal, travelBaseline, red);
     }
-    if (!lastBlockToFinish(blocksDone)) return;
-    if (analyticalBlock == NO_ANALYTICAL_BLOCK) {
-        stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h,
-                             domainDiagonal, travelBaseline, red);
-        __syncthreads();  // the analytical owners' travel in the reduction before the tally
+    if (analyticalBlock != NO_ANALYTICAL_BLOCK || numAnalyticalOwners == 0) {
+        if (lastBlockToFinishThread0(blocksDone)) finishStep(ctl, red);
+        return;
     }
+    if (!lastBlockToFinish(blocksDone)) return;
+    stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h, domainDiagonal,
+                         travelBaseline, red);
+    __syncthreads();  // the analytical owners' travel in the reduction before the tally
     if (threadIdx.x == 0) finishStep(ctl, red);
 }
 
