@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "BackendFixture.h"
 #include "ScratchDirTest.h"
 #include "TestHelpers.h"
 #include "TestKernels.h"
@@ -93,6 +94,20 @@ TEST_F(CudaNvrtc, OptionsArchitectureAndSourceAreInTheKey) {
     EXPECT_NE(compile(kExamplePath, source, "compute_80").key, base);
     EXPECT_NE(compile(kExamplePath, source + "\n// changed\n", "compute_90").key, base);
     EXPECT_EQ(cache->stats().published, 4u);
+}
+
+// DEME_CUDA_DEFINES (a diagnostic switch: one binary times variants of a kernel) reaches every
+// compile as macros, and is in the cache key: a source that compiles only with the macros set.
+TEST_F(CudaNvrtc, DefinesFromTheEnvironmentReachEveryCompile) {
+    const std::string source =
+        "#if !defined(DEME_TEST_A) || DEME_TEST_B != 7\n#error macros missing\n#endif\n"
+        "extern \"C\" __global__ void k(float* x) { x[0] = 1.f; }\n";
+    const std::string without = deme_test::demeErrorMessage([&] { compile("defines.cu", source, "compute_90"); });
+    EXPECT_NE(without.find("macros missing"), std::string::npos) << without;
+    deme_test::ScopedEnvironmentVariable defines("DEME_CUDA_DEFINES", " DEME_TEST_A  DEME_TEST_B=7 ");
+    const CudaCompileResult with = compile("defines.cu", source, "compute_90");
+    EXPECT_FALSE(with.cacheHit);
+    EXPECT_NE(with.image.find(".entry k"), std::string::npos);
 }
 
 // CUBIN needs no GPU either: NVRTC assembles it itself.

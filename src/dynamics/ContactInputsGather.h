@@ -50,14 +50,13 @@ DEME_HD_INLINE double3 ownerPosition(const S& s, bodyID_t o) {
     return decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], s.frame);
 }
 
-// `type` is the contact's type; callers that pass a constant get a path without the other branches.
+// Contact c's inputs, its geometries a and b given (read where the caller chose). `type` is the
+// contact's type; callers that pass a constant get a path without the other branches.
 template <class S>
-DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type, float time, float ts,
+DEME_HD_INLINE void gatherContactInputsOfType(const S& s, bodyID_t a, bodyID_t b, uint8_t type, float time, float ts,
                                               ContactInputs& in) {
     const auto& ow = s.owners;
     const auto& k = s.cache;
-    const bodyID_t a = s.contacts.geomA[c];
-    const bodyID_t b = s.contacts.geomB[c];
     const bodyID_t oA = sphereOwner(s, a);
     const bodyID_t oB = geometryOwner(s, type, b);
 
@@ -130,6 +129,12 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type
     in.BOwner = oB;
     in.AGeo = a;
     in.BGeo = b;
+}
+
+template <class S>
+DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type, float time, float ts,
+                                              ContactInputs& in) {
+    gatherContactInputsOfType(s, s.contacts.geomA[c], s.contacts.geomB[c], type, time, ts, in);
 }
 
 template <class S>

@@ -97,12 +97,27 @@ struct ContactLoad {
 constexpr uint8_t ANY_CONTACT_TYPE = 0xFF;
 constexpr uint8_t NO_TRIANGLE_CONTACT = 0xFE;
 
-// Contact i's step. Returns whether the pair touches (overlap > 0: a real contact); `applied` says
-// whether `load` holds what it exerts (the model was called). `KnownType`: the contact's type where
-// the caller knows it (the other geometry branches drop out of that path), else ANY_CONTACT_TYPE.
+// What a contact's step reads first: its two geometries and, where the caller does not know it
+// (KnownType below), its type. Apart from the rest, so that the GPU's pass can read them before its
+// dependent launch's wait (no kernel of a step writes them; kernels/ForcePassKernel.cuh).
+struct ContactIds {
+    bodyID_t a, b;
+    uint8_t type;
+};
+
+template <uint8_t KnownType, class S>
+DEME_HD_INLINE ContactIds contactIds(const S& s, size_t i) {
+    const auto& c = s.contacts;
+    return ContactIds{c.geomA[i], c.geomB[i], KnownType < NO_TRIANGLE_CONTACT ? KnownType : c.type[i]};
+}
+
+// Contact i's step, its ids read (contactIds). Returns whether the pair touches (overlap > 0: a real
+// contact); `applied` says whether `load` holds what it exerts (the model was called). `KnownType`:
+// the contact's type where the caller knows it (the other geometry branches drop out of that path),
+// else ANY_CONTACT_TYPE.
 template <class Model, uint8_t KnownType, class S>
-DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, float time, float dt, bool& applied,
-                                      ContactLoad& load) {
+DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, const ContactIds& ids, float time, float dt,
+                                      bool& applied, ContactLoad& load) {
     constexpr bool SphereSphere = KnownType == SPHERE_SPHERE;
     auto& c = s.contacts;
     // The wildcard count is a constant of the model, so history loops unroll. A short history is
@@ -113,19 +128,19 @@ DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, float 
     constexpr unsigned int WC = kHistoryCopied ? W : 1;  // the copy's size (never zero)
     float* wc = W ? &c.wildcards[i * W] : nullptr;
     float copied[WC];
-    const uint8_t stored = KnownType < NO_TRIANGLE_CONTACT ? KnownType : c.type[i];
+    const uint8_t stored = ids.type;
     const uint8_t type = KnownType == NO_TRIANGLE_CONTACT
                              ? (stored == SPHERE_SPHERE ? (uint8_t)SPHERE_SPHERE : (uint8_t)SPHERE_ANALYTICAL)
                              : stored;
     bool gather = type != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
     if (!Model::kSeesApartPairs && (SphereSphere || type == SPHERE_SPHERE)) {
-        const double3 pA = sphereCentre(s, c.geomA[i]);
-        const double3 d = pA - nearestImage(s.frame.periodic, pA, sphereCentre(s, c.geomB[i]));
-        const double reach = (double)s.spheres.radius[c.geomA[i]] + (double)s.spheres.radius[c.geomB[i]];
+        const double3 pA = sphereCentre(s, ids.a);
+        const double3 d = pA - nearestImage(s.frame.periodic, pA, sphereCentre(s, ids.b));
+        const double reach = (double)s.spheres.radius[ids.a] + (double)s.spheres.radius[ids.b];
         gather = dot(d, d) < reach * reach * (1.0 + 1e-9);
     }
     ContactInputs in;
-    if (gather) gatherContactInputsOfType(s, i, type, time, dt, in);
+    if (gather) gatherContactInputsOfType(s, ids.a, ids.b, type, time, dt, in);
     const bool touching = gather && in.overlapDepth > 0.0;
     applied = Model::kSeesApartPairs ? gather : touching;
     if (!applied) {
@@ -161,12 +176,12 @@ DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, float 
     return touching;
 }
 
-// The same, where the caller knows at most that the pair is a sphere pair.
+// The same, where the caller knows at most that the pair is a sphere pair, its ids read here.
 template <class Model, bool SphereSphere, class S>
 DEME_HD_INLINE bool contactStep(S& s, const Model& model, size_t i, float time, float dt, bool& applied,
                                 ContactLoad& load) {
-    return contactStepOfType<Model, SphereSphere ? (uint8_t)SPHERE_SPHERE : ANY_CONTACT_TYPE>(s, model, i, time, dt,
-                                                                                              applied, load);
+    constexpr uint8_t kType = SphereSphere ? (uint8_t)SPHERE_SPHERE : ANY_CONTACT_TYPE;
+    return contactStepOfType<Model, kType>(s, model, i, contactIds<kType>(s, i), time, dt, applied, load);
 }
 
 }  // namespace deme

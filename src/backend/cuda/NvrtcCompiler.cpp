@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <optional>
@@ -151,6 +152,12 @@ CudaCompileResult compileCudaSource(const std::string& call, const std::string& 
 
     std::vector<std::string> nvrtcOptions = nvrtcBaseOptions(result.architecture);
     for (const std::string& d : options.defines) nvrtcOptions.push_back("-D" + d);
+    // A diagnostic switch: macros for every kernel compiled, space-separated (DEME_CUDA_DEFINES="A=1 B"),
+    // so that one binary can time variants of a kernel (tests/gpu/run.sh smallab); in the cache key.
+    if (const char* extra = std::getenv("DEME_CUDA_DEFINES")) {
+        std::istringstream words(extra);
+        for (std::string d; words >> d;) nvrtcOptions.push_back("-D" + d);
+    }
     nvrtcOptions.insert(nvrtcOptions.end(), options.extraOptions.begin(), options.extraOptions.end());
 
     const std::string suffix = result.kind == GpuImageKind::Ptx ? ".ptx" : ".cubin";

@@ -4,12 +4,14 @@
 // short kernels, and the gap between two of them is a good part of the step.
 //
 // Every kernel of such a chain calls beginDependentKernel() first, in every thread and before it
-// reads anything: griddepcontrol.wait returns once the kernel before it has finished and its writes
-// are visible. A block that returned before waiting could let its kernel finish before the one
-// before it, and the kernel after both would then see neither's writes in order; so the wait comes
-// before any early return. Then it lets the next kernel be scheduled: that kernel waits in turn,
-// so at most one kernel is ever ahead, spinning at its own wait. On older GPUs, and for kernels
-// launched the ordinary way, both instructions are no-ops.
+// reads anything the kernels before may have written: griddepcontrol.wait returns once the kernel
+// before it has finished and its writes are visible. (What no kernel that can be running then
+// writes may be read before: the owner step's inputs and the batch's stop flag after a force pass,
+// a contact's ids in the force pass; kernels/Dynamics.cu and ForcePassKernel.cuh say why.) A block that returned before
+// waiting could let its kernel finish before the one before it, and the kernel after both would then see neither's
+// writes in order; so the wait comes before any early return. Then it lets the next kernel be scheduled: that kernel
+// waits in turn, so at most one kernel is ever ahead, spinning at its own wait. On older GPUs, and for kernels launched
+// the ordinary way, both instructions are no-ops.
 #pragma once
 
 namespace deme {

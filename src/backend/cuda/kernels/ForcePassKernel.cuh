@@ -33,6 +33,13 @@ template <class Model, bool NoTriangles = false>
 __device__ inline void forcePassKernel(const StateView& s, const Model& model, const StepBatchControl* ctl,
                                        unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red) {
     using force_pass_detail::atomicAdd3;
+    constexpr uint8_t kType = NoTriangles ? NO_TRIANGLE_CONTACT : ANY_CONTACT_TYPE;
+    // The contact's ids are read before the wait (DependentLaunch.cuh): the kernel before (the last
+    // step's integration, or this step's load clearing or mesh rule) does not write them -- no kernel
+    // of a step does -- and the round trip overlaps that kernel's end instead of following the wait.
+    const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
+    ContactIds ids{0u, 0u, 0u};
+    if (i < s.numContacts) ids = contactIds<kType>(s, i);
     beginDependentKernel();
     if (ctl->stop) return;  // the same for every thread: no barrier is left waiting
     const float time = (float)ctl->time, dt = (float)ctl->dt;
@@ -46,13 +53,11 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, c
     if (threadIdx.x == 0) blockReal = blockSS = 0;
     __syncthreads();
 
-    const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
     if (i < s.numContacts) {
         const ContactView& c = s.contacts;
         bool applied;
         ContactLoad load;
-        constexpr uint8_t kType = NoTriangles ? NO_TRIANGLE_CONTACT : ANY_CONTACT_TYPE;
-        const bool touching = contactStepOfType<Model, kType>(s, model, i, time, dt, applied, load);
+        const bool touching = contactStepOfType<Model, kType>(s, model, i, ids, time, dt, applied, load);
         if (c.force) c.force[i] = applied ? load.force : make_float3(0.f);
         if (applied) {
             atomicAdd3(&s.owners.contactForce[load.ownerA], load.force);
@@ -68,7 +73,7 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, c
         }
         if (touching) {
             atomicAdd(&blockReal, 1u);
-            if (c.type[i] == SPHERE_SPHERE) atomicAdd(&blockSS, 1u);
+            if (ids.type == SPHERE_SPHERE) atomicAdd(&blockSS, 1u);
         }
     }
     __syncthreads();
