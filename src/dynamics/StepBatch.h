@@ -41,10 +41,10 @@ struct StepBatchControl {
     unsigned int stepsDone;  // steps completed in this batch
     unsigned long long realContactSum;  // pairs in contact, summed over the batch's steps
     StepTally last;                     // the last completed step's tally
-    // GPU only (the CPU times its phases on the host): the device clock at the start of the step's
-    // force phase, and the force phases' device time summed over the batch, in nanoseconds; read
-    // inside replayed step graphs, where events cannot time a part of the step.
-    unsigned long long forcePhaseStartNs, forcePhaseNs;
+    // GPU only (the CPU times its phases on the host): the device clock at the start and at the end
+    // of the step's force phase, and the force phases' device time summed over the batch, in
+    // nanoseconds; read inside replayed step graphs, where events cannot time a part of the step.
+    unsigned long long forcePhaseStartNs, forcePhaseEndNs, forcePhaseNs;
 };
 
 DEME_HD_INLINE StepBatchControl beginStepBatch(double time, double dt, double margin) {
@@ -55,7 +55,7 @@ DEME_HD_INLINE StepBatchControl beginStepBatch(double time, double dt, double ma
     c.stop = 0u;
     c.stepsDone = 0u;
     c.realContactSum = 0ull;
-    c.forcePhaseStartNs = c.forcePhaseNs = 0ull;
+    c.forcePhaseStartNs = c.forcePhaseEndNs = c.forcePhaseNs = 0ull;
     c.last.maxTravel = 0.0;
     c.last.maxSpeed = 0.f;
     c.last.firstFault = NO_FAULT;

@@ -104,6 +104,7 @@ __device__ inline void finishStep(StepBatchControl* ctl, StepReduction* red) {
     t.realSphereSphere = red->realSphereSphere;
     finishBatchStep(*ctl, t);
     clearReduction(red);
+    ctl->forcePhaseNs += ctl->forcePhaseEndNs - ctl->forcePhaseStartNs;  // stamped by integration's block 0
     ctl->forcePhaseStartNs = deviceClockNs();  // the next step's force phase starts once this kernel ends
 }
 
@@ -204,8 +205,54 @@ __device__ inline bool startOwnerStep(const StateView& s, const StepBatchControl
     return true;
 }
 
+#ifndef DEME_STEP_BLOCK_REDUCTION
+#define DEME_STEP_BLOCK_REDUCTION 1
+#endif
+
+// The step's maxima and first fault over the block's owners, into the step's reduction: combined
+// per warp (shuffles), then per block (shared memory, after a barrier: every thread of the block
+// calls this), and added by thread 0. The atomics on the reduction's few addresses are served one
+// after the other, and the block's count (lastBlockToFinish) waits for its own: one set a block
+// instead of one a warp is a quarter of them in blocks of 128.
+__device__ inline void addStepMaxima(double travel, float speed, unsigned int fault, unsigned int large,
+                                     StepReduction* red) {
+    for (int off = 16; off > 0; off >>= 1) {
+        travel = fmax(travel, __shfl_down_sync(0xFFFFFFFFu, travel, off));
+        speed = fmaxf(speed, __shfl_down_sync(0xFFFFFFFFu, speed, off));
+        fault = min(fault, __shfl_down_sync(0xFFFFFFFFu, fault, off));
+        large |= __shfl_down_sync(0xFFFFFFFFu, large, off);
+    }
+    const unsigned int lane = threadIdx.x & 31u, warp = threadIdx.x >> 5;
+    if (DEME_STEP_BLOCK_REDUCTION) {
+        __shared__ double warpTravel[32];
+        __shared__ float warpSpeed[32];
+        __shared__ unsigned int warpFault[32], warpLarge[32];
+        if (lane == 0u) {
+            warpTravel[warp] = travel;
+            warpSpeed[warp] = speed;
+            warpFault[warp] = fault;
+            warpLarge[warp] = large;
+        }
+        __syncthreads();
+        if (threadIdx.x != 0u) return;
+        for (unsigned int w = 1; w < (blockDim.x + 31u) / 32u; w++) {
+            travel = fmax(travel, warpTravel[w]);
+            speed = fmaxf(speed, warpSpeed[w]);
+            fault = min(fault, warpFault[w]);
+            large |= warpLarge[w];
+        }
+    } else if (lane != 0u) {
+        return;
+    }
+    if (travel > 0.0) atomicMax(&red->maxTravelBits, (unsigned long long)__double_as_longlong(travel));
+    if (speed > 0.f) atomicMax(&red->maxSpeedBits, __float_as_uint(speed));
+    if (fault != NO_FAULT) atomicMin(&red->firstFault, fault);
+    if (large) red->anyLargeRotation = 1u;
+}
+
 // Owner st.owner's step, the first part of the two integration kernels below, with the step's
-// maxima and first fault combined per warp. An owner whose rotation this step was too large for
+// maxima and first fault added to the step's reduction (addStepMaxima; every thread of the block
+// calls this). An owner whose rotation this step was too large for
 // the series step takes the exact (scalar) step at once (rare; the CPU does these in a sweep of
 // their own so that its main sweep vectorises). With clearLoads the
 // owner's contact loads are cleared once read, ready for the next step's force pass (not in a step
@@ -215,8 +262,10 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
                                            const StepConstants& consts, unsigned int clearLoads,
                                            StepReduction* red) {
     const size_t k = globalIndex();
-    // The force phase has ended (the kernels of a stream run one after the other).
-    if (k == 0) ctl->forcePhaseNs += deviceClockNs() - ctl->forcePhaseStartNs;
+    // The force phase has ended (the kernels of a stream run one after the other); the step's end
+    // adds it up (finishStep). A store, not an update here: reading the start back would put a round
+    // trip before this thread's owner, and block 0 would often be the step's last.
+    if (k == 0) ctl->forcePhaseEndNs = deviceClockNs();
     double travel = 0.0;
     float speed = 0.f;
     unsigned int fault = NO_FAULT, large = 0u;
@@ -235,18 +284,7 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
             s.owners.contactTorque[o] = make_float3(0.f);
         }
     }
-    for (int off = 16; off > 0; off >>= 1) {
-        travel = fmax(travel, __shfl_down_sync(0xFFFFFFFFu, travel, off));
-        speed = fmaxf(speed, __shfl_down_sync(0xFFFFFFFFu, speed, off));
-        fault = min(fault, __shfl_down_sync(0xFFFFFFFFu, fault, off));
-        large |= __shfl_down_sync(0xFFFFFFFFu, large, off);
-    }
-    if ((threadIdx.x & 31u) == 0u) {
-        if (travel > 0.0) atomicMax(&red->maxTravelBits, (unsigned long long)__double_as_longlong(travel));
-        if (speed > 0.f) atomicMax(&red->maxSpeedBits, __float_as_uint(speed));
-        if (fault != NO_FAULT) atomicMin(&red->firstFault, fault);
-        if (large) red->anyLargeRotation = 1u;
-    }
+    addStepMaxima(travel, speed, fault, large, red);
     return st.owner;
 }
 
