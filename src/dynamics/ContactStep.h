@@ -128,7 +128,7 @@ DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, const 
     constexpr unsigned int WC = kHistoryCopied ? W : 1;  // the copy's size (never zero)
     float* wc = W ? &c.wildcards[i * W] : nullptr;
     float copied[WC];
-    const uint8_t stored = ids.type;
+    const uint8_t stored = KnownType < NO_TRIANGLE_CONTACT ? KnownType : ids.type;  // a constant where known
     const uint8_t type = KnownType == NO_TRIANGLE_CONTACT
                              ? (stored == SPHERE_SPHERE ? (uint8_t)SPHERE_SPHERE : (uint8_t)SPHERE_ANALYTICAL)
                              : stored;

@@ -113,19 +113,19 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
     gather(out.type, &DetectedContacts::type);
     m_lastPairs = total;
     if (dormant) sortPairs(s, out);
-    releaseVector(m_keys);
     searchSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 }
 
 // Pairs into (A, B) order; the type follows from B (contactTypeOf), so it need not travel along.
+// The keys live only while they sort (held between detections they were 8 B per pair).
 void ContactDetector::sortPairs(const SimState& s, DetectedContacts& out) {
     const size_t n = out.size();
-    m_keys.resize(n);
-    for (size_t i = 0; i < n; i++) m_keys[i] = ((uint64_t)out.geomA[i] << 32) | (uint64_t)out.geomB[i];
-    std::sort(m_keys.begin(), m_keys.end());
+    std::vector<uint64_t> keys(n);
+    for (size_t i = 0; i < n; i++) keys[i] = ((uint64_t)out.geomA[i] << 32) | (uint64_t)out.geomB[i];
+    std::sort(keys.begin(), keys.end());
     for (size_t i = 0; i < n; i++) {
-        out.geomA[i] = (bodyID_t)(m_keys[i] >> 32);
-        out.geomB[i] = (bodyID_t)(m_keys[i] & 0xFFFFFFFFu);
+        out.geomA[i] = (bodyID_t)(keys[i] >> 32);
+        out.geomB[i] = (bodyID_t)(keys[i] & 0xFFFFFFFFu);
         out.type[i] = contactTypeOf(s, out.geomB[i]);
     }
 }

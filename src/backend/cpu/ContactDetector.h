@@ -72,7 +72,7 @@ class ContactDetector {
     void keepBinsUpTo(size_t bytes) { m_keepBinsUpTo = bytes; }
     // The scratch it keeps between detections (MemoryGroup::DETECTION).
     size_t bytes() const {
-        size_t b = m_dormant.bytes() + vectorBytes(m_keys) + m_spheres.bytes() + m_triangles.bytes() +
+        size_t b = m_dormant.bytes() + m_spheres.bytes() + m_triangles.bytes() +
                    vectorBytes(m_triLo) + vectorBytes(m_triHi) + vectorBytes(m_threadOut);
         for (const DetectedContacts& t : m_threadOut) b += t.bytes();
         return b;
@@ -82,7 +82,6 @@ class ContactDetector {
     // Sorts the pairs by (A, B) (with dormant partners, found from the moving side).
     void sortPairs(const SimState& s, DetectedContacts& out);
     DormantCache m_dormant;
-    std::vector<uint64_t> m_keys;
     // One detection's bins (rebuilt by every detection).
     BinRegistry m_spheres, m_triangles;
     size_t m_keepBinsUpTo = KEEP_REBUILT_ARRAYS_UP_TO;

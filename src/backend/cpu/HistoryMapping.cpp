@@ -97,10 +97,9 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
 void indexContactSet(SimState& s) {
     ContactArrays& c = s.contacts;
     const size_t nNew = c.size();
-    // Forces stored for another set (before a checkpoint was read into this one) read as none.
-    c.stored = StoredContactForces();
-    c.meshContacts.clear();
-    c.meshContactGroups.clear();
+    // Whatever was indexed for another set (before a checkpoint was read into this one, forces
+    // stored for it) is emptied: an installation has done so already, before its new arrays.
+    c.resetIndex();
     for (size_t i = 0; i < nNew; i++) {
         if (c.type[i] != SPHERE_TRIANGLE) continue;
         if (c.meshContacts.empty() || c.geomA[c.meshContacts.back()] != c.geomA[i])
