@@ -72,8 +72,8 @@ class ContactDetector {
     void keepBinsUpTo(size_t bytes) { m_keepBinsUpTo = bytes; }
     // The scratch it keeps between detections (MemoryGroup::DETECTION).
     size_t bytes() const {
-        size_t b = m_dormant.bytes() + m_spheres.bytes() + m_triangles.bytes() +
-                   vectorBytes(m_triLo) + vectorBytes(m_triHi) + vectorBytes(m_threadOut);
+        size_t b = m_dormant.bytes() + m_spheres.bytes() + m_triangles.bytes() + vectorBytes(m_triLo) +
+                   vectorBytes(m_triHi) + vectorBytes(m_threadOut);
         for (const DetectedContacts& t : m_threadOut) b += t.bytes();
         return b;
     }
