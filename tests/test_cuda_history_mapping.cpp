@@ -11,6 +11,8 @@
 #include <set>
 #include <vector>
 
+#include "BackendFixture.h"
+#include "backend/cpu/HistoryForm.h"
 #include "backend/cpu/HistoryMapping.h"
 
 #include "HostKernelEmulation.h"
@@ -46,6 +48,8 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
     size_t newPairs = 0;  // pairs new to the set: 0, or 7 between families 0 and 1
     for (int round = 0; round < 200; round++) {
         SCOPED_TRACE(round);
+        // The CPU's history in either form (backend/cpu/HistoryForm.h), read back densified.
+        const deme_test::ScopedEnvironmentVariable form("DEME_CONTACT_HISTORY", round % 2 ? "dense" : "pooled");
         // The CPU's state: spheres in families 0..2, one contact wildcard, a rule for families 0-1.
         SimState s;
         for (unsigned int i = 0; i < spheres; i++) {
@@ -116,6 +120,7 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         });
         EXPECT_EQ(persistent, c.persistent);
         EXPECT_EQ(meshState, c.meshState);
+        densifyHistory(s);  // the CPU may keep it pooled (backend/cpu/HistoryForm.h)
         EXPECT_EQ(wildcards, c.wildcards);
         newPairs +=
             std::count(wildcards.begin(), wildcards.end(), 7.f) + std::count(wildcards.begin(), wildcards.end(), 0.f);

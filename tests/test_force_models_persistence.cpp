@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "BackendFixture.h"
 #include "BondedCompression.h"
 #include "ForceModelTestUtil.h"
+#include "backend/cpu/HistoryForm.h"
 #include "backend/cpu/HistoryMapping.h"
 
 using namespace deme;
@@ -52,33 +54,43 @@ DetectedContacts detected(const std::vector<std::pair<bodyID_t, bodyID_t>>& pair
 // their wildcards and flag; a non-persistent pair that was not detected is gone; surviving pairs keep
 // their wildcards; new pairs start at 0, or at the value set for their families. The CPU's code on
 // its own, no simulation: a plain test (the GPU's merge against these rules: CudaPersistentMerge.*).
+// Both forms of the CPU's history (backend/cpu/HistoryForm.h), each set read back densified.
 TEST(PersistentHistoryMapping, KeepsPersistentPairsSorted) {
-    SimState s = fourSpheres();
-    s.wildcards.contactInit.push_back({0, 1, 0, 7.f});  // contacts between families 0 and 1 start at 7
-    setContacts(s, {{0, 1}, {0, 3}, {1, 2}, {2, 3}}, {1.f, 2.f, 3.f, 4.f}, {1, 1, 0, 1});
-    DetectedContacts fresh = detected({{0, 2}, {1, 2}, {1, 3}});
-    installDetectedContacts(s, fresh);
-    const ContactArrays& c = s.contacts;
-    const std::vector<bodyID_t> A = {0, 0, 0, 1, 1, 2}, B = {1, 2, 3, 2, 3, 3};
-    EXPECT_EQ(c.geomA, A);
-    EXPECT_EQ(c.geomB, B);
-    // (0,1) kept: 1; (0,2) new, families 0-1: 7; (0,3) kept: 2; (1,2) survived: 3; (1,3) new: 7;
-    // (2,3) kept: 4. The non-persistent (1,2) survived because it was detected.
-    EXPECT_EQ(c.wildcards, (std::vector<float>{1.f, 7.f, 2.f, 3.f, 7.f, 4.f}));
-    EXPECT_EQ(c.persistent, (std::vector<uint8_t>{1, 0, 1, 0, 0, 1}));
-    // No step has stored forces for the new set yet.
-    EXPECT_EQ(c.stored.count(), 0u);
-    // The detection's arrays, which took the old set's ids in the swap, hold nothing afterwards (a
-    // copy of every pair kept between detections otherwise: docs/memory.md).
-    EXPECT_EQ(fresh.bytes(), 0u);
+    for (const char* form : {"dense", "pooled"}) {
+        SCOPED_TRACE(form);
+        const ScopedEnvironmentVariable chosen("DEME_CONTACT_HISTORY", form);
+        SimState s = fourSpheres();
+        s.wildcards.contactInit.push_back({0, 1, 0, 7.f});  // contacts between families 0 and 1 start at 7
+        setContacts(s, {{0, 1}, {0, 3}, {1, 2}, {2, 3}}, {1.f, 2.f, 3.f, 4.f}, {1, 1, 0, 1});
+        DetectedContacts fresh = detected({{0, 2}, {1, 2}, {1, 3}});
+        installDetectedContacts(s, fresh);
+        const ContactArrays& c = s.contacts;
+        EXPECT_EQ(c.historyPooled(1), std::string(form) == "pooled");
+        const std::vector<bodyID_t> A = {0, 0, 0, 1, 1, 2}, B = {1, 2, 3, 2, 3, 3};
+        EXPECT_EQ(c.geomA, A);
+        EXPECT_EQ(c.geomB, B);
+        // (0,1) kept: 1; (0,2) new, families 0-1: 7; (0,3) kept: 2; (1,2) survived: 3; (1,3) new: 7;
+        // (2,3) kept: 4. The non-persistent (1,2) survived because it was detected.
+        SimState read = s;
+        densifyHistory(read);
+        EXPECT_EQ(read.contacts.wildcards, (std::vector<float>{1.f, 7.f, 2.f, 3.f, 7.f, 4.f}));
+        EXPECT_EQ(c.persistent, (std::vector<uint8_t>{1, 0, 1, 0, 0, 1}));
+        // No step has stored forces for the new set yet.
+        EXPECT_EQ(c.stored.count(), 0u);
+        // The detection's arrays, which took the old set's ids in the swap, hold nothing afterwards (a
+        // copy of every pair kept between detections otherwise: docs/memory.md).
+        EXPECT_EQ(fresh.bytes(), 0u);
 
-    // Released pairs are dropped at the next detection that does not find them.
-    s.contacts.persistent = {0, 0, 1, 0, 0, 0};
-    DetectedContacts none;
-    installDetectedContacts(s, none);
-    EXPECT_EQ(s.contacts.geomA, (std::vector<bodyID_t>{0}));
-    EXPECT_EQ(s.contacts.geomB, (std::vector<bodyID_t>{3}));
-    EXPECT_EQ(s.contacts.wildcards, (std::vector<float>{2.f}));
+        // Released pairs are dropped at the next detection that does not find them (the old set read
+        // from the pool where it is pooled).
+        s.contacts.persistent = {0, 0, 1, 0, 0, 0};
+        DetectedContacts none;
+        installDetectedContacts(s, none);
+        EXPECT_EQ(s.contacts.geomA, (std::vector<bodyID_t>{0}));
+        EXPECT_EQ(s.contacts.geomB, (std::vector<bodyID_t>{3}));
+        densifyHistory(s);
+        EXPECT_EQ(s.contacts.wildcards, (std::vector<float>{2.f}));
+    }
 }
 
 namespace {

@@ -111,13 +111,14 @@ DEME_HD_INLINE ContactIds contactIds(const S& s, size_t i) {
     return ContactIds{c.geomA[i], c.geomB[i], KnownType < NO_TRIANGLE_CONTACT ? KnownType : c.type[i]};
 }
 
-// Contact i's step, its ids read (contactIds). Returns whether the pair touches (overlap > 0: a real
-// contact); `applied` says whether `load` holds what it exerts (the model was called). `KnownType`:
-// the contact's type where the caller knows it (the other geometry branches drop out of that path),
-// else ANY_CONTACT_TYPE.
+// Contact i's step, its ids read (contactIds) and its W history floats at `wc` (the set's own
+// wildcards, or the CPU's copy of a pooled history: state/PooledHistory.h). Returns whether the
+// pair touches (overlap > 0: a real contact); `applied` says whether `load` holds what it exerts
+// (the model was called). `KnownType`: the contact's type where the caller knows it (the other
+// geometry branches drop out of that path), else ANY_CONTACT_TYPE.
 template <class Model, uint8_t KnownType, class S>
-DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, const ContactIds& ids, float time, float dt,
-                                      bool& applied, ContactLoad& load) {
+DEME_HD_INLINE bool contactStepWithHistory(S& s, const Model& model, size_t i, const ContactIds& ids, float* wc,
+                                           float time, float dt, bool& applied, ContactLoad& load) {
     constexpr bool SphereSphere = KnownType == SPHERE_SPHERE;
     auto& c = s.contacts;
     // The wildcard count is a constant of the model, so history loops unroll. A short history is
@@ -126,7 +127,6 @@ DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, const 
     constexpr unsigned int W = Model::kNumContactWildcards;
     constexpr bool kHistoryCopied = W > 0 && W <= MAX_COPIED_HISTORY;
     constexpr unsigned int WC = kHistoryCopied ? W : 1;  // the copy's size (never zero)
-    float* wc = W ? &c.wildcards[i * W] : nullptr;
     float copied[WC];
     const uint8_t stored = KnownType < NO_TRIANGLE_CONTACT ? KnownType : ids.type;  // a constant where known
     const uint8_t type = KnownType == NO_TRIANGLE_CONTACT
@@ -174,6 +174,15 @@ DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, const 
     load.ownerA = in.AOwner;
     load.ownerB = in.BOwner;
     return touching;
+}
+
+// The same, with the history where the set keeps it, per pair (the GPU's sets; the CPU's dense form).
+template <class Model, uint8_t KnownType, class S>
+DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, const ContactIds& ids, float time, float dt,
+                                      bool& applied, ContactLoad& load) {
+    constexpr unsigned int W = Model::kNumContactWildcards;
+    float* wc = W ? &s.contacts.wildcards[i * W] : nullptr;
+    return contactStepWithHistory<Model, KnownType>(s, model, i, ids, wc, time, dt, applied, load);
 }
 
 // The same, where the caller knows at most that the pair is a sphere pair, its ids read here.

@@ -68,8 +68,11 @@ DEME_HD_INLINE bool isLocalMinimum(const S& s, const double3& x, const MeshCandi
 // sphere's triangle contacts are the n contacts from `first` on (contacts are sorted by sphere, and a
 // sphere's triangle contacts come last). Only overlapping contacts can count; those are sorted in
 // `cand`, which has room for `capacity`. Returns false (changing nothing) if they do not fit.
-template <class S>
-DEME_HD_INLINE bool resolveSphereMeshContacts(S& s, size_t first, size_t n, MeshCandidate* cand, size_t capacity) {
+// `historyAt(i)`: contact i's W history floats (the CPU's pooled form gives every sphere-triangle
+// pair a slot, state/PooledHistory.h).
+template <class S, class HistoryAt>
+DEME_HD_INLINE bool resolveSphereMeshContactsWith(S& s, size_t first, size_t n, MeshCandidate* cand, size_t capacity,
+                                                  const HistoryAt& historyAt) {
     auto& c = s.contacts;
     const bodyID_t a = c.geomA[first];
     const double3 x = sphereCentre(s, a);
@@ -131,10 +134,24 @@ DEME_HD_INLINE bool resolveSphereMeshContacts(S& s, size_t first, size_t n, Mesh
             }
         }
         if (best == n) continue;
-        for (unsigned int w = 0; w < W; w++)
-            c.wildcards[(size_t)start.contact * W + w] = c.wildcards[(first + best) * W + w];
+        float* to = historyAt(start.contact);
+        const float* from = historyAt(first + best);
+        for (unsigned int w = 0; w < W; w++) to[w] = from[w];
     }
     return true;
+}
+
+// A contact's history where the set keeps W floats per pair.
+struct HistoryInSet {
+    float* wildcards;
+    unsigned int W;
+    DEME_HD_INLINE float* operator()(size_t i) const { return wildcards + i * W; }
+};
+
+template <class S>
+DEME_HD_INLINE bool resolveSphereMeshContacts(S& s, size_t first, size_t n, MeshCandidate* cand, size_t capacity) {
+    return resolveSphereMeshContactsWith(s, first, n, cand, capacity,
+                                         HistoryInSet{s.contacts.wildcards, s.numWildcards});
 }
 
 }  // namespace deme

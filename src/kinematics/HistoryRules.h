@@ -10,6 +10,7 @@
 
 #include "dynamics/ContactInputsGather.h"
 #include "state/ContactInitRule.h"
+#include "state/HistorySlot.h"
 
 namespace deme {
 
@@ -61,24 +62,41 @@ DEME_HD_INLINE unsigned int mergedSlotOfOld(const ContactKeys& fresh, const Cont
 // What the new set takes over from the old one.
 struct OldContactHistory {
     ContactKeys keys;
-    const float* wildcards;  // W per pair
+    const float* wildcards;  // W per pair, or W per slot where `slot` is given
     const uint8_t* meshState;
     const uint8_t* persistent;  // null: none of the old pairs is persistent
     unsigned int W;
     const ContactInitRule* rules;  // initial wildcards of pairs new to the set
     unsigned int numRules;
+    // The CPU's pooled history (state/PooledHistory.h): each pair's slot in `wildcards`, or
+    // NO_HISTORY_SLOT where it has none; null where `wildcards` has W floats per pair.
+    const uint32_t* slot = nullptr;
 };
 
-// 2. The history of pair i of the new set (keys `fresh`, types `freshType`): its W wildcards, mesh
-// state and persistent flag. `s` gives the geometries' owners and families.
-template <class S>
-DEME_HD_INLINE void carryPairHistory(const S& s, const ContactKeys& fresh, const uint8_t* freshType,
-                                     const OldContactHistory& old, unsigned int i, float* wildcards, uint8_t& meshState,
-                                     uint8_t& persistent) {
+// Old pair `at`'s W floats, or null where it has no history (all zeros).
+DEME_HD_INLINE const float* oldPairHistory(const OldContactHistory& old, unsigned int at) {
+    if (!old.slot) return old.wildcards + (size_t)at * old.W;
+    const uint32_t k = old.slot[at];
+    return k == NO_HISTORY_SLOT ? nullptr : old.wildcards + (size_t)k * old.W;
+}
+
+// 2a. Where pair i of the new set (keys `fresh`) was in the old set, or old.keys.n where it is new.
+DEME_HD_INLINE unsigned int oldIndexOfPair(const ContactKeys& fresh, const OldContactHistory& old, unsigned int i) {
     const uint64_t key = pairKey(fresh.geomA[i], fresh.geomB[i]);
     const unsigned int at = keyLowerBound(old.keys, key);
-    if (keyAt(old.keys, at, key)) {
-        for (unsigned int w = 0; w < old.W; w++) wildcards[w] = old.wildcards[(size_t)at * old.W + w];
+    return keyAt(old.keys, at, key) ? at : old.keys.n;
+}
+
+// 2b. The history of pair i of the new set (keys `fresh`, types `freshType`), `at` its index in the
+// old set (oldIndexOfPair): its W wildcards, mesh state and persistent flag. `s` gives the
+// geometries' owners and families.
+template <class S>
+DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const uint8_t* freshType,
+                                    const OldContactHistory& old, unsigned int i, unsigned int at, float* wildcards,
+                                    uint8_t& meshState, uint8_t& persistent) {
+    if (at < old.keys.n) {
+        const float* h = oldPairHistory(old, at);
+        for (unsigned int w = 0; w < old.W; w++) wildcards[w] = h ? h[w] : 0.f;
         meshState = old.meshState[at];
         persistent = old.persistent ? old.persistent[at] : (uint8_t)0;
         return;
@@ -93,6 +111,14 @@ DEME_HD_INLINE void carryPairHistory(const S& s, const ContactKeys& fresh, const
         const ContactInitRule& rule = old.rules[r];
         if ((rule.a == fa && rule.b == fb) || (rule.a == fb && rule.b == fa)) wildcards[rule.index] = rule.value;
     }
+}
+
+// 2. Both: the history of pair i of the new set.
+template <class S>
+DEME_HD_INLINE void carryPairHistory(const S& s, const ContactKeys& fresh, const uint8_t* freshType,
+                                     const OldContactHistory& old, unsigned int i, float* wildcards, uint8_t& meshState,
+                                     uint8_t& persistent) {
+    pairHistoryFrom(s, fresh, freshType, old, i, oldIndexOfPair(fresh, old, i), wildcards, meshState, persistent);
 }
 
 }  // namespace deme

@@ -46,6 +46,7 @@ void countStateMemory(const SimState& s, MemoryStats& m) {
     forEachContactField(s.contacts, s.contacts, [&](const auto& v, const auto&, FieldRole) {
         addHost(m, MemoryGroup::CONTACTS, vectorBytes(v));
     });
+    addHost(m, MemoryGroup::CONTACTS, s.contacts.pooled.bytes());
     for (const std::vector<uint32_t>& v : s.contacts.stored.index) addHost(m, MemoryGroup::CONTACTS, vectorBytes(v));
     for (const std::vector<float3>& v : s.contacts.stored.force) addHost(m, MemoryGroup::CONTACTS, vectorBytes(v));
     for (const std::vector<float>& w : s.wildcards.owner) addHost(m, MemoryGroup::WILDCARDS, vectorBytes(w));

@@ -124,7 +124,12 @@ SimState& Simulation::editStateWithContacts() {
 }
 
 void Simulation::markHostBehind() {
-    if (!m_backends.dynamics->onGpu()) return;  // the CPU steps the host state itself
+    if (!m_backends.dynamics->onGpu()) {
+        // The CPU steps the host state itself; only the contacts' history may be in the steps'
+        // pooled form (backend/cpu/HistoryForm.h), which a reader of the set has made dense.
+        if (!m_backendContactsStale) m_hostContactsStale = true;
+        return;
+    }
     m_hostStale = true;
     // Contacts the host edited and has not sent yet stay until the upload that sends them.
     if (m_backendContactsStale) return;

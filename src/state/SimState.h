@@ -12,6 +12,7 @@
 
 #include "physics/CompactPosition.h"
 #include "state/ContactInitRule.h"
+#include "state/PooledHistory.h"
 #include "state/StateFields.h"
 
 namespace deme {
@@ -74,6 +75,12 @@ constexpr size_t KEEP_REBUILT_ARRAYS_UP_TO = 32u << 20;
 struct ContactArrays : ContactFields<HostArray> {
     size_t size() const { return geomA.size(); }
     StoredContactForces stored;  // the CPU's (a GPU run's host copy has `force` per contact)
+    // The CPU steps' pooled form of the history (state/PooledHistory.h), in use where `wildcards`
+    // is empty and the pool has a slot per pair: `wildcards` wins wherever it holds the history.
+    PooledHistory pooled;
+    bool historyPooled(unsigned int W) const {
+        return W > 0 && size() > 0 && wildcards.empty() && pooled.slot.size() == size();
+    }
     // Empties what belongs to one set as it was indexed (backend/cpu/HistoryMapping.h): the
     // sphere-triangle runs, the force reduction's index and windows, the stored forces; their
     // memory is let go too where it is large (KEEP_REBUILT_ARRAYS_UP_TO) or `release` says so.

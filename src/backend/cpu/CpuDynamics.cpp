@@ -4,6 +4,7 @@
 
 #include "backend/cpu/CpuKinematics.h"
 #include "backend/cpu/ForcePass.h"
+#include "backend/cpu/HistoryForm.h"
 #include "backend/cpu/HistoryMapping.h"
 #include "backend/cpu/Integration.h"
 #include "backend/cpu/MeshContacts.h"
@@ -16,7 +17,8 @@ namespace deme {
 CpuDynamics::CpuDynamics(SimState& s, CpuForceModel model, CpuKinematics& kinematics)
     : m_s(s), m_model(std::move(model)), m_kinematics(kinematics) {}
 
-void CpuDynamics::upload(const SimState& s, bool /*withContacts*/) {
+void CpuDynamics::upload(const SimState& s, bool withContacts) {
+    if (withContacts) m_chooseHistoryForm = true;
     // The steps run on the host state itself (its contacts too); travel is measured from now until the next set.
     m_baseline = s.owners.travel;
     m_orderBaseline = s.owners.travel;
@@ -27,6 +29,10 @@ StepBatchResult CpuDynamics::steps(const StepBatchRequest& batch, const Settings
                                    const FamilyRules& families, TimingStats& timing) {
     StepBatchControl c = beginStepBatch(batch.time, settings.dt, batch.margin);
     StepBatchResult r;
+    // A history a host reader, an edit or a restart left dense is pooled where that pays (an
+    // installation chooses for its own set).
+    if (m_chooseHistoryForm) chooseHistoryForm(m_s);
+    m_chooseHistoryForm = false;
     while (c.stepsDone < batch.maxSteps && !c.stop) {
         // Per-contact forces are kept by the step a call may end after (as on the GPU): every
         // pair's where most touched in the step before, else those of the pairs with a force.
@@ -83,6 +89,10 @@ StepOutcome CpuDynamics::step(double time, const Settings& settings, const Famil
     return out;
 }
 
+void CpuDynamics::downloadContacts(SimState& s) {
+    if (densifyHistory(s)) m_chooseHistoryForm = true;
+}
+
 void CpuDynamics::markOrderBaseline() { m_orderBaseline = m_s.owners.travel; }
 
 double CpuDynamics::maxTravelSinceOrder() {
@@ -109,6 +119,7 @@ bool CpuDynamics::resumeContactSet(const SimState& s, const std::vector<double>&
     // The steps run on the host state, whose contact set is the restored one: only the bookkeeping
     // that an installation builds is missing.
     indexContactSet(m_s);
+    m_chooseHistoryForm = true;
     m_baseline = travel;
     m_orderBaseline = travel;
     return true;

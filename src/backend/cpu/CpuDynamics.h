@@ -23,7 +23,8 @@ class CpuDynamics : public DynamicsBackend {
 
     void upload(const SimState& s, bool withContacts) override;
     void download(SimState&) override {}
-    void downloadContacts(SimState&) override {}
+    // The steps' history, pooled or not, into the form every host reader takes (HistoryForm.h).
+    void downloadContacts(SimState& s) override;
     void uploadTrackerLoads(const SimState&) override {}
     void beginRun(const Settings&, const FamilyRules&) override { m_subsetStale = true; }
     StepBatchResult steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules& families,
@@ -60,6 +61,9 @@ class CpuDynamics : public DynamicsBackend {
     IntegrationSubset m_subset;
     bool m_subsetStale = true;
     size_t m_lastRealContacts = 0;  // pairs touching in the last force pass (how to store forces)
+    // Whether the set's history was made dense outside an installation (a host reader, an edit, a
+    // restart) and its form is to be chosen before the next steps (backend/cpu/HistoryForm.h).
+    bool m_chooseHistoryForm = true;
     // Owners' travel at the snapshot of the set in use (baseline) and of the last order.
     std::vector<double> m_baseline, m_orderBaseline;
 };

@@ -20,12 +20,15 @@ namespace deme {
 // One contact of the set (dynamics/ContactStep.h): its force on A and torques about A's and B's
 // owners, into the chunk's arrays. Instantiated separately for sphere-sphere contacts (most of any
 // granular scene) so that the compiler drops the other geometry branches from that path.
+// `history`: the pair's W floats (in the set, or the chunk's copy of a pooled history).
 template <class Model, bool SphereSphere>
-DEME_HD_INLINE bool forcePassContact(SimState& s, const Model& model, size_t i, float time, float dt, float3& force,
-                                     float3& torqueA, float3& torqueB) {
+DEME_HD_INLINE bool forcePassContact(SimState& s, const Model& model, size_t i, float* history, float time, float dt,
+                                     float3& force, float3& torqueA, float3& torqueB) {
+    constexpr uint8_t kType = SphereSphere ? (uint8_t)SPHERE_SPHERE : ANY_CONTACT_TYPE;
     bool applied;
     ContactLoad load;
-    const bool touching = contactStep<Model, SphereSphere>(s, model, i, time, dt, applied, load);
+    const bool touching =
+        contactStepWithHistory<Model, kType>(s, model, i, contactIds<kType>(s, i), history, time, dt, applied, load);
     force = applied ? load.force : make_float3(0.f);
     torqueA = applied ? load.torqueA : make_float3(0.f);
     torqueB = applied ? load.torqueB : make_float3(0.f);
@@ -83,6 +86,35 @@ inline void storeChunkForces(StoredContactForces& st, int thread, size_t b, size
     st.force[thread].insert(st.force[thread].end(), value, value + count);
 }
 
+// A chunk's pooled histories (state/PooledHistory.h) copied out for the steps, zeros where a pair
+// has no slot ...
+template <unsigned int W>
+inline void fetchPooledHistory(const PooledHistory& p, size_t b, size_t m, float* history) {
+    std::fill(history, history + m * W, 0.f);
+    const uint32_t* slot = p.slot.data() + b;
+    const float* values = p.values.data();
+    for (size_t j = 0; j < m; j++)
+        if (slot[j] != NO_HISTORY_SLOT)
+            for (unsigned int w = 0; w < W; w++) history[j * W + w] = values[(size_t)slot[j] * W + w];
+}
+
+// ... and back: into the pair's slot, or, for a pair without one that now has a history, into the
+// thread's pending list (PooledHistory::commitPending gives it a slot after the pass).
+template <unsigned int W>
+inline void keepPooledHistory(PooledHistory& p, int thread, size_t b, size_t m, const float* history) {
+    const uint32_t* slot = p.slot.data() + b;
+    float* values = p.values.data();
+    for (size_t j = 0; j < m; j++) {
+        const float* h = history + j * W;
+        if (slot[j] != NO_HISTORY_SLOT) {
+            for (unsigned int w = 0; w < W; w++) values[(size_t)slot[j] * W + w] = h[w];
+        } else if (!historyIsZero<W>(h)) {
+            p.pendingPair[thread].push_back((uint32_t)(b + j));
+            p.pendingValues[thread].insert(p.pendingValues[thread].end(), h, h + W);
+        }
+    }
+}
+
 // One force pass. Each block of owners takes its contacts in chunks: the loads of a chunk are
 // computed (sphere pairs as one vectorisable sweep), then added in contact order to A's owner and to
 // the window slot of B's owner. Every owner thus sums its loads in a fixed order (A's contacts here,
@@ -111,11 +143,16 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
         std::vector<float3>().swap(c.force);
     const uint32_t* bSlot = c.bSlot.data();
     WindowLoad* window = c.window.data();
+    // The history: W floats per pair in the set, or pooled (the chunk works on a copy).
+    constexpr unsigned int W = Model::kNumContactWildcards;
+    const bool pooled = c.historyPooled(W);
+    if (pooled) c.pooled.preparePending(T);
     size_t real = 0, realSS = 0;
 #pragma omp parallel num_threads(T) if (T > 1) reduction(+ : real, realSS)
     {
         const int thread = T > 1 ? cpuThreadIndex() : 0;
         float3 chunkForce[FORCE_PASS_CHUNK], torqueA[FORCE_PASS_CHUNK], torqueB[FORCE_PASS_CHUNK];
+        std::vector<float> chunkHistory(pooled ? FORCE_PASS_CHUNK * W : 0);
         size_t firstBlock, lastBlock;
         forcePassThreadBlocks(s, thread, T, firstBlock, lastBlock);
         for (size_t k = firstBlock; k < lastBlock; k++) {
@@ -127,18 +164,22 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
             float3 F = make_float3(0.f), tau = make_float3(0.f);
             for (size_t b = begin; b < end; b += FORCE_PASS_CHUNK) {
                 const size_t m = std::min(FORCE_PASS_CHUNK, end - b);
+                float* history = pooled ? chunkHistory.data() : W ? c.wildcards.data() + b * W : nullptr;
+                if (pooled) fetchPooledHistory<W>(c.pooled, b, m, history);
                 // The forces go straight to the per-pair array where the step keeps every pair's.
                 float3* force = storeAll ? c.force.data() + b : chunkForce;
                 // Sphere pairs first, as one vectorisable sweep (masked lanes for other types) ...
 #pragma omp simd reduction(+ : realSS)
                 for (size_t j = 0; j < m; j++)
                     if (c.type[b + j] == SPHERE_SPHERE)
-                        realSS +=
-                            forcePassContact<Model, true>(s, model, b + j, t, h, force[j], torqueA[j], torqueB[j]);
+                        realSS += forcePassContact<Model, true>(s, model, b + j, W ? history + j * W : nullptr, t, h,
+                                                                force[j], torqueA[j], torqueB[j]);
                 // ... then the rest ...
                 for (size_t j = 0; j < m; j++)
                     if (c.type[b + j] != SPHERE_SPHERE)
-                        real += forcePassContact<Model, false>(s, model, b + j, t, h, force[j], torqueA[j], torqueB[j]);
+                        real += forcePassContact<Model, false>(s, model, b + j, W ? history + j * W : nullptr, t, h,
+                                                               force[j], torqueA[j], torqueB[j]);
+                if (pooled) keepPooledHistory<W>(c.pooled, thread, b, m, history);
                 // ... and the loads, in contact order, onto A's owner and B's slot.
                 for (size_t j = 0; j < m; j++) {
                     const size_t i = b + j;
@@ -167,6 +208,7 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
             }
         }
     }
+    if (pooled) c.pooled.commitPending(W);
     return ForcePassResult{real + realSS, realSS};
 }
 

@@ -1,8 +1,12 @@
 #include "backend/cpu/HistoryMapping.h"
 
 #include <algorithm>
+#include <string>
+
+#include <deme/Error.h>
 
 #include "backend/cpu/ForcePass.h"
+#include "backend/cpu/HistoryForm.h"
 #include "kinematics/HistoryRules.h"
 #include "parallel/Parallel.h"
 #include "runtime/MemoryAccounting.h"
@@ -54,6 +58,83 @@ void mergePersistentPairs(const ContactArrays& c, DetectedContacts& fresh) {
 
 }  // namespace
 
+namespace {
+
+// Pair i's index in the old set (oldIndexOfPair) with, in the top bit, whether it keeps a slot.
+constexpr uint32_t KEEPS_SLOT = 0x80000000u;
+
+// The new set's history, W floats per pair, where the set in use keeps that form (a settled bed:
+// most pairs touch): one pass, no other array. The form is chosen afterwards (chooseHistoryForm).
+void mapDenseHistory(const SimState& s, const DetectedContacts& fresh, const OldContactHistory& old,
+                     std::vector<float>& wildcards, std::vector<uint8_t>& meshState, std::vector<uint8_t>& persistent) {
+    const size_t nNew = fresh.size();
+    const unsigned int W = old.W;
+    const ContactKeys freshKeys = keysOf(fresh.geomA, fresh.geomB);
+    wildcards.resize(nNew * W);
+#pragma omp parallel for schedule(static) if (nNew > PARALLEL_MIN_ITEMS)
+    for (size_t i = 0; i < nNew; i++)
+        carryPairHistory(s, freshKeys, fresh.type.data(), old, (unsigned int)i, wildcards.data() + i * W, meshState[i],
+                         persistent[i]);
+}
+
+// The same where the set in use is pooled, or there is none: first each pair's old index and
+// whether it has a history (counted per thread's share), then the history in the form that count
+// picks (poolsHistory): W floats per pair, or `slot` and a pool of the pairs that have one.
+// Returns whether it pooled.
+bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, const OldContactHistory& old,
+                            std::vector<float>& wildcards, std::vector<uint32_t>& slot, std::vector<uint8_t>& meshState,
+                            std::vector<uint8_t>& persistent) {
+    const size_t nNew = fresh.size();
+    const unsigned int W = old.W;
+    const ContactKeys freshKeys = keysOf(fresh.geomA, fresh.geomB);
+    const int T = nNew > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
+    std::vector<uint32_t>& at = slot;
+    at.resize(nNew);
+    std::vector<size_t> first(T + 1, 0);
+#pragma omp parallel num_threads(T) if (T > 1)
+    {
+        const int t = T > 1 ? cpuThreadIndex() : 0;
+        std::vector<float> h(W);
+        size_t b, e, k = 0;
+        threadRange(nNew, t, T, b, e);
+        for (size_t i = b; i < e; i++) {
+            const unsigned int j = oldIndexOfPair(freshKeys, old, (unsigned int)i);
+            pairHistoryFrom(s, freshKeys, fresh.type.data(), old, (unsigned int)i, j, h.data(), meshState[i],
+                            persistent[i]);
+            const bool keep = pairNeedsHistorySlot(fresh.type[i], h.data(), W);
+            at[i] = (uint32_t)j | (keep ? KEEPS_SLOT : 0u);
+            k += keep;
+        }
+        first[t + 1] = k;
+    }
+    for (int t = 0; t < T; t++) first[t + 1] += first[t];
+    const bool pooled = nNew > 0 && poolsHistory(nNew, first[T]);
+    wildcards.resize(pooled ? first[T] * W : nNew * W);
+#pragma omp parallel num_threads(T) if (T > 1)
+    {
+        const int t = T > 1 ? cpuThreadIndex() : 0;
+        size_t b, e, next = first[t];
+        threadRange(nNew, t, T, b, e);
+        uint8_t ms, ps;  // (the same as the first pass's)
+        for (size_t i = b; i < e; i++) {
+            const bool keep = (at[i] & KEEPS_SLOT) != 0;
+            const unsigned int j = at[i] & ~KEEPS_SLOT;
+            if (!pooled) {
+                pairHistoryFrom(s, freshKeys, fresh.type.data(), old, (unsigned int)i, j, &wildcards[i * W], ms, ps);
+            } else if (keep) {
+                pairHistoryFrom(s, freshKeys, fresh.type.data(), old, (unsigned int)i, j, &wildcards[next * W], ms, ps);
+                at[i] = (uint32_t)next++;
+            } else {
+                at[i] = NO_HISTORY_SLOT;
+            }
+        }
+    }
+    if (!pooled) releaseVector(slot);
+    return pooled;
+}
+
+}  // namespace
+
 void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     ContactArrays& c = s.contacts;
     const unsigned int W = s.numWildcards;
@@ -64,26 +145,39 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     const bool anyPersistent = std::find(c.persistent.begin(), c.persistent.end(), 1) != c.persistent.end();
     if (anyPersistent) mergePersistentPairs(c, fresh);
     const size_t nNew = fresh.size();
+    if (c.size() >= KEEPS_SLOT || nNew >= KEEPS_SLOT)
+        throwError("DoDynamics", "a contact set of " + std::to_string(std::max(c.size(), nNew)) +
+                                     " pairs is more than the CPU backend indexes (2^31)");
+    const bool oldPooled = c.historyPooled(W);
     const OldContactHistory old{keysOf(c.geomA, c.geomB),
-                                c.wildcards.data(),
+                                oldPooled ? c.pooled.values.data() : c.wildcards.data(),
                                 c.meshState.data(),
                                 anyPersistent ? c.persistent.data() : nullptr,
                                 W,
                                 s.wildcards.contactInit.data(),
-                                (unsigned int)s.wildcards.contactInit.size()};
-    const ContactKeys freshKeys = keysOf(fresh.geomA, fresh.geomB);
-    std::vector<float> wildcards(nNew * W);
+                                (unsigned int)s.wildcards.contactInit.size(),
+                                oldPooled ? c.pooled.slot.data() : nullptr};
+    std::vector<float> wildcards;
+    std::vector<uint32_t> slot;
     std::vector<uint8_t> meshState(nNew), persistent(nNew);
-#pragma omp parallel for schedule(static) if (nNew > PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < nNew; i++)
-        carryPairHistory(s, freshKeys, fresh.type.data(), old, (unsigned int)i, wildcards.data() + i * W, meshState[i],
-                         persistent[i]);
+    // The history's form (backend/cpu/HistoryForm.h): a dense set is mapped dense and pooled after
+    // where few of its pairs have a history; otherwise the form is chosen before the history is made.
+    const bool mapDense = W == 0 || (!oldPooled && c.size() > 0);
+    const bool pooled = !mapDense && mapHistoryChoosingForm(s, fresh, old, wildcards, slot, meshState, persistent);
+    if (mapDense) mapDenseHistory(s, fresh, old, wildcards, meshState, persistent);
     c.geomA.swap(fresh.geomA);
     c.geomB.swap(fresh.geomB);
     c.type.swap(fresh.type);
-    c.wildcards.swap(wildcards);
     c.meshState.swap(meshState);
     c.persistent.swap(persistent);
+    c.pooled.release();
+    if (pooled) {
+        releaseVector(c.wildcards);
+        c.pooled.slot.swap(slot);
+        c.pooled.values.swap(wildcards);
+    } else {
+        c.wildcards.swap(wildcards);
+    }
     // `fresh` now holds the old set's ids, and the locals its history (swapped out above):
     // released, not kept until the next detection (9 B per pair of the set for the whole run,
     // docs/memory.md), nor through the indexing below (18 B per pair more at the peak).
@@ -91,6 +185,7 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     releaseVector(wildcards);
     releaseVector(meshState);
     releaseVector(persistent);
+    if (mapDense) chooseHistoryForm(s);
     indexContactSet(s);
 }
 

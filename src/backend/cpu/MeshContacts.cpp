@@ -7,8 +7,21 @@
 
 namespace deme {
 
+namespace {
+
+// A sphere-triangle pair's slot in the pooled form (every such pair has one: backend/cpu/HistoryForm.h).
+struct HistoryInPool {
+    PooledHistory* pool;
+    unsigned int W;
+    float* operator()(size_t i) const { return pool->values.data() + (size_t)pool->slot[i] * W; }
+};
+
+}  // namespace
+
 void resolveMeshContacts(SimState& s) {
-    const ContactArrays& c = s.contacts;
+    ContactArrays& c = s.contacts;
+    const unsigned int W = s.numWildcards;
+    const bool pooled = c.historyPooled(W);
     const std::vector<uint32_t>& groups = c.meshContactGroups;
     if (groups.size() < 2) return;
     const size_t nGroups = groups.size() - 1;
@@ -19,7 +32,12 @@ void resolveMeshContacts(SimState& s) {
         std::vector<MeshCandidate> cand(largest);
 #pragma omp for schedule(static)
         for (size_t g = 0; g < nGroups; g++)
-            resolveSphereMeshContacts(s, c.meshContacts[groups[g]], groups[g + 1] - groups[g], cand.data(), largest);
+            if (pooled)
+                resolveSphereMeshContactsWith(s, c.meshContacts[groups[g]], groups[g + 1] - groups[g], cand.data(),
+                                              largest, HistoryInPool{&c.pooled, W});
+            else
+                resolveSphereMeshContactsWith(s, c.meshContacts[groups[g]], groups[g + 1] - groups[g], cand.data(),
+                                              largest, HistoryInSet{c.wildcards.data(), W});
     }
 }
 

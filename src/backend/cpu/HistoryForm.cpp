@@ -1,0 +1,94 @@
+#include "backend/cpu/HistoryForm.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include <deme/Error.h>
+
+#include "parallel/Parallel.h"
+#include "runtime/MemoryAccounting.h"
+
+namespace deme {
+
+bool poolsHistory(size_t pairs, size_t withHistory) {
+    if (const char* v = std::getenv("DEME_CONTACT_HISTORY")) {
+        if (std::strcmp(v, "dense") == 0) return false;
+        if (std::strcmp(v, "pooled") == 0) return true;
+        if (*v && std::strcmp(v, "auto") != 0)
+            throwError("DEME_CONTACT_HISTORY",
+                       std::string("is \"") + v + "\"; it may be dense, pooled or auto (the default)");
+    }
+    return 2 * withHistory <= pairs;
+}
+
+void chooseHistoryForm(SimState& s) {
+    ContactArrays& c = s.contacts;
+    const unsigned int W = s.numWildcards;
+    const size_t n = c.size();
+    if (c.historyPooled(W)) return;
+    // A pool that is not in use (`wildcards` holds the history: a checkpoint read over a copied
+    // state) goes.
+    if (!c.pooled.slot.empty() || !c.pooled.values.empty()) c.pooled.release();
+    if (W == 0 || n == 0) return;
+    // Which pairs keep a slot, counted per thread's share, then the slots given in that order.
+    const int T = n > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
+    std::vector<size_t> first(T + 1, 0);
+    std::vector<uint32_t> slot(n);
+#pragma omp parallel num_threads(T) if (T > 1)
+    {
+        const int t = T > 1 ? cpuThreadIndex() : 0;
+        size_t b, e, k = 0;
+        threadRange(n, t, T, b, e);
+        for (size_t i = b; i < e; i++) {
+            const bool keep = pairNeedsHistorySlot(c.type[i], &c.wildcards[i * W], W);
+            slot[i] = keep ? 1u : 0u;
+            k += keep;
+        }
+        first[t + 1] = k;
+    }
+    for (int t = 0; t < T; t++) first[t + 1] += first[t];
+    if (!poolsHistory(n, first[T])) return;
+    std::vector<float> values(first[T] * W);
+#pragma omp parallel num_threads(T) if (T > 1)
+    {
+        const int t = T > 1 ? cpuThreadIndex() : 0;
+        size_t b, e, next = first[t];
+        threadRange(n, t, T, b, e);
+        for (size_t i = b; i < e; i++) {
+            if (!slot[i]) {
+                slot[i] = NO_HISTORY_SLOT;
+                continue;
+            }
+            for (unsigned int w = 0; w < W; w++) values[next * W + w] = c.wildcards[i * W + w];
+            slot[i] = (uint32_t)next++;
+        }
+    }
+    c.pooled.release();
+    c.pooled.slot.swap(slot);
+    c.pooled.values.swap(values);
+    releaseVector(c.wildcards);
+}
+
+bool densifyHistory(SimState& s) {
+    ContactArrays& c = s.contacts;
+    const unsigned int W = s.numWildcards;
+    if (!c.historyPooled(W)) {
+        if (!c.pooled.slot.empty() || !c.pooled.values.empty()) c.pooled.release();
+        return false;
+    }
+    const size_t n = c.size();
+    std::vector<float> wildcards(n * W);
+    const PooledHistory& p = c.pooled;
+#pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
+    for (size_t i = 0; i < n; i++) {
+        const uint32_t k = p.slot[i];
+        for (unsigned int w = 0; w < W; w++)
+            wildcards[i * W + w] = k == NO_HISTORY_SLOT ? 0.f : p.values[(size_t)k * W + w];
+    }
+    c.wildcards.swap(wildcards);
+    c.pooled.release();
+    return true;
+}
+
+}  // namespace deme
