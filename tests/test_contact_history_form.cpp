@@ -173,7 +173,6 @@ TEST(ContactHistoryFormChoice, PoolsWhereMostPairsAreApartAndKeepsABedDense) {
 }
 
 TEST(ContactHistoryFormChoice, AnUnknownFormIsANamedError) {
-    const ScopedEnvironmentVariable chosen("DEME_CONTACT_HISTORY", "sparse");
     const std::string msg = demeErrorMessage([] { latticeContactsBytes("sparse", 0.002f * R, 1); });
     EXPECT_TRUE(contains(msg, "DEME_CONTACT_HISTORY")) << msg;
     EXPECT_TRUE(contains(msg, "sparse")) << msg;

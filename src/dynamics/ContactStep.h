@@ -30,7 +30,7 @@
 
 namespace deme {
 
-// Histories of at most this many floats are copied into registers for the model (contactStep).
+// Histories of at most this many floats are copied into registers for the model (contactStepWithHistory).
 constexpr unsigned int MAX_COPIED_HISTORY = 8;
 
 // A contact's W history floats between its slot and registers: as float4s on the GPU where W is a
@@ -68,20 +68,23 @@ DEME_HD_INLINE void storeZeroHistory(float* slot) {
     storeHistory<W>(zeros, slot);
 }
 
+// Whether a float is +0, bit for bit (a -0 is not).
+DEME_HD_INLINE bool isPositiveZero(float v) {
+#ifdef __CUDA_ARCH__
+    const uint32_t bits = __float_as_uint(v);
+#else
+    uint32_t bits;
+    __builtin_memcpy(&bits, &v, sizeof bits);
+#endif
+    return bits == 0u;
+}
+
 // Whether a history is what clearing leaves: every float +0 (a -0 is stored over, so that skipping
 // the store changes no bit of any later step).
 template <unsigned int W>
 DEME_HD_INLINE bool historyIsZero(const float* regs) {
     bool zero = true;
-    for (unsigned int w = 0; w < W; w++) {
-#ifdef __CUDA_ARCH__
-        const uint32_t bits = __float_as_uint(regs[w]);
-#else
-        uint32_t bits;
-        __builtin_memcpy(&bits, &regs[w], sizeof bits);
-#endif
-        zero = zero && bits == 0u;
-    }
+    for (unsigned int w = 0; w < W; w++) zero = zero && isPositiveZero(regs[w]);
     return zero;
 }
 
@@ -183,14 +186,6 @@ DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, const 
     constexpr unsigned int W = Model::kNumContactWildcards;
     float* wc = W ? &s.contacts.wildcards[i * W] : nullptr;
     return contactStepWithHistory<Model, KnownType>(s, model, i, ids, wc, time, dt, applied, load);
-}
-
-// The same, where the caller knows at most that the pair is a sphere pair, its ids read here.
-template <class Model, bool SphereSphere, class S>
-DEME_HD_INLINE bool contactStep(S& s, const Model& model, size_t i, float time, float dt, bool& applied,
-                                ContactLoad& load) {
-    constexpr uint8_t kType = SphereSphere ? (uint8_t)SPHERE_SPHERE : ANY_CONTACT_TYPE;
-    return contactStepOfType<Model, kType>(s, model, i, contactIds<kType>(s, i), time, dt, applied, load);
 }
 
 }  // namespace deme

@@ -56,4 +56,17 @@ inline void threadRange(size_t n, int t, int T, size_t& begin, size_t& end) {
     end = n * (size_t)(t + 1) / (size_t)T;
 }
 
+// f(t, begin, end) for each thread t of T, in parallel, over its share of n items (threadRange):
+// counts per share, summed in thread order, give each item a place that depends only on n and T.
+template <class F>
+inline void forEachThreadShare(size_t n, int T, F&& f) {
+#pragma omp parallel num_threads(T) if (T > 1)
+    {
+        const int t = T > 1 ? cpuThreadIndex() : 0;
+        size_t begin, end;
+        threadRange(n, t, T, begin, end);
+        f(t, begin, end);
+    }
+}
+
 }  // namespace deme

@@ -29,32 +29,25 @@ void chooseHistoryForm(SimState& s) {
     if (c.historyPooled(W)) return;
     // A pool that is not in use (`wildcards` holds the history: a checkpoint read over a copied
     // state) goes.
-    if (!c.pooled.slot.empty() || !c.pooled.values.empty()) c.pooled.release();
+    c.pooled.release();
     if (W == 0 || n == 0) return;
     // Which pairs keep a slot, counted per thread's share, then the slots given in that order.
     const int T = n > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
     std::vector<size_t> first(T + 1, 0);
     std::vector<uint32_t> slot(n);
-#pragma omp parallel num_threads(T) if (T > 1)
-    {
-        const int t = T > 1 ? cpuThreadIndex() : 0;
-        size_t b, e, k = 0;
-        threadRange(n, t, T, b, e);
+    forEachThreadShare(n, T, [&](int t, size_t b, size_t e) {
+        size_t k = 0;  // (counted here: neighbouring threads' counts share a cache line)
         for (size_t i = b; i < e; i++) {
-            const bool keep = pairNeedsHistorySlot(c.type[i], &c.wildcards[i * W], W);
-            slot[i] = keep ? 1u : 0u;
-            k += keep;
+            slot[i] = pairNeedsHistorySlot(c.type[i], &c.wildcards[i * W], W) ? 1u : 0u;
+            k += slot[i];
         }
         first[t + 1] = k;
-    }
+    });
     for (int t = 0; t < T; t++) first[t + 1] += first[t];
     if (!poolsHistory(n, first[T])) return;
     std::vector<float> values(first[T] * W);
-#pragma omp parallel num_threads(T) if (T > 1)
-    {
-        const int t = T > 1 ? cpuThreadIndex() : 0;
-        size_t b, e, next = first[t];
-        threadRange(n, t, T, b, e);
+    forEachThreadShare(n, T, [&](int t, size_t b, size_t e) {
+        size_t next = first[t];
         for (size_t i = b; i < e; i++) {
             if (!slot[i]) {
                 slot[i] = NO_HISTORY_SLOT;
@@ -63,8 +56,7 @@ void chooseHistoryForm(SimState& s) {
             for (unsigned int w = 0; w < W; w++) values[next * W + w] = c.wildcards[i * W + w];
             slot[i] = (uint32_t)next++;
         }
-    }
-    c.pooled.release();
+    });
     c.pooled.slot.swap(slot);
     c.pooled.values.swap(values);
     releaseVector(c.wildcards);
@@ -74,7 +66,7 @@ bool densifyHistory(SimState& s) {
     ContactArrays& c = s.contacts;
     const unsigned int W = s.numWildcards;
     if (!c.historyPooled(W)) {
-        if (!c.pooled.slot.empty() || !c.pooled.values.empty()) c.pooled.release();
+        c.pooled.release();  // (one not in use, as above)
         return false;
     }
     const size_t n = c.size();

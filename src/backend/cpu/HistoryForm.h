@@ -4,6 +4,7 @@
 // trajectory is the same bit for bit in either (test ContactHistoryForm.*).
 #pragma once
 
+#include "dynamics/ContactStep.h"
 #include "state/SimState.h"
 
 namespace deme {
@@ -21,11 +22,8 @@ bool poolsHistory(size_t pairs, size_t withHistory);
 // the mesh rule hands history between them during the steps (dynamics/MeshContactRule.h).
 inline bool pairNeedsHistorySlot(uint8_t type, const float* h, unsigned int W) {
     if (type == SPHERE_TRIANGLE) return true;
-    for (unsigned int w = 0; w < W; w++) {
-        uint32_t bits;
-        __builtin_memcpy(&bits, &h[w], sizeof bits);
-        if (bits != 0u) return true;
-    }
+    for (unsigned int w = 0; w < W; w++)
+        if (!isPositiveZero(h[w])) return true;
     return false;
 }
 

@@ -91,12 +91,9 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
     std::vector<uint32_t>& at = slot;
     at.resize(nNew);
     std::vector<size_t> first(T + 1, 0);
-#pragma omp parallel num_threads(T) if (T > 1)
-    {
-        const int t = T > 1 ? cpuThreadIndex() : 0;
+    forEachThreadShare(nNew, T, [&](int t, size_t b, size_t e) {
         std::vector<float> h(W);
-        size_t b, e, k = 0;
-        threadRange(nNew, t, T, b, e);
+        size_t k = 0;  // (counted here: neighbouring threads' counts share a cache line)
         for (size_t i = b; i < e; i++) {
             const unsigned int j = oldIndexOfPair(freshKeys, old, (unsigned int)i);
             pairHistoryFrom(s, freshKeys, fresh.type.data(), old, (unsigned int)i, j, h.data(), meshState[i],
@@ -106,15 +103,12 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
             k += keep;
         }
         first[t + 1] = k;
-    }
+    });
     for (int t = 0; t < T; t++) first[t + 1] += first[t];
     const bool pooled = nNew > 0 && poolsHistory(nNew, first[T]);
     wildcards.resize(pooled ? first[T] * W : nNew * W);
-#pragma omp parallel num_threads(T) if (T > 1)
-    {
-        const int t = T > 1 ? cpuThreadIndex() : 0;
-        size_t b, e, next = first[t];
-        threadRange(nNew, t, T, b, e);
+    forEachThreadShare(nNew, T, [&](int t, size_t b, size_t e) {
+        size_t next = first[t];
         uint8_t ms, ps;  // (the same as the first pass's)
         for (size_t i = b; i < e; i++) {
             const bool keep = (at[i] & KEEPS_SLOT) != 0;
@@ -128,7 +122,7 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
                 at[i] = NO_HISTORY_SLOT;
             }
         }
-    }
+    });
     if (!pooled) releaseVector(slot);
     return pooled;
 }
