@@ -20,6 +20,7 @@
 #include "io/ProgressReporter.h"
 #include "backend/cuda/DeviceBuffer.h"
 #include "backend/BackendSelection.h"
+#include "runtime/AllocatorPolicy.h"
 #include "runtime/ContactEdits.h"
 #include "runtime/Simulation.h"
 #include "runtime/StatsReport.h"
@@ -53,6 +54,7 @@ void applyWildcardValuesGivenEarly(const Scene& scene, const ModelLayout& layout
 DEMSolver::DEMSolver()
     : m_scene(new Scene()), m_sim(new Simulation()), m_output(new OutputManager()),
       m_progress(new ProgressReporter(std::cout, ::isatty(STDOUT_FILENO) == 1)) {
+    fixLargeBlockBound();
     attachProgressHooks();
 }
 DEMSolver::DEMSolver(unsigned int nGPUs) : DEMSolver() {
