@@ -21,9 +21,10 @@ namespace deme {
 // settled bed of spheres: 4-7). A set that grows beyond what the memory holds later is an error
 // naming the set and its size (requireRoomForContactSet).
 constexpr double ESTIMATED_PAIRS_PER_SPHERE = 6.0;
-// The CPU's force reduction: window slots per owner (one per distinct B owner of a block's contacts,
-// backend/cpu/ForcePassLoop.h); MIXER-BENCH early spheres hold 1.5.
-constexpr double ESTIMATED_WINDOW_SLOTS_PER_OWNER = 1.5;
+// The CPU's force reduction: window slots per owner (one per distinct B owner of a block's contacts
+// outside the block, backend/cpu/ForcePassLoop.h); MIXER-BENCH early spheres hold 0.52, the
+// compressed block of clumps of the tests 0.75.
+constexpr double ESTIMATED_WINDOW_SLOTS_PER_OWNER = 0.75;
 
 struct MemoryEstimate {
     size_t bytes[NUM_MEMORY_GROUPS] = {};

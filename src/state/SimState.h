@@ -81,6 +81,11 @@ struct ContactArrays : ContactFields<HostArray> {
     bool historyPooled(unsigned int W) const {
         return W > 0 && size() > 0 && wildcards.empty() && pooled.slot.size() == size();
     }
+    // Whether owner o is B of a contact whose A is in o's own block of the force pass (its share
+    // is then summed in the pass, not in a window; backend/cpu/ForcePassLoop.h).
+    bool isBInItsBlock(size_t o) const {
+        return o / 64 < ownerBInBlock.size() && ((ownerBInBlock[o / 64] >> (o % 64)) & 1u);
+    }
     // Empties what belongs to one set as it was indexed (backend/cpu/HistoryMapping.h): the
     // sphere-triangle runs, the force reduction's index and windows, the stored forces; their
     // memory is let go too where it is large (KEEP_REBUILT_ARRAYS_UP_TO) or `release` says so.
@@ -89,7 +94,8 @@ struct ContactArrays : ContactFields<HostArray> {
             sizeof(uint32_t) *
                 (meshContacts.capacity() + meshContactGroups.capacity() + ownerAStart.capacity() + bSlot.capacity() +
                  blockWindowStart.capacity() + ownerBStart.capacity() + ownerBSlots.capacity()) +
-            sizeof(WindowLoad) * window.capacity() + sizeof(float3) * force.capacity();
+            sizeof(WindowLoad) * window.capacity() + sizeof(float3) * force.capacity() +
+            sizeof(uint64_t) * ownerBInBlock.capacity();
         release = release || bytes > KEEP_REBUILT_ARRAYS_UP_TO;
         auto reset = [release](auto& v) {
             if (release)
@@ -105,6 +111,7 @@ struct ContactArrays : ContactFields<HostArray> {
         reset(window);
         reset(ownerBStart);
         reset(ownerBSlots);
+        reset(ownerBInBlock);
         reset(force);
         if (release)
             stored = StoredContactForces();

@@ -20,6 +20,8 @@ namespace deme {
 struct WindowLoad {
     float3 force, negTorque;
 };
+// bSlot's flag for a B owner in the contact's own block: the low bits are its index in the block.
+constexpr uint32_t IN_BLOCK_SLOT = 0x80000000u;
 }  // namespace deme
 
 // Owners (paper §2.4): clumps, then analytical objects, then meshes, in a space-filling-curve order.
@@ -100,16 +102,18 @@ struct WindowLoad {
     X(meshContactGroups, uint32_t, HOST) /* where each sphere's run in meshContacts starts, + end */    \
     /* The CPU's force reduction (backend/cpu/ForcePassLoop.h). The set is sorted by A, and A is  */    \
     /* always a sphere, so each owner's contacts as A are one run (ownerAStart), which the force  */    \
-    /* pass adds to A's owner in contact order. B's share is summed per block of A's owners: each */    \
-    /* block has a window of slots, one per distinct B owner of its contacts (blockWindowStart;   */    \
-    /* bSlot per contact), and the reduction adds an owner's slots in block order (ownerBStart,   */    \
-    /* ownerBSlots). So no load is stored per contact.                                            */    \
+    /* pass adds to A's owner in contact order. B's share is summed per block of A's owners: a B  */    \
+    /* owner in the block itself is summed by the block's thread and added to the owner at the    */    \
+    /* block's end (ownerBInBlock); for the others each block has a window of slots, one per      */    \
+    /* distinct such owner (blockWindowStart; bSlot per contact), and the reduction adds an       */    \
+    /* owner's slots in block order (ownerBStart, ownerBSlots). So no load is stored per contact. */    \
     X(ownerAStart, uint32_t, HOST)      /* contacts [ownerAStart[o], ownerAStart[o + 1]) have A in o */ \
-    X(bSlot, uint32_t, HOST)            /* the window slot of the contact's B owner */                  \
+    X(bSlot, uint32_t, HOST)            /* B's window slot, or IN_BLOCK_SLOT + B's index in the block */ \
     X(blockWindowStart, uint32_t, HOST) /* block k's slots: [blockWindowStart[k], ... [k + 1]) */       \
     X(window, WindowLoad, HOST)         /* per slot: B's owner's loads from the block's contacts */     \
     X(ownerBStart, uint32_t, HOST)      /* owner o takes slots ownerBSlots[ownerBStart[o] ..] as B */   \
-    X(ownerBSlots, uint32_t, HOST)
+    X(ownerBSlots, uint32_t, HOST)                                                                      \
+    X(ownerBInBlock, uint64_t, HOST) /* bit o: owner o is B of a contact of its own block */
 
 // Quantities derived from the owner state, refreshed after every integration step (and after any
 // host-side edit) so that the force pass and contact detection read them instead of recomputing

@@ -47,17 +47,26 @@ void buildOwnerContactIndex(SimState& s) {
         c.ownerAStart[o + 1]++;
     }
     for (size_t o = 0; o < nOwners; o++) c.ownerAStart[o + 1] += c.ownerAStart[o];
-    // B's side: per block of A's owners, the distinct owners its contacts have as B (the block's
-    // window, ascending), and each contact's slot in it.
+    // B's side: per block of A's owners, the distinct owners its contacts have as B outside the
+    // block (the block's window, ascending), and each contact's slot in it; a B owner inside the
+    // block is summed by the block's own thread (most of them: a block is a compact clump of
+    // grains), marked in ownerBInBlock.
     const size_t nBlocks = forcePassBlocks(nOwners);
+    c.ownerBInBlock.assign((nOwners + 63) / 64, 0);
     std::vector<std::vector<bodyID_t>> window(nBlocks);
 #pragma omp parallel for schedule(dynamic, 4) if (n > PARALLEL_MIN_ITEMS)
     for (long k = 0; k < (long)nBlocks; k++) {
         size_t begin, end;
         forcePassBlockRange(c, (size_t)k, nOwners, begin, end);
         std::vector<bodyID_t>& w = window[k];
-        w.resize(end - begin);
-        for (size_t i = begin; i < end; i++) w[i - begin] = contactOwnerB(s, i);
+        for (size_t i = begin; i < end; i++) {
+            // (A block's owners are whole words of the bits: no two threads write one word.)
+            const bodyID_t b = contactOwnerB(s, i);
+            if (b < nOwners && b / FORCE_PASS_BLOCK_OWNERS == (size_t)k)
+                c.ownerBInBlock[b / 64] |= 1ull << (b % 64);
+            else
+                w.push_back(b);
+        }
         std::sort(w.begin(), w.end());
         w.erase(std::unique(w.begin(), w.end()), w.end());
         w.shrink_to_fit();
@@ -69,15 +78,21 @@ void buildOwnerContactIndex(SimState& s) {
         c.blockWindowStart[k + 1] = c.blockWindowStart[k] + (uint32_t)window[k].size();
     }
     const size_t nSlots = c.blockWindowStart[nBlocks];
+    if (nSlots >= IN_BLOCK_SLOT)
+        throwError("DoDynamics", "a contact set with " + std::to_string(nSlots) +
+                                     " reduction slots is more than the CPU backend indexes (2^31)");
     c.bSlot.resize(n);
 #pragma omp parallel for schedule(dynamic, 4) if (n > PARALLEL_MIN_ITEMS)
     for (long k = 0; k < (long)nBlocks; k++) {
         size_t begin, end;
         forcePassBlockRange(c, (size_t)k, nOwners, begin, end);
         const std::vector<bodyID_t>& w = window[k];
-        for (size_t i = begin; i < end; i++)
-            c.bSlot[i] = c.blockWindowStart[k] +
-                         (uint32_t)(std::lower_bound(w.begin(), w.end(), contactOwnerB(s, i)) - w.begin());
+        for (size_t i = begin; i < end; i++) {
+            const bodyID_t b = contactOwnerB(s, i);
+            c.bSlot[i] = b < nOwners && b / FORCE_PASS_BLOCK_OWNERS == (size_t)k
+                             ? IN_BLOCK_SLOT | (uint32_t)(b % FORCE_PASS_BLOCK_OWNERS)
+                             : c.blockWindowStart[k] + (uint32_t)(std::lower_bound(w.begin(), w.end(), b) - w.begin());
+        }
     }
     // Per owner, its slots in block order (a fixed order for its sums).
     c.ownerBStart.assign(nOwners + 1, 0);

@@ -39,10 +39,13 @@ DEME_HD_INLINE bool forcePassContact(SimState& s, const Model& model, size_t i, 
 constexpr size_t FORCE_PASS_CHUNK = 256;
 
 // A's owners per block of the pass. The blocks are the unit of the threads' work and of B's sums
-// (each block's window), and their size is fixed, so that the sums are grouped the same way for
-// any thread count. 512 owners of a space-filling-curve order are a compact clump of grains: their
-// B owners are mostly their own, and the window 1.5-1.7 slots per owner (docs/memory.md).
+// (the block's own B owners summed by its thread, a window of slots for the others), and their size
+// is fixed, so that the sums are grouped the same way for any thread count. 512 owners of a
+// space-filling-curve order are a compact clump of grains: their B owners are mostly their own,
+// and the window 0.5-0.75 slots per owner (docs/memory.md). A multiple of 64: a block's owners are
+// whole words of ContactArrays::ownerBInBlock.
 constexpr size_t FORCE_PASS_BLOCK_OWNERS = 512;
+static_assert(FORCE_PASS_BLOCK_OWNERS % 64 == 0, "a block's owners are whole words of the bits");
 
 inline size_t forcePassBlocks(size_t nOwners) {
     return (nOwners + FORCE_PASS_BLOCK_OWNERS - 1) / FORCE_PASS_BLOCK_OWNERS;
@@ -115,12 +118,29 @@ inline void keepPooledHistory(PooledHistory& p, int thread, size_t b, size_t m, 
     }
 }
 
+// The block's own B owners' sums onto them, after their A share (0 for an owner that is not A in
+// the block), and the sums reset for the next block. The same fixed order for any thread count.
+inline void addInBlockSums(const ContactArrays& c, OwnerArrays& ow, size_t k, WindowLoad* inBlock) {
+    const size_t base = k * FORCE_PASS_BLOCK_OWNERS;
+    const size_t words = std::min(FORCE_PASS_BLOCK_OWNERS / 64, c.ownerBInBlock.size() - base / 64);
+    for (size_t w = 0; w < words; w++)
+        for (uint64_t bits = c.ownerBInBlock[base / 64 + w]; bits; bits &= bits - 1) {
+            const size_t j = w * 64 + (size_t)__builtin_ctzll(bits), o = base + j;
+            const bool asA = c.ownerAStart[o + 1] > c.ownerAStart[o];
+            ow.contactForce[o] = (asA ? ow.contactForce[o] : make_float3(0.f)) - inBlock[j].force;
+            ow.contactTorque[o] = (asA ? ow.contactTorque[o] : make_float3(0.f)) - inBlock[j].negTorque;
+            inBlock[j].force = inBlock[j].negTorque = make_float3(0.f);
+        }
+}
+
 // One force pass. Each block of owners takes its contacts in chunks: the loads of a chunk are
 // computed (sphere pairs as one vectorisable sweep), then added in contact order to A's owner and to
-// the window slot of B's owner. Every owner thus sums its loads in a fixed order (A's contacts here,
-// then its slots in block order in the reduction), bit-identical for any thread count. A pair whose
-// model exerts nothing adds +0 to its slot, which changes no sum: nor do the pairs a wider margin or
-// a different detection frequency brings. `store` says which pairs' forces on A it keeps for readers.
+// B's sum: the thread's own for a B owner in the block (added to the owner at the block's end), the
+// window slot for another. Every owner thus sums its loads in a fixed order (A's contacts, then B's
+// in its own block, here; then its slots in block order in the reduction), bit-identical for any
+// thread count. A pair whose model exerts nothing adds +0 to its sum, which changes no sum: nor do
+// the pairs a wider margin or a different detection frequency brings. `store` says which pairs'
+// forces on A it keeps for readers.
 template <class Model>
 ForcePassResult runForcePass(SimState& s, const Model& model, double time, double dt, ForceStore store) {
     ContactArrays& c = s.contacts;
@@ -153,6 +173,8 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
         const int thread = T > 1 ? cpuThreadIndex() : 0;
         float3 chunkForce[FORCE_PASS_CHUNK], torqueA[FORCE_PASS_CHUNK], torqueB[FORCE_PASS_CHUNK];
         std::vector<float> chunkHistory(pooled ? FORCE_PASS_CHUNK * W : 0);
+        // B's sums for the block's own owners (zeros between blocks: each is reset as it is added).
+        std::vector<WindowLoad> inBlock(FORCE_PASS_BLOCK_OWNERS, WindowLoad{make_float3(0.f), make_float3(0.f)});
         size_t firstBlock, lastBlock;
         forcePassThreadBlocks(s, thread, T, firstBlock, lastBlock);
         for (size_t k = firstBlock; k < lastBlock; k++) {
@@ -195,10 +217,14 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
                     F += force[j];
                     tau += torqueA[j];
                 }
+                // (The sums' arrays by the slot's flag, without a branch: the flag is mixed.)
+                static_assert(IN_BLOCK_SLOT == 1u << 31, "the flag is the slot's top bit");
+                WindowLoad* const sums[2] = {window, inBlock.data()};
                 for (size_t j = 0; j < m; j++) {
                     const uint32_t w = bSlot[b + j];
-                    window[w].force += force[j];
-                    window[w].negTorque -= torqueB[j];
+                    WindowLoad& sum = sums[w >> 31][w & ~IN_BLOCK_SLOT];
+                    sum.force += force[j];
+                    sum.negTorque -= torqueB[j];
                 }
                 if (storePairs) storeChunkForces(stored, thread, b, m, force);
             }
@@ -206,6 +232,7 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
                 ow.contactForce[owner] = F;
                 ow.contactTorque[owner] = tau;
             }
+            addInBlockSums(c, ow, k, inBlock.data());
         }
     }
     if (pooled) c.pooled.commitPending(W);

@@ -22,12 +22,13 @@ void reduceContactForces(SimState& s, const IntegrationSubset& subset) {
 #pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
     for (size_t k = 0; k < n; k++) {
         const size_t o = ids ? (size_t)ids[k] : k;
-        // What the owner took as A in the force pass (runForcePass), then as B: its slots in the
-        // blocks' windows, in block order. (The windows hold the forces on A and minus the torques
-        // on B, so that an empty slot, +0, subtracts to nothing whatever the sum's sign.)
-        const bool asA = c.ownerAStart[o + 1] > c.ownerAStart[o];
-        float3 F = asA ? ow.contactForce[o] : make_float3(0.f);
-        float3 tau = asA ? ow.contactTorque[o] : make_float3(0.f);
+        // What the owner took in the force pass (runForcePass: as A, and as B in its own block),
+        // then as B in the other blocks: its slots in their windows, in block order. (The windows
+        // hold the forces on A and minus the torques on B, so that an empty slot, +0, subtracts to
+        // nothing whatever the sum's sign.)
+        const bool inPass = c.ownerAStart[o + 1] > c.ownerAStart[o] || c.isBInItsBlock(o);
+        float3 F = inPass ? ow.contactForce[o] : make_float3(0.f);
+        float3 tau = inPass ? ow.contactTorque[o] : make_float3(0.f);
         for (uint32_t e = c.ownerBStart[o]; e < c.ownerBStart[o + 1]; e++) {
             const uint32_t w = c.ownerBSlots[e];
             F -= c.window[w].force;
@@ -141,7 +142,8 @@ void IntegrationSubset::update(SimState& s, const std::array<FamilyStepMotion, N
     }
     const std::vector<uint32_t>&a = s.contacts.ownerAStart, &b = s.contacts.ownerBStart;
     auto inContact = [&](size_t o) {
-        return (a.size() > o + 1 && a[o + 1] > a[o]) || (b.size() > o + 1 && b[o + 1] > b[o]);
+        return (a.size() > o + 1 && a[o + 1] > a[o]) || (b.size() > o + 1 && b[o + 1] > b[o]) ||
+               s.contacts.isBInItsBlock(o);
     };
     for (size_t o = 0; o < n; o++) {
         if (stepped[o] || inContact(o)) {
