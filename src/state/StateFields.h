@@ -108,7 +108,7 @@ constexpr uint32_t IN_BLOCK_SLOT = 0x80000000u;
     /* distinct such owner (blockWindowStart; bSlot per contact), and the reduction adds an       */    \
     /* owner's slots in block order (ownerBStart, ownerBSlots). So no load is stored per contact. */    \
     X(ownerAStart, uint32_t, HOST)      /* contacts [ownerAStart[o], ownerAStart[o + 1]) have A in o */ \
-    X(bSlot, uint32_t, HOST)            /* B's window slot, or IN_BLOCK_SLOT + B's index in the block */ \
+    X(bSlot, uint32_t, HOST)            /* B owner's window slot, or IN_BLOCK_SLOT | its index */       \
     X(blockWindowStart, uint32_t, HOST) /* block k's slots: [blockWindowStart[k], ... [k + 1]) */       \
     X(window, WindowLoad, HOST)         /* per slot: B's owner's loads from the block's contacts */     \
     X(ownerBStart, uint32_t, HOST)      /* owner o takes slots ownerBSlots[ownerBStart[o] ..] as B */   \
