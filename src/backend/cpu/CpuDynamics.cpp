@@ -9,6 +9,7 @@
 #include "backend/cpu/Integration.h"
 #include "backend/cpu/MeshContacts.h"
 #include "parallel/Parallel.h"
+#include "runtime/AllocatorPolicy.h"
 #include "runtime/MemoryAccounting.h"
 #include "runtime/MemoryEstimate.h"
 
@@ -21,7 +22,7 @@ void CpuDynamics::upload(const SimState& s, bool withContacts) {
     if (withContacts) m_chooseHistoryForm = true;
     // The steps run on the host state itself (its contacts too); travel is measured from now until the next set.
     m_baseline = s.owners.travel;
-    m_orderBaseline = s.owners.travel;
+    releaseOrderBaseline();
     m_subsetStale = true;
 }
 
@@ -95,8 +96,21 @@ void CpuDynamics::downloadContacts(SimState& s) {
 
 void CpuDynamics::markOrderBaseline() { m_orderBaseline = m_s.owners.travel; }
 
+// The order's snapshot lives from the order to its installation (a synchronous detection's: within
+// one call): let go between (8 B per owner) where it is a block of its own that goes back to the
+// system (runtime/AllocatorPolicy.h); a smaller one stays in the heap either way. Made again at each
+// order, it is a copy of the travel that writes all its pages anyway.
+void CpuDynamics::releaseOrderBaseline() {
+    if (vectorBytes(m_orderBaseline) >= LARGE_BLOCK_BYTES)
+        releaseVector(m_orderBaseline);
+    else
+        m_orderBaseline.clear();
+}
+
 double CpuDynamics::maxTravelSinceOrder() {
     const std::vector<double>& travel = m_s.owners.travel;
+    if (m_orderBaseline.size() != travel.size())
+        throwError("DoDynamics", "internal: an order's travel is asked for with no order in flight");
     double m = 0.0;
     for (size_t o = 0; o < travel.size(); o++) m = std::max(m, travel[o] - m_orderBaseline[o]);
     return m;
@@ -105,7 +119,10 @@ double CpuDynamics::maxTravelSinceOrder() {
 void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
     PhaseTimer t(timing, Phase::HISTORY_MAPPING);
     installDetectedContacts(m_s, m_kinematics.takenPairs());
+    if (m_orderBaseline.size() != m_s.owners.size())
+        throwError("DoDynamics", "internal: a contact set is installed with no order's travel");
     m_baseline.swap(m_orderBaseline);
+    releaseOrderBaseline();
     m_subsetStale = true;  // the reduction's list (owners stepped or in a contact) follows the set
 }
 
@@ -121,7 +138,7 @@ bool CpuDynamics::resumeContactSet(const SimState& s, const std::vector<double>&
     indexContactSet(m_s);
     m_chooseHistoryForm = true;
     m_baseline = travel;
-    m_orderBaseline = travel;
+    releaseOrderBaseline();
     return true;
 }
 

@@ -64,8 +64,10 @@ class CpuDynamics : public DynamicsBackend {
     // Whether the set's history was made dense outside an installation (a host reader, an edit, a
     // restart) and its form is to be chosen before the next steps (backend/cpu/HistoryForm.h).
     bool m_chooseHistoryForm = true;
-    // Owners' travel at the snapshot of the set in use (baseline) and of the last order.
+    // Owners' travel at the snapshot of the set in use (baseline) and of the order in flight (empty
+    // while there is none).
     std::vector<double> m_baseline, m_orderBaseline;
+    void releaseOrderBaseline();
 };
 
 }  // namespace deme
