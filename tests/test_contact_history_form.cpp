@@ -3,7 +3,9 @@
 // values either way, so a run must be the same bit for bit in both forms (and under the automatic
 // choice), through re-detections, sphere-triangle hand-overs, pairs that start and stop touching, a
 // host read of the contact set between calls (which makes the history dense until the next batch)
-// and a user's model that sees the pairs that are apart. CPU only: the GPU keeps its sets dense.
+// and a user's model that sees the pairs that are apart; and so must a run that keeps every pair of
+// the set in use through its detections (not only those that hand something on:
+// backend/cpu/CarriedPairs.h). CPU only: the GPU keeps its sets dense and whole.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -111,9 +113,18 @@ class ContactHistoryForm : public ScratchDirTest {
         const std::vector<Trajectory> dense = run("dense", customModel, denseBytes);
         const std::vector<Trajectory> pooled = run("pooled", customModel, pooledBytes);
         const std::vector<Trajectory> chosen = run("auto", customModel, autoBytes);
+        // Every pair of the set in use kept through each detection, not only the pairs that hand
+        // something to the next set (backend/cpu/CarriedPairs.h): the same too.
+        std::vector<Trajectory> whole;
+        {
+            const ScopedEnvironmentVariable keep("DEME_KEEP_WHOLE_SET", "1");
+            size_t wholeBytes;
+            whole = run("auto", customModel, wholeBytes);
+        }
         for (size_t k = 0; k < dense.size(); k++) {
             EXPECT_EQ(differing(dense[k], pooled[k]), 0u) << "part " << k;
             EXPECT_EQ(differing(dense[k], chosen[k]), 0u) << "part " << k;
+            EXPECT_EQ(differing(dense[k], whole[k]), 0u) << "part " << k;
         }
         // The bed is moving (the comparison is not of grains at rest) and touches the mesh.
         EXPECT_GT(length(dense[1].vel[0]) + length(dense[1].vel[dense[1].vel.size() / 2]), 0.f);

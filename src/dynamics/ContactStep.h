@@ -26,6 +26,7 @@
 #pragma once
 
 #include "dynamics/ContactInputsGather.h"
+#include "state/HistorySlot.h"
 #include "state/SphereLayout.h"
 
 namespace deme {
@@ -66,17 +67,6 @@ DEME_HD_INLINE void storeZeroHistory(float* slot) {
     float zeros[W];
     for (unsigned int w = 0; w < W; w++) zeros[w] = 0.f;
     storeHistory<W>(zeros, slot);
-}
-
-// Whether a float is +0, bit for bit (a -0 is not).
-DEME_HD_INLINE bool isPositiveZero(float v) {
-#ifdef __CUDA_ARCH__
-    const uint32_t bits = __float_as_uint(v);
-#else
-    uint32_t bits;
-    __builtin_memcpy(&bits, &v, sizeof bits);
-#endif
-    return bits == 0u;
 }
 
 // Whether a history is what clearing leaves: every float +0 (a -0 is stored over, so that skipping

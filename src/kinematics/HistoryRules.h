@@ -59,6 +59,16 @@ DEME_HD_INLINE unsigned int mergedSlotOfOld(const ContactKeys& fresh, const Cont
     return missingBefore[j] + keyLowerBound(fresh, pairKey(old.geomA[j], old.geomB[j]));
 }
 
+// Whether an old pair hands anything to the next set: a history that is not all +0, a mesh state or
+// the persistent flag. A pair that hands nothing is, to the next set, the same as one it lacks,
+// wherever no contact-init rule gives new pairs values (they would get them, found pairs not).
+DEME_HD_INLINE bool pairCarriesHistory(const float* h, unsigned int W, uint8_t meshState, uint8_t persistent) {
+    if (meshState || persistent) return true;
+    for (unsigned int w = 0; w < W; w++)
+        if (!isPositiveZero(h[w])) return true;
+    return false;
+}
+
 // What the new set takes over from the old one.
 struct OldContactHistory {
     ContactKeys keys;

@@ -168,7 +168,10 @@ class DynamicsBackend {
     // A detection whose set is installed before the next step (synchronous) is about to run: what
     // only the steps read of the set in use may go now (the CPU's reduction index, rebuilt by the
     // installation, or by the next step if the installation fails), lowering the detection's peak.
-    virtual void beforeDetectNow() {}
+    // Returns true where the set in use then serves no step (the CPU keeps only the pairs that
+    // hand something to the next set): if the installation fails, the run detects afresh before
+    // its next step, and a checkpoint holds no set to go on with.
+    virtual bool beforeDetectNow() { return false; }
     virtual size_t numContacts() const = 0;
     // Checkpoint and restart. travelAtSnapshot: every owner's travel at the snapshot of the set in
     // use. resumeContactSet: after upload(s), the set in use is s.contacts as it is (history and

@@ -64,11 +64,16 @@ void ContactSetManager::detectNow(const Settings& settings, unsigned long long s
     m_schedule.beforeSyncDetection(settings.asyncDetection, step, m_stats, timing.seconds[(int)Phase::FORCE]);
     if (beforeDetection) beforeDetection();
     m_dynamics->markOrderBaseline();
-    m_dynamics->beforeDetectNow();
-    DetectionReport r;
-    m_kinematics->detectNow(orderFor(settings, step, maxSpeed), r);
-    account(r, timing);
-    install(r, timing);
+    const bool setServesNoStep = m_dynamics->beforeDetectNow();
+    try {
+        DetectionReport r;
+        m_kinematics->detectNow(orderFor(settings, step, maxSpeed), r);
+        account(r, timing);
+        install(r, timing);
+    } catch (...) {
+        if (setServesNoStep) m_schedule.invalidate();  // detect afresh before any step
+        throw;
+    }
     m_schedule.afterSyncDetection(m_stats, timing.seconds[(int)Phase::FORCE], now() - t0);
 }
 

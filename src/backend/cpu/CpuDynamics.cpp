@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "backend/cpu/CarriedPairs.h"
 #include "backend/cpu/CpuKinematics.h"
 #include "backend/cpu/ForcePass.h"
 #include "backend/cpu/HistoryForm.h"
@@ -20,6 +21,7 @@ CpuDynamics::CpuDynamics(SimState& s, CpuForceModel model, CpuKinematics& kinema
 
 void CpuDynamics::upload(const SimState& s, bool withContacts) {
     if (withContacts) m_chooseHistoryForm = true;
+    if (withContacts) m_setTrimmed = false;
     // The steps run on the host state itself (its contacts too); travel is measured from now until the next set.
     m_baseline = s.owners.travel;
     releaseOrderBaseline();
@@ -123,10 +125,18 @@ void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
         throwError("DoDynamics", "internal: a contact set is installed with no order's travel");
     m_baseline.swap(m_orderBaseline);
     releaseOrderBaseline();
+    m_setTrimmed = false;
     m_subsetStale = true;  // the reduction's list (owners stepped or in a contact) follows the set
 }
 
+bool CpuDynamics::beforeDetectNow() {
+    m_s.contacts.resetIndex();
+    m_setTrimmed = keepOnlyCarriedPairs(m_s) || m_setTrimmed;
+    return m_setTrimmed;
+}
+
 bool CpuDynamics::travelAtSnapshot(std::vector<double>& travel) const {
+    if (m_setTrimmed) return false;
     travel = m_baseline;
     return true;
 }
@@ -137,6 +147,7 @@ bool CpuDynamics::resumeContactSet(const SimState& s, const std::vector<double>&
     // that an installation builds is missing.
     indexContactSet(m_s);
     m_chooseHistoryForm = true;
+    m_setTrimmed = false;
     m_baseline = travel;
     releaseOrderBaseline();
     return true;

@@ -34,7 +34,7 @@ class CpuDynamics : public DynamicsBackend {
     void markOrderBaseline() override;
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;
-    void beforeDetectNow() override { m_s.contacts.resetIndex(); }
+    bool beforeDetectNow() override;
     size_t numContacts() const override { return m_s.contacts.size(); }
     bool travelAtSnapshot(std::vector<double>& travel) const override;
     bool resumeContactSet(const SimState& s, const std::vector<double>& travel) override;
@@ -64,6 +64,9 @@ class CpuDynamics : public DynamicsBackend {
     // Whether the set's history was made dense outside an installation (a host reader, an edit, a
     // restart) and its form is to be chosen before the next steps (backend/cpu/HistoryForm.h).
     bool m_chooseHistoryForm = true;
+    // Whether the set holds only the pairs it hands to the next one (beforeDetectNow), until an
+    // installation or an upload replaces it: then it serves no step and no restart.
+    bool m_setTrimmed = false;
     // Owners' travel at the snapshot of the set in use (baseline) and of the order in flight (empty
     // while there is none).
     std::vector<double> m_baseline, m_orderBaseline;

@@ -1,0 +1,68 @@
+#include "backend/cpu/CarriedPairs.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "kinematics/HistoryRules.h"
+#include "parallel/Parallel.h"
+#include "runtime/MemoryAccounting.h"
+
+namespace deme {
+
+namespace {
+
+// `v` (`per` values a pair) keeps the pairs marked in `keep`, in order, in storage of its new size.
+template <class T>
+void keepMarked(std::vector<T>& v, const std::vector<uint8_t>& keep, size_t kept, size_t per) {
+    if (v.empty()) return;
+    std::vector<T> out(kept * per);
+    size_t at = 0;
+    for (size_t i = 0; i < keep.size(); i++) {
+        if (!keep[i]) continue;
+        for (size_t k = 0; k < per; k++) out[at * per + k] = v[i * per + k];
+        at++;
+    }
+    v.swap(out);
+}
+
+}  // namespace
+
+bool keepOnlyCarriedPairs(SimState& s) {
+    ContactArrays& c = s.contacts;
+    const size_t n = c.size();
+    const unsigned int W = s.numWildcards;
+    if (n == 0 || !s.wildcards.contactInit.empty()) return false;
+    // DEME_KEEP_WHOLE_SET=1 keeps every pair (tests compare the two; the trajectory is the same).
+    if (const char* v = std::getenv("DEME_KEEP_WHOLE_SET"); v && std::strcmp(v, "1") == 0) return false;
+    const bool pooled = c.historyPooled(W);
+    const bool anyPersistent = c.persistent.size() == n;
+    std::vector<uint8_t> keep(n);
+    size_t kept = 0;
+#pragma omp parallel for schedule(static) reduction(+ : kept) if (n > PARALLEL_MIN_ITEMS)
+    for (size_t i = 0; i < n; i++) {
+        const float* h = nullptr;
+        if (!pooled)
+            h = W ? &c.wildcards[i * W] : nullptr;
+        else if (c.pooled.slot[i] != NO_HISTORY_SLOT)
+            h = &c.pooled.values[(size_t)c.pooled.slot[i] * W];
+        const uint8_t ms = c.meshState.size() == n ? c.meshState[i] : (uint8_t)0;
+        const uint8_t ps = anyPersistent ? c.persistent[i] : (uint8_t)0;
+        keep[i] = pairCarriesHistory(h, h ? W : 0u, ms, ps) ? 1u : 0u;
+        kept += keep[i];
+    }
+    // Where most pairs carry something (a settled bed), the copies would cost a pass for little.
+    if (2 * kept > n) return false;
+    keepMarked(c.geomA, keep, kept, 1);
+    keepMarked(c.geomB, keep, kept, 1);
+    keepMarked(c.type, keep, kept, 1);
+    keepMarked(c.persistent, keep, kept, 1);
+    keepMarked(c.meshState, keep, kept, 1);
+    if (pooled)
+        keepMarked(c.pooled.slot, keep, kept, 1);  // (the pool keeps its values: mostly the kept pairs')
+    else
+        keepMarked(c.wildcards, keep, kept, W);
+    return kept < n;
+}
+
+}  // namespace deme

@@ -1,0 +1,203 @@
+// Before a synchronous detection the CPU keeps only the pairs of the set in use that hand something
+// to the next set (backend/cpu/CarriedPairs.h): a history that is not all +0, a mesh state, the
+// persistent flag. Checked on a hand-made set (which pairs stay, in order, with their history, in
+// both history forms; when nothing is dropped), and on whole runs, which must be the same bit for
+// bit with every pair kept (DEME_KEEP_WHOLE_SET=1).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "BackendFixture.h"
+#include "ScratchDirTest.h"
+#include "TestHelpers.h"
+#include "backend/cpu/CarriedPairs.h"
+#include "backend/cpu/HistoryForm.h"
+#include "state/SimState.h"
+
+using namespace deme;
+using namespace deme_test;
+
+namespace {
+
+constexpr unsigned int W = 2;
+
+// Ten sphere pairs (i, i + 1) with no history, but for pair 2 (a history), 5 (persistent), 7 (a
+// mesh state) and 8 (a history of -0, which is one: the dense form keeps it bit for bit).
+SimState handMadeSet() {
+    SimState s;
+    s.numWildcards = W;
+    ContactArrays& c = s.contacts;
+    for (bodyID_t i = 0; i < 10; i++) {
+        c.geomA.push_back(i);
+        c.geomB.push_back(i + 1);
+        c.type.push_back(SPHERE_SPHERE);
+        c.persistent.push_back(i == 5);
+        c.meshState.push_back(i == 7 ? 1 : 0);
+        c.wildcards.push_back(i == 2 ? 1.5f : i == 8 ? -0.f : 0.f);
+        c.wildcards.push_back(i == 2 ? -2.5f : 0.f);
+    }
+    return s;
+}
+
+const std::vector<bodyID_t> kCarried = {2, 5, 7, 8};
+
+void expectCarriedPairsOnly(const ContactArrays& c) {
+    ASSERT_EQ(c.size(), kCarried.size());
+    for (size_t k = 0; k < kCarried.size(); k++) {
+        EXPECT_EQ(c.geomA[k], kCarried[k]);
+        EXPECT_EQ(c.geomB[k], kCarried[k] + 1);
+        EXPECT_EQ(c.persistent[k], kCarried[k] == 5 ? 1 : 0);
+        EXPECT_EQ(c.meshState[k], kCarried[k] == 7 ? 1 : 0);
+    }
+}
+
+}  // namespace
+
+TEST(CarriedPairs, KeepsThePairsThatHandSomethingWithTheirHistoryDense) {
+    SimState s = handMadeSet();
+    ASSERT_TRUE(keepOnlyCarriedPairs(s));
+    expectCarriedPairsOnly(s.contacts);
+    const std::vector<float>& h = s.contacts.wildcards;
+    ASSERT_EQ(h.size(), kCarried.size() * W);
+    EXPECT_EQ(h[0], 1.5f);
+    EXPECT_EQ(h[1], -2.5f);
+    EXPECT_TRUE(std::signbit(h[6]));  // pair 8's -0
+    EXPECT_EQ(h[2] + h[3] + h[4] + h[5] + h[7], 0.f);
+}
+
+TEST(CarriedPairs, KeepsThePairsThatHandSomethingWithTheirHistoryPooled) {
+    SimState s = handMadeSet();
+    const ScopedEnvironmentVariable pooled("DEME_CONTACT_HISTORY", "pooled");
+    chooseHistoryForm(s);
+    ASSERT_TRUE(s.contacts.historyPooled(W));
+    ASSERT_TRUE(keepOnlyCarriedPairs(s));
+    expectCarriedPairsOnly(s.contacts);
+    ASSERT_TRUE(s.contacts.historyPooled(W));
+    densifyHistory(s);
+    const std::vector<float>& h = s.contacts.wildcards;
+    ASSERT_EQ(h.size(), kCarried.size() * W);
+    EXPECT_EQ(h[0], 1.5f);
+    EXPECT_EQ(h[1], -2.5f);
+    EXPECT_TRUE(std::signbit(h[6]));
+    EXPECT_EQ(h[2] + h[3] + h[4] + h[5] + h[7], 0.f);
+}
+
+// Nothing dropped: where a contact-init rule gives new pairs values (a found pair of zeros keeps its
+// zeros: dropping it would hand it the rule's), where most pairs carry something (the copies would
+// cost a pass for little), and where DEME_KEEP_WHOLE_SET=1 says so.
+TEST(CarriedPairs, KeepsEveryPairWhereDroppingWouldChangeOrSaveNothing) {
+    SimState ruled = handMadeSet();
+    ruled.wildcards.contactInit.push_back(ContactInitRule{0, 0, 1, 0.25f});
+    EXPECT_FALSE(keepOnlyCarriedPairs(ruled));
+    EXPECT_EQ(ruled.contacts.size(), 10u);
+
+    SimState busy = handMadeSet();
+    for (size_t i = 0; i < 10; i += 2) busy.contacts.persistent[i] = 1;  // 5 more carry: 8 of 10
+    EXPECT_FALSE(keepOnlyCarriedPairs(busy));
+    EXPECT_EQ(busy.contacts.size(), 10u);
+
+    SimState whole = handMadeSet();
+    const ScopedEnvironmentVariable keep("DEME_KEEP_WHOLE_SET", "1");
+    EXPECT_FALSE(keepOnlyCarriedPairs(whole));
+    EXPECT_EQ(whole.contacts.size(), 10u);
+}
+
+namespace {
+
+constexpr float R = 0.004f;
+constexpr double DT = 2e-5;
+
+// Spheres on a lattice a little wider than their diameter, moving at random in a walled box without
+// gravity: most pairs of the set in use are apart, and pairs start to touch as the run goes on.
+struct DriftingLattice {
+    DEMSolver sim;
+    std::shared_ptr<DEMTracker> grains;
+    size_t n = 0;
+    DriftingLattice() {
+        sim.SetVerbosity("QUIET");
+        sim.SetBackend("cpu");
+        auto mat = sim.LoadMaterial({{"E", 1e7}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}});
+        sim.InstructBoxDomainDimension(0.12f, 0.12f, 0.12f);
+        sim.InstructBoxDomainBoundingBC("all", mat);
+        auto type = sim.LoadSphereType(0.0005f, R, mat);
+        std::vector<float3> pts;
+        for (int k = 0; k < 8; k++)
+            for (int j = 0; j < 8; j++)
+                for (int i = 0; i < 8; i++) pts.push_back(make_float3(i - 3.5f, j - 3.5f, k - 3.5f) * (2.05f * R));
+        auto batch = sim.AddClumps(type, pts);
+        std::vector<float3> v;
+        for (size_t p = 0; p < pts.size(); p++)
+            v.push_back(make_float3(0.3f * std::sin(1.7f * p), 0.3f * std::cos(2.3f * p), 0.3f * std::sin(0.9f * p)));
+        batch->SetVel(v);
+        n = pts.size();
+        sim.SetInitTimeStep(DT);
+        sim.SetGravitationalAcceleration(make_float3(0, 0, 0));
+        sim.SetMaxVelocity(0.5f);
+        sim.SetCDUpdateFreq(10);
+        sim.DisableAdaptiveUpdateFreq();
+        sim.Initialize();
+        grains = sim.Track(batch);
+    }
+    std::vector<float3> positions() {
+        std::vector<float3> p(n);
+        grains->Positions(p.data());
+        return p;
+    }
+};
+
+// 200 steps, an installation refused for memory (a margin forty times wider), 200 steps with the
+// margin back; the positions after each part and after a restart from a checkpoint written at the
+// failure.
+std::vector<std::vector<float3>> runWithARefusedInstallation(const std::string& ckpt) {
+    DriftingLattice b;
+    std::vector<std::vector<float3>> out;
+    b.sim.DoDynamics(200 * DT);
+    out.push_back(b.positions());
+    const size_t held = b.sim.GetMemoryStats().hostTotal();
+    b.sim.SetMaxVelocity(20.f);
+    {
+        const ScopedEnvironmentVariable limit("DEME_MEMORY_LIMIT", std::to_string(held + 50000));
+        const std::string msg = demeErrorMessage([&] { b.sim.DoDynamics(200 * DT); });
+        EXPECT_NE(msg.find("the contact set has grown to "), std::string::npos) << msg;
+    }
+    out.push_back(b.positions());
+    b.sim.WriteCheckpoint(ckpt);
+    b.sim.SetMaxVelocity(0.5f);
+    b.sim.DoDynamics(200 * DT);
+    out.push_back(b.positions());
+    DriftingLattice restarted;
+    restarted.sim.ReadCheckpoint(ckpt);
+    restarted.sim.SetMaxVelocity(0.5f);
+    restarted.sim.DoDynamics(200 * DT);
+    out.push_back(restarted.positions());
+    return out;
+}
+
+size_t differing(const std::vector<float3>& a, const std::vector<float3>& b) {
+    size_t d = 0;
+    for (size_t k = 0; k < a.size(); k++) d += a[k].x != b[k].x || a[k].y != b[k].y || a[k].z != b[k].z;
+    return d;
+}
+
+}  // namespace
+
+// A synchronous detection whose installation is refused after the set in use lost its pairs that
+// hand nothing on: the run detects afresh before its next step, and goes on as a run that kept the
+// whole set (bit for bit); a checkpoint written then holds no set to go on with, and its restart
+// goes on the same way.
+class CarriedPairsRuns : public ScratchDirTest {};
+
+TEST_F(CarriedPairsRuns, ARefusedInstallationLeavesARunThatGoesOnAsWithTheWholeSet) {
+    const std::vector<std::vector<float3>> trimmed = runWithARefusedInstallation((dir / "trimmed.ckpt").string());
+    std::vector<std::vector<float3>> whole;
+    {
+        const ScopedEnvironmentVariable keep("DEME_KEEP_WHOLE_SET", "1");
+        whole = runWithARefusedInstallation((dir / "whole.ckpt").string());
+    }
+    for (size_t k = 0; k < trimmed.size(); k++) EXPECT_EQ(differing(trimmed[k], whole[k]), 0u) << "part " << k;
+    EXPECT_EQ(differing(trimmed[3], trimmed[2]), 0u);  // the restart goes on as the run did
+    EXPECT_GT(differing(trimmed[2], trimmed[1]), 0u);  // the grains moved
+}
