@@ -8,6 +8,7 @@
 // backend/cpu/CarriedPairs.h). CPU only: the GPU keeps its sets dense and whole.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <random>
 #include <string>
@@ -166,18 +167,22 @@ size_t latticeContactsBytes(const char* form, float gap, int steps) {
 
 }  // namespace
 
-// Where most pairs are apart the automatic choice pools the history: 4 bytes a pair instead of the
-// model's W = 4 floats, so exactly 12 bytes a pair less than the dense form (no pair has a history
-// to keep). Where the grains overlap (a lattice 0.1 % narrower than their diameter) every pair has a
-// history after a step, and the sets installed after that keep the dense form.
+// Where most pairs are apart the automatic choice pools the history: a bit and a sixteenth of a
+// 4-byte rank a pair (12 bytes per 64 pairs) instead of the model's W = 4 floats, and no pair has a
+// history to keep. Where the grains overlap (a lattice 0.1 % narrower than their diameter) every
+// pair has a history after a step, and the sets installed after that keep the dense form.
 TEST(ContactHistoryFormChoice, PoolsWhereMostPairsAreApartAndKeepsABedDense) {
     const size_t dense = latticeContactsBytes("dense", 0.002f * R, 5);
     const size_t pooled = latticeContactsBytes("pooled", 0.002f * R, 5);
     const size_t chosen = latticeContactsBytes("auto", 0.002f * R, 5);
     EXPECT_EQ(chosen, pooled);
     ASSERT_GT(dense, pooled);
-    EXPECT_EQ((dense - pooled) % 12, 0u);
-    EXPECT_GT((dense - pooled) / 12, 1000u);  // pairs
+    // The difference is 16 n - 12 ceil(n / 64) for the set's n pairs, exactly.
+    auto saved = [](size_t n) { return 16 * n - 12 * ((n + 63) / 64); };
+    const size_t n = (size_t)std::llround((double)(dense - pooled) / (16.0 - 12.0 / 64.0));
+    const bool exact = saved(n) == dense - pooled || saved(n + 1) == dense - pooled || saved(n - 1) == dense - pooled;
+    EXPECT_TRUE(exact) << dense - pooled << " bytes less, about " << n << " pairs";
+    EXPECT_GT(n, 1000u);
 
     // Overlapping: after 25 steps (two detections after the first step) the auto run is dense.
     EXPECT_EQ(latticeContactsBytes("auto", -0.002f * R, 25), latticeContactsBytes("dense", -0.002f * R, 25));

@@ -79,7 +79,7 @@ struct ContactArrays : ContactFields<HostArray> {
     // is empty and the pool has a slot per pair: `wildcards` wins wherever it holds the history.
     PooledHistory pooled;
     bool historyPooled(unsigned int W) const {
-        return W > 0 && size() > 0 && wildcards.empty() && pooled.slot.size() == size();
+        return W > 0 && size() > 0 && wildcards.empty() && pooled.pairs == size();
     }
     // Whether owner o is B of a contact whose A is in o's own block of the force pass (its share
     // is then summed in the pass, not in a window; backend/cpu/ForcePassLoop.h).

@@ -26,6 +26,22 @@ void keepMarked(std::vector<T>& v, const std::vector<uint8_t>& keep, size_t kept
     v.swap(out);
 }
 
+// The pool of the pairs marked in `keep`: those of them with a slot, ranked in their new order.
+void keepPooledMarked(PooledHistory& p, const std::vector<uint8_t>& keep, size_t kept, unsigned int W) {
+    std::vector<uint64_t> bits((kept + 63) / 64, 0);
+    std::vector<float> values;
+    size_t at = 0;
+    for (size_t i = 0; i < keep.size(); i++) {
+        if (!keep[i]) continue;
+        if (const uint32_t k = p.slotOf(i); k != NO_HISTORY_SLOT) {
+            bits[at >> 6] |= 1ull << (at & 63);
+            values.insert(values.end(), p.values.begin() + (size_t)k * W, p.values.begin() + (size_t)(k + 1) * W);
+        }
+        at++;
+    }
+    p.assign(kept, std::move(bits), std::move(values));
+}
+
 }  // namespace
 
 bool keepOnlyCarriedPairs(SimState& s) {
@@ -44,8 +60,8 @@ bool keepOnlyCarriedPairs(SimState& s) {
         const float* h = nullptr;
         if (!pooled)
             h = W ? &c.wildcards[i * W] : nullptr;
-        else if (c.pooled.slot[i] != NO_HISTORY_SLOT)
-            h = &c.pooled.values[(size_t)c.pooled.slot[i] * W];
+        else if (const uint32_t k = c.pooled.slotOf(i); k != NO_HISTORY_SLOT)
+            h = &c.pooled.values[(size_t)k * W];
         const uint8_t ms = c.meshState.size() == n ? c.meshState[i] : (uint8_t)0;
         const uint8_t ps = anyPersistent ? c.persistent[i] : (uint8_t)0;
         keep[i] = pairCarriesHistory(h, h ? W : 0u, ms, ps) ? 1u : 0u;
@@ -59,7 +75,7 @@ bool keepOnlyCarriedPairs(SimState& s) {
     keepMarked(c.persistent, keep, kept, 1);
     keepMarked(c.meshState, keep, kept, 1);
     if (pooled)
-        keepMarked(c.pooled.slot, keep, kept, 1);  // (the pool keeps its values: mostly the kept pairs')
+        keepPooledMarked(c.pooled, keep, kept, W);
     else
         keepMarked(c.wildcards, keep, kept, W);
     return kept < n;

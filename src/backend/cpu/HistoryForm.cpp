@@ -1,5 +1,6 @@
 #include "backend/cpu/HistoryForm.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -31,34 +32,35 @@ void chooseHistoryForm(SimState& s) {
     // state) goes.
     c.pooled.release();
     if (W == 0 || n == 0) return;
-    // Which pairs keep a slot, counted per thread's share, then the slots given in that order.
+    // Which pairs keep a slot, a bit each, counted per thread's share of the words (so no two
+    // threads write one), then their histories copied in pair order: the pool's slots.
+    const size_t nWords = (n + 63) / 64;
     const int T = n > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
     std::vector<size_t> first(T + 1, 0);
-    std::vector<uint32_t> slot(n);
-    forEachThreadShare(n, T, [&](int t, size_t b, size_t e) {
+    std::vector<uint64_t> bits(nWords, 0);
+    forEachThreadShare(nWords, T, [&](int t, size_t b, size_t e) {
         size_t k = 0;  // (counted here: neighbouring threads' counts share a cache line)
-        for (size_t i = b; i < e; i++) {
-            slot[i] = pairNeedsHistorySlot(c.type[i], &c.wildcards[i * W], W) ? 1u : 0u;
-            k += slot[i];
+        for (size_t w = b; w < e; w++) {
+            uint64_t word = 0;
+            for (size_t i = 64 * w; i < std::min(n, 64 * w + 64); i++)
+                if (pairNeedsHistorySlot(c.type[i], &c.wildcards[i * W], W)) word |= 1ull << (i & 63);
+            bits[w] = word;
+            k += popcount64(word);
         }
         first[t + 1] = k;
     });
     for (int t = 0; t < T; t++) first[t + 1] += first[t];
     if (!poolsHistory(n, first[T])) return;
     std::vector<float> values(first[T] * W);
-    forEachThreadShare(n, T, [&](int t, size_t b, size_t e) {
+    forEachThreadShare(nWords, T, [&](int t, size_t b, size_t e) {
         size_t next = first[t];
-        for (size_t i = b; i < e; i++) {
-            if (!slot[i]) {
-                slot[i] = NO_HISTORY_SLOT;
-                continue;
+        for (size_t w = b; w < e; w++)
+            for (uint64_t word = bits[w]; word; word &= word - 1) {
+                const size_t i = 64 * w + (size_t)__builtin_ctzll(word);
+                std::copy(&c.wildcards[i * W], &c.wildcards[i * W] + W, &values[next++ * W]);
             }
-            for (unsigned int w = 0; w < W; w++) values[next * W + w] = c.wildcards[i * W + w];
-            slot[i] = (uint32_t)next++;
-        }
     });
-    c.pooled.slot.swap(slot);
-    c.pooled.values.swap(values);
+    c.pooled.assign(n, std::move(bits), std::move(values));
     releaseVector(c.wildcards);
 }
 
@@ -74,7 +76,7 @@ bool densifyHistory(SimState& s) {
     const PooledHistory& p = c.pooled;
 #pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < n; i++) {
-        const uint32_t k = p.slot[i];
+        const uint32_t k = p.slotOf(i);
         for (unsigned int w = 0; w < W; w++)
             wildcards[i * W + w] = k == NO_HISTORY_SLOT ? 0.f : p.values[(size_t)k * W + w];
     }

@@ -79,17 +79,16 @@ void mapDenseHistory(const SimState& s, const DetectedContacts& fresh, const Old
 
 // The same where the set in use is pooled, or there is none: first each pair's old index and
 // whether it has a history (counted per thread's share), then the history in the form that count
-// picks (poolsHistory): W floats per pair, or `slot` and a pool of the pairs that have one.
+// picks (poolsHistory): W floats per pair into `wildcards`, or the pairs that have one into `pool`.
 // Returns whether it pooled.
 bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, const OldContactHistory& old,
-                            std::vector<float>& wildcards, std::vector<uint32_t>& slot, std::vector<uint8_t>& meshState,
+                            std::vector<float>& wildcards, PooledHistory& pool, std::vector<uint8_t>& meshState,
                             std::vector<uint8_t>& persistent) {
     const size_t nNew = fresh.size();
     const unsigned int W = old.W;
     const ContactKeys freshKeys = keysOf(fresh.geomA, fresh.geomB);
     const int T = nNew > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
-    std::vector<uint32_t>& at = slot;
-    at.resize(nNew);
+    std::vector<uint32_t> at(nNew);
     std::vector<size_t> first(T + 1, 0);
     forEachThreadShare(nNew, T, [&](int t, size_t b, size_t e) {
         std::vector<float> h(W);
@@ -106,25 +105,34 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
     });
     for (int t = 0; t < T; t++) first[t + 1] += first[t];
     const bool pooled = nNew > 0 && poolsHistory(nNew, first[T]);
-    wildcards.resize(pooled ? first[T] * W : nNew * W);
+    std::vector<float> values(pooled ? first[T] * W : nNew * W);
     forEachThreadShare(nNew, T, [&](int t, size_t b, size_t e) {
         size_t next = first[t];
         uint8_t ms, ps;  // (the same as the first pass's)
         for (size_t i = b; i < e; i++) {
-            const bool keep = (at[i] & KEEPS_SLOT) != 0;
             const unsigned int j = at[i] & ~KEEPS_SLOT;
-            if (!pooled) {
-                pairHistoryFrom(s, freshKeys, fresh.type.data(), old, (unsigned int)i, j, &wildcards[i * W], ms, ps);
-            } else if (keep) {
-                pairHistoryFrom(s, freshKeys, fresh.type.data(), old, (unsigned int)i, j, &wildcards[next * W], ms, ps);
-                at[i] = (uint32_t)next++;
-            } else {
-                at[i] = NO_HISTORY_SLOT;
-            }
+            if (!pooled)
+                pairHistoryFrom(s, freshKeys, fresh.type.data(), old, (unsigned int)i, j, &values[i * W], ms, ps);
+            else if (at[i] & KEEPS_SLOT)
+                pairHistoryFrom(s, freshKeys, fresh.type.data(), old, (unsigned int)i, j, &values[next++ * W], ms, ps);
         }
     });
-    if (!pooled) releaseVector(slot);
-    return pooled;
+    if (!pooled) {
+        wildcards.swap(values);
+        return false;
+    }
+    // The pairs that keep a slot, a bit each (a word per 64 pairs: no two threads write one).
+    std::vector<uint64_t> bits((nNew + 63) / 64, 0);
+#pragma omp parallel for schedule(static) if (nNew > PARALLEL_MIN_ITEMS)
+    for (size_t w = 0; w < bits.size(); w++) {
+        uint64_t word = 0;
+        for (size_t i = 64 * w; i < std::min(nNew, 64 * w + 64); i++)
+            if (at[i] & KEEPS_SLOT) word |= 1ull << (i & 63);
+        bits[w] = word;
+    }
+    releaseVector(at);
+    pool.assign(nNew, std::move(bits), std::move(values));
+    return true;
 }
 
 }  // namespace
@@ -150,26 +158,25 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
                                 W,
                                 s.wildcards.contactInit.data(),
                                 (unsigned int)s.wildcards.contactInit.size(),
-                                oldPooled ? c.pooled.slot.data() : nullptr};
+                                oldPooled ? c.pooled.view() : RankedSlotsView{}};
     std::vector<float> wildcards;
-    std::vector<uint32_t> slot;
+    PooledHistory pool;
     std::vector<uint8_t> meshState(nNew), persistent(nNew);
     // The history's form (backend/cpu/HistoryForm.h): a dense set is mapped dense and pooled after
     // where few of its pairs have a history; otherwise the form is chosen before the history is made.
     const bool mapDense = W == 0 || (!oldPooled && c.size() > 0);
-    const bool pooled = !mapDense && mapHistoryChoosingForm(s, fresh, old, wildcards, slot, meshState, persistent);
+    const bool pooled = !mapDense && mapHistoryChoosingForm(s, fresh, old, wildcards, pool, meshState, persistent);
     if (mapDense) mapDenseHistory(s, fresh, old, wildcards, meshState, persistent);
     c.geomA.swap(fresh.geomA);
     c.geomB.swap(fresh.geomB);
     c.type.swap(fresh.type);
     c.meshState.swap(meshState);
     c.persistent.swap(persistent);
-    c.pooled.release();
     if (pooled) {
         releaseVector(c.wildcards);
-        c.pooled.slot.swap(slot);
-        c.pooled.values.swap(wildcards);
+        std::swap(c.pooled, pool);
     } else {
+        c.pooled.release();
         c.wildcards.swap(wildcards);
     }
     // `fresh` now holds the old set's ids, and the locals its history (swapped out above):
@@ -177,6 +184,7 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     // docs/memory.md), nor through the indexing below (18 B per pair more at the peak).
     fresh = DetectedContacts();
     releaseVector(wildcards);
+    pool.release();
     releaseVector(meshState);
     releaseVector(persistent);
     if (mapDense) chooseHistoryForm(s);

@@ -13,7 +13,7 @@ namespace {
 struct HistoryInPool {
     PooledHistory* pool;
     unsigned int W;
-    float* operator()(size_t i) const { return pool->values.data() + (size_t)pool->slot[i] * W; }
+    float* operator()(size_t i) const { return pool->values.data() + (size_t)pool->slotOf(i) * W; }
 };
 
 }  // namespace
