@@ -8,12 +8,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <string>
 
+#include "BackendFixture.h"
 #include "api/ForceModelSetup.h"
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
@@ -25,6 +27,7 @@
 #include "runtime/ContactForceView.h"
 
 using namespace deme;
+using namespace deme_test;
 
 namespace {
 
@@ -128,9 +131,15 @@ TEST(ForceReduction, OwnersSumsCancelAndDoNotDependOnTheThreadCount) {
     EXPECT_LT(length(F), rounding * fScale) << "sum of forces " << F.x << " " << F.y << " " << F.z;
     EXPECT_LT(length(L), rounding * lScale) << "sum of moments " << L.x << " " << L.y << " " << L.z;
 
-    // The same sums, bit for bit, whatever the number of threads.
-    for (int threads : {2, 3}) {
-        const Loads many = passAndReduce(scene, threads);
+    // The same sums, bit for bit, whatever the number of threads, and with the 4-byte B slots a
+    // set takes where a block's window has more slots than 2 bytes count.
+    for (int threads : {2, 3, -2}) {
+        const bool wide = threads < 0;
+        const ScopedEnvironmentVariable width("DEME_WIDE_REDUCTION_SLOTS", wide ? "1" : "0");
+        SimState used;
+        const Loads many = passAndReduce(scene, std::abs(threads), &used);
+        EXPECT_EQ(used.contacts.bSlotWide.empty(), !wide);
+        EXPECT_EQ(used.contacts.bSlot.empty(), wide);
         ASSERT_EQ(many.force.size(), one.force.size());
         for (size_t o = 0; o < one.force.size(); o++) {
             ASSERT_EQ(std::memcmp(&many.force[o], &one.force[o], sizeof(float3)), 0) << "owner " << o;
@@ -183,6 +192,7 @@ TEST(ForceReduction, StoredForcesReadTheSameInBothFormsAndSumToTheOwnersForces) 
 // detected with a wide margin: a storing pass keeps nothing, and the set holds no load per pair (the
 // windows hold one slot per B owner of a block, not one per pair).
 TEST(ForceReduction, PairsApartKeepNoLoads) {
+    const ScopedEnvironmentVariable narrow("DEME_WIDE_REDUCTION_SLOTS", "0");  // the 2-byte slots read below
     const Scene scene = compressedBlock();
     SimState s;
     // Three-sphere clumps 2.1 R apart: within 4 R of each other, so a margin of 5 R finds pairs
@@ -208,16 +218,19 @@ TEST(ForceReduction, PairsApartKeepNoLoads) {
         const bodyID_t a = s.spheres.owner[c.geomA[i]], b = contactOwnerB(s, i);
         const bool same = a / FORCE_PASS_BLOCK_OWNERS == b / FORCE_PASS_BLOCK_OWNERS;
         inBlock += same;
-        ASSERT_EQ((c.bSlot[i] & IN_BLOCK_SLOT) != 0, same) << "contact " << i;
+        const uint16_t flag = inBlockSlotFlag<uint16_t>();
+        ASSERT_EQ((c.bSlot[i] & flag) != 0, same) << "contact " << i;
         if (same) EXPECT_TRUE(c.isBInItsBlock(b)) << "contact " << i;
-        if (same) EXPECT_EQ(c.bSlot[i] & ~IN_BLOCK_SLOT, b % FORCE_PASS_BLOCK_OWNERS) << "contact " << i;
-        if (!same) EXPECT_LT(c.bSlot[i], c.window.size()) << "contact " << i;
+        if (same) EXPECT_EQ(c.bSlot[i] & ~flag, b % FORCE_PASS_BLOCK_OWNERS) << "contact " << i;
+        const size_t k = a / FORCE_PASS_BLOCK_OWNERS;
+        if (!same) EXPECT_LT(c.bSlot[i], c.blockWindowStart[k + 1] - c.blockWindowStart[k]) << "contact " << i;
     }
     ASSERT_GT(inBlock, 0u);
     ASSERT_LT(inBlock, c.size());
     std::cout << "[ windows  ] " << (double)c.window.size() / (double)s.owners.size() << " slots per owner, "
               << (double)c.size() / (double)s.owners.size() << " pairs per owner" << std::endl;
-    EXPECT_EQ(c.bSlot.size(), c.size());
+    EXPECT_EQ(c.bSlot.size(), c.size());  // two bytes each
+    EXPECT_TRUE(c.bSlotWide.empty());
     for (size_t o = 0; o < s.owners.size(); o++) {
         EXPECT_EQ(s.owners.contactForce[o].x, 0.f);
         EXPECT_EQ(s.owners.contactForce[o].z, 0.f);

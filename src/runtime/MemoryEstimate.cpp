@@ -39,8 +39,8 @@ struct SizedBytes {
 // bookkeeping included where `host`. Not the per-contact force: the GPU keeps it in the idle set's
 // memory (contactSetBytes), the CPU only for the pairs with a force, at the end of a call.
 size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host) {
-    const void* notPerPair[] = {&c.force,  &c.meshContacts, &c.meshContactGroups, &c.ownerAStart,  &c.blockWindowStart,
-                                &c.window, &c.ownerBStart,  &c.ownerBSlots,       &c.ownerBInBlock};
+    const void* notPerPair[] = {&c.force,  &c.meshContacts, &c.meshContactGroups, &c.ownerAStart,   &c.blockWindowStart,
+                                &c.window, &c.ownerBStart,  &c.ownerBSlots,       &c.ownerBInBlock, &c.bSlotWide};
     size_t b = 0;
     forEachContactField(c, c, [&](const auto& v, const auto&, FieldRole role) {
         const void* f = &v;

@@ -92,10 +92,10 @@ struct ContactArrays : ContactFields<HostArray> {
     void resetIndex(bool release = false) {
         const size_t bytes =
             sizeof(uint32_t) *
-                (meshContacts.capacity() + meshContactGroups.capacity() + ownerAStart.capacity() + bSlot.capacity() +
-                 blockWindowStart.capacity() + ownerBStart.capacity() + ownerBSlots.capacity()) +
-            sizeof(WindowLoad) * window.capacity() + sizeof(float3) * force.capacity() +
-            sizeof(uint64_t) * ownerBInBlock.capacity();
+                (meshContacts.capacity() + meshContactGroups.capacity() + ownerAStart.capacity() +
+                 bSlotWide.capacity() + blockWindowStart.capacity() + ownerBStart.capacity() + ownerBSlots.capacity()) +
+            sizeof(uint16_t) * bSlot.capacity() + sizeof(WindowLoad) * window.capacity() +
+            sizeof(float3) * force.capacity() + sizeof(uint64_t) * ownerBInBlock.capacity();
         release = release || bytes > KEEP_REBUILT_ARRAYS_UP_TO;
         auto reset = [release](auto& v) {
             if (release)
@@ -107,6 +107,7 @@ struct ContactArrays : ContactFields<HostArray> {
         reset(meshContactGroups);
         reset(ownerAStart);
         reset(bSlot);
+        reset(bSlotWide);
         reset(blockWindowStart);
         reset(window);
         reset(ownerBStart);

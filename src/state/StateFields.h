@@ -20,8 +20,13 @@ namespace deme {
 struct WindowLoad {
     float3 force, negTorque;
 };
-// bSlot's flag for a B owner in the contact's own block: the low bits are its index in the block.
-constexpr uint32_t IN_BLOCK_SLOT = 0x80000000u;
+// A contact's B slot (bSlot, or bSlotWide where a block has more window slots than 15 bits
+// count): the top bit set for a B owner in the contact's own block, the low bits its index in the
+// block; else its slot in the block's window (from the block's first).
+template <class Slot>
+constexpr Slot inBlockSlotFlag() {
+    return (Slot)((Slot)1 << (8 * sizeof(Slot) - 1));
+}
 }  // namespace deme
 
 // Owners (paper §2.4): clumps, then analytical objects, then meshes, in a space-filling-curve order.
@@ -108,7 +113,8 @@ constexpr uint32_t IN_BLOCK_SLOT = 0x80000000u;
     /* distinct such owner (blockWindowStart; bSlot per contact), and the reduction adds an       */    \
     /* owner's slots in block order (ownerBStart, ownerBSlots). So no load is stored per contact. */    \
     X(ownerAStart, uint32_t, HOST)      /* contacts [ownerAStart[o], ownerAStart[o + 1]) have A in o */ \
-    X(bSlot, uint32_t, HOST)            /* B owner's window slot, or IN_BLOCK_SLOT | its index */       \
+    X(bSlot, uint16_t, HOST)            /* B's slot (inBlockSlotFlag); empty where bSlotWide is used */ \
+    X(bSlotWide, uint32_t, HOST)        /* the same, where a block's window has over 32,767 slots */    \
     X(blockWindowStart, uint32_t, HOST) /* block k's slots: [blockWindowStart[k], ... [k + 1]) */       \
     X(window, WindowLoad, HOST)         /* per slot: B's owner's loads from the block's contacts */     \
     X(ownerBStart, uint32_t, HOST)      /* owner o takes slots ownerBSlots[ownerBStart[o] ..] as B */   \

@@ -137,6 +137,22 @@ inline void keepPooledHistory(PooledHistory& p, int thread, size_t b, size_t m, 
     }
 }
 
+// A chunk's loads onto B's sums: the block's own (in-block owners) or its window's slots (relative
+// to the block's first), chosen by the slot's flag without a branch (the flag is mixed).
+template <class Slot>
+inline void addBShares(const Slot* bSlot, WindowLoad* blockWindow, WindowLoad* inBlock, const float3* force,
+                       const float3* torqueB, size_t m) {
+    constexpr unsigned int top = 8 * sizeof(Slot) - 1;
+    constexpr Slot low = (Slot)(inBlockSlotFlag<Slot>() - 1);
+    WindowLoad* const sums[2] = {blockWindow, inBlock};
+    for (size_t j = 0; j < m; j++) {
+        const Slot w = bSlot[j];
+        WindowLoad& sum = sums[w >> top][w & low];
+        sum.force += force[j];
+        sum.negTorque -= torqueB[j];
+    }
+}
+
 // The block's own B owners' sums onto them, after their A share (0 for an owner that is not A in
 // the block), and the sums reset for the next block. The same fixed order for any thread count.
 inline void addInBlockSums(const ContactArrays& c, OwnerArrays& ow, size_t k, WindowLoad* inBlock) {
@@ -180,7 +196,6 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
         c.force.resize(n);
     else if (!c.force.empty())
         std::vector<float3>().swap(c.force);
-    const uint32_t* bSlot = c.bSlot.data();
     WindowLoad* window = c.window.data();
     // The history: W floats per pair in the set, or pooled (the chunk works on a copy).
     constexpr unsigned int W = Model::kNumContactWildcards;
@@ -236,15 +251,11 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
                     F += force[j];
                     tau += torqueA[j];
                 }
-                // (The sums' arrays by the slot's flag, without a branch: the flag is mixed.)
-                static_assert(IN_BLOCK_SLOT == 1u << 31, "the flag is the slot's top bit");
-                WindowLoad* const sums[2] = {window, inBlock.data()};
-                for (size_t j = 0; j < m; j++) {
-                    const uint32_t w = bSlot[b + j];
-                    WindowLoad& sum = sums[w >> 31][w & ~IN_BLOCK_SLOT];
-                    sum.force += force[j];
-                    sum.negTorque -= torqueB[j];
-                }
+                WindowLoad* const blockWindow = window + c.blockWindowStart[k];
+                if (c.bSlotWide.empty())
+                    addBShares(c.bSlot.data() + b, blockWindow, inBlock.data(), force, torqueB, m);
+                else
+                    addBShares(c.bSlotWide.data() + b, blockWindow, inBlock.data(), force, torqueB, m);
                 if (storePairs) storeChunkForces(stored, thread, b, m, force);
             }
             if (end > begin) {
