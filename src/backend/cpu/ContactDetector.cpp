@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "parallel/Parallel.h"
+#include "runtime/MemoryEstimate.h"
 
 namespace deme {
 
@@ -46,8 +47,10 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
         DetectedContacts& mine = m_threadOut[t];
         // Room for this thread's share of as many pairs as last time, and a little more: grown by
         // doubling instead, the lists would hold up to twice the pairs' bytes while the copies below
-        // are made.
-        const size_t expected = m_lastPairs / (size_t)T + m_lastPairs / (size_t)T / 16 + 64;
+        // are made. The first detection takes the memory estimate's pairs per sphere (a dense
+        // packing's): room never written takes no memory (runtime/AllocatorPolicy.h maps it).
+        const size_t last = m_lastPairs ? m_lastPairs : (size_t)(ESTIMATED_PAIRS_PER_SPHERE * (double)nSearched);
+        const size_t expected = last / (size_t)T + last / (size_t)T / 16 + 64;
         mine.geomA.reserve(expected);
         mine.geomB.reserve(expected);
         mine.type.reserve(expected);
