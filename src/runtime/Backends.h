@@ -165,7 +165,9 @@ class DynamicsBackend {
     // history of the set it replaces (wildcards, mesh state, persistent pairs); travel is measured
     // from the order's snapshot from now on.
     virtual void install(const DetectionReport& report, TimingStats& timing) = 0;
-    // A detection whose set is installed before the next step (synchronous) is about to run: what
+    // A detection whose set is installed before the next step (synchronous) is about to run (its
+    // order is marked next, markOrderBaseline, with no step between: the CPU keeps no copy of the
+    // travel for it, which is the travel at the installation): what
     // only the steps read of the set in use may go now (the CPU's reduction index, rebuilt by the
     // installation, or by the next step if the installation fails), lowering the detection's peak.
     // Returns true where the set in use then serves no step (the CPU keeps only the pairs that

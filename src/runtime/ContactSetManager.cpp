@@ -63,8 +63,8 @@ void ContactSetManager::detectNow(const Settings& settings, unsigned long long s
     const double t0 = now();
     m_schedule.beforeSyncDetection(settings.asyncDetection, step, m_stats, timing.seconds[(int)Phase::FORCE]);
     if (beforeDetection) beforeDetection();
-    m_dynamics->markOrderBaseline();
     const bool setServesNoStep = m_dynamics->beforeDetectNow();
+    m_dynamics->markOrderBaseline();
     try {
         DetectionReport r;
         m_kinematics->detectNow(orderFor(settings, step, maxSpeed), r);

@@ -96,7 +96,16 @@ void CpuDynamics::downloadContacts(SimState& s) {
     if (densifyHistory(s)) m_chooseHistoryForm = true;
 }
 
-void CpuDynamics::markOrderBaseline() { m_orderBaseline = m_s.owners.travel; }
+void CpuDynamics::markOrderBaseline() {
+    // A synchronous detection's order (beforeDetectNow came first) is installed before any step:
+    // its snapshot is the travel then, and no copy of 8 B per owner is held through the detection.
+    m_orderAtInstall = m_syncOrderNext;
+    m_syncOrderNext = false;
+    if (m_orderAtInstall)
+        releaseOrderBaseline();
+    else
+        m_orderBaseline = m_s.owners.travel;
+}
 
 // The order's snapshot lives from the order to its installation (a synchronous detection's: within
 // one call): let go between (8 B per owner) where it is a block of its own that goes back to the
@@ -121,15 +130,21 @@ double CpuDynamics::maxTravelSinceOrder() {
 void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
     PhaseTimer t(timing, Phase::HISTORY_MAPPING);
     installDetectedContacts(m_s, m_kinematics.takenPairs());
-    if (m_orderBaseline.size() != m_s.owners.size())
-        throwError("DoDynamics", "internal: a contact set is installed with no order's travel");
-    m_baseline.swap(m_orderBaseline);
+    if (m_orderAtInstall) {
+        m_baseline = m_s.owners.travel;  // (into its own storage: no array more)
+    } else {
+        if (m_orderBaseline.size() != m_s.owners.size())
+            throwError("DoDynamics", "internal: a contact set is installed with no order's travel");
+        m_baseline.swap(m_orderBaseline);
+    }
+    m_orderAtInstall = false;
     releaseOrderBaseline();
     m_setTrimmed = false;
     m_subsetStale = true;  // the reduction's list (owners stepped or in a contact) follows the set
 }
 
 bool CpuDynamics::beforeDetectNow() {
+    m_syncOrderNext = true;
     m_s.contacts.resetIndex();
     m_setTrimmed = keepOnlyCarriedPairs(m_s) || m_setTrimmed;
     return m_setTrimmed;

@@ -68,8 +68,10 @@ class CpuDynamics : public DynamicsBackend {
     // installation or an upload replaces it: then it serves no step and no restart.
     bool m_setTrimmed = false;
     // Owners' travel at the snapshot of the set in use (baseline) and of the order in flight (empty
-    // while there is none).
+    // while there is none, and for a synchronous detection's order, whose snapshot is the travel at
+    // its installation: m_orderAtInstall).
     std::vector<double> m_baseline, m_orderBaseline;
+    bool m_syncOrderNext = false, m_orderAtInstall = false;
     void releaseOrderBaseline();
 };
 
