@@ -9,6 +9,7 @@
 #include "dynamics/KinematicCache.h"
 #include "dynamics/OwnerStep.h"
 #include "physics/RigidBody.h"
+#include "runtime/MemoryAccounting.h"
 
 namespace deme {
 
@@ -131,15 +132,22 @@ void IntegrationSubset::update(SimState& s, const std::array<FamilyStepMotion, N
     spheres.clear();
     reduced.clear();
     std::vector<uint8_t> stepped(n);
+    size_t count = 0;
     for (size_t o = 0; o < n; o++) {
         stepped[o] = !ownerAtRest(s, motion.data(), o);
-        if (stepped[o]) owners.push_back((bodyID_t)o);
+        count += stepped[o];
     }
-    all = owners.size() == n;
+    all = count == n;
     if (all) {
-        owners.clear();
+        // Every owner steps (most runs): the lists hold nothing, and no memory either.
+        releaseVector(owners);
+        releaseVector(spheres);
+        releaseVector(reduced);
         return;
     }
+    owners.reserve(count);
+    for (size_t o = 0; o < n; o++)
+        if (stepped[o]) owners.push_back((bodyID_t)o);
     const std::vector<uint32_t>&a = s.contacts.ownerAStart, &b = s.contacts.ownerBStart;
     auto inContact = [&](size_t o) {
         return (a.size() > o + 1 && a[o + 1] > a[o]) || (b.size() > o + 1 && b[o + 1] > b[o]) ||
