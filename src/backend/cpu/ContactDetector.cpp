@@ -41,22 +41,26 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
     // dormant partners after its own (such pairs are keyed by the lower id, sorted below).
     const int T = nSearched > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
     m_threadOut.resize(T);
+    // Room for each thread's share of as many pairs as last time, and a little more: grown by
+    // doubling instead, the lists would hold up to twice the pairs' bytes while the copies below
+    // are made. The first detection takes the memory estimate's pairs per sphere (a dense
+    // packing's): room never written takes no memory (runtime/AllocatorPolicy.h maps it).
+    const size_t last = m_lastPairs ? m_lastPairs : (size_t)(ESTIMATED_PAIRS_PER_SPHERE * (double)nSearched);
+    const bool runs = !dormant && last >= nSearched;  // A as runs where they are the smaller
 #pragma omp parallel num_threads(T) if (T > 1)
     {
         const int t = cpuThreadIndex();
-        DetectedContacts& mine = m_threadOut[t];
-        // Room for this thread's share of as many pairs as last time, and a little more: grown by
-        // doubling instead, the lists would hold up to twice the pairs' bytes while the copies below
-        // are made. The first detection takes the memory estimate's pairs per sphere (a dense
-        // packing's): room never written takes no memory (runtime/AllocatorPolicy.h maps it).
-        const size_t last = m_lastPairs ? m_lastPairs : (size_t)(ESTIMATED_PAIRS_PER_SPHERE * (double)nSearched);
-        const size_t expected = last / (size_t)T + last / (size_t)T / 16 + 64;
-        mine.geomA.reserve(expected);
-        mine.geomB.reserve(expected);
-        mine.type.reserve(expected);
-        std::vector<bodyID_t> partners(64);
+        ThreadPairs& mine = m_threadOut[t];
         size_t begin, end;
         threadRange(nSearched, t, T, begin, end);
+        const size_t expected = last / (size_t)T + last / (size_t)T / 16 + 64;
+        mine.firstSearched = begin;
+        mine.geomB.reserve(expected);
+        if (runs)
+            mine.runs.reserve(end - begin);
+        else
+            mine.geomA.reserve(expected);
+        std::vector<bodyID_t> partners(64);
         for (size_t k = begin; k < end; k++) {
             const bodyID_t a = (bodyID_t)sphereAt(k);
             unsigned int n = spherePartners(s, args, a, partners.data(), (unsigned int)partners.size());
@@ -64,11 +68,12 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
                 partners.resize(2 * (size_t)n);
                 n = spherePartners(s, args, a, partners.data(), (unsigned int)partners.size());
             }
-            for (unsigned int j = 0; j < n; j++) {
-                mine.geomA.push_back(a);
-                mine.geomB.push_back(partners[j]);
-                mine.type.push_back(contactTypeOf(s, partners[j]));
+            mine.geomB.insert(mine.geomB.end(), partners.begin(), partners.begin() + n);
+            if (runs) {
+                mine.runs.push_back(n);
+                continue;
             }
+            mine.geomA.insert(mine.geomA.end(), n, a);
             if (!dormant) continue;
             n = dormantPartners(s, args, dormantBins, a, partners.data(), (unsigned int)partners.size());
             if (n > partners.size()) {
@@ -78,7 +83,6 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
             for (unsigned int j = 0; j < n; j++) {
                 mine.geomA.push_back(std::min(a, partners[j]));
                 mine.geomB.push_back(std::max(a, partners[j]));
-                mine.type.push_back((uint8_t)SPHERE_SPHERE);
             }
         }
     }
@@ -97,23 +101,35 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
     }
 
     // 3. Concatenate in thread order: the result is sorted by (A, B), or is sorted so below. One
-    // field at a time, each thread's list of it let go once copied, so that the pairs are held
-    // twice over one field's bytes at most (4 B per pair, not 9).
+    // field at a time, each thread's list of it let go once made, so that the pairs are held twice
+    // over one field's bytes at most (4 B per pair, not 9).
     size_t total = 0;
-    for (const auto& t : m_threadOut) total += t.size();
-    auto gather = [&](auto& outField, auto field) {
-        outField.resize(total);
-        size_t at = 0;
-        for (DetectedContacts& t : m_threadOut) {
-            auto& part = t.*field;
-            std::copy(part.begin(), part.end(), outField.begin() + at);
-            at += part.size();
-            releaseVector(part);
+    for (const ThreadPairs& t : m_threadOut) total += t.size();
+    out.geomB.resize(total);
+    out.geomA.resize(total);
+    size_t at = 0;
+    for (ThreadPairs& t : m_threadOut) {
+        std::copy(t.geomB.begin(), t.geomB.end(), out.geomB.begin() + at);
+        at += t.size();
+        releaseVector(t.geomB);
+    }
+    at = 0;
+    for (ThreadPairs& t : m_threadOut) {
+        if (!runs) {
+            std::copy(t.geomA.begin(), t.geomA.end(), out.geomA.begin() + at);
+            at += t.geomA.size();
+        } else {
+            for (size_t k = 0; k < t.runs.size(); k++) {
+                std::fill_n(out.geomA.begin() + at, t.runs[k], (bodyID_t)(t.firstSearched + k));
+                at += t.runs[k];
+            }
         }
-    };
-    gather(out.geomA, &DetectedContacts::geomA);
-    gather(out.geomB, &DetectedContacts::geomB);
-    gather(out.type, &DetectedContacts::type);
+        releaseVector(t.geomA);
+        releaseVector(t.runs);
+    }
+    out.type.resize(total);
+#pragma omp parallel for schedule(static) if (total > PARALLEL_MIN_ITEMS)
+    for (size_t i = 0; i < total; i++) out.type[i] = contactTypeOf(s, out.geomB[i]);
     m_lastPairs = total;
     if (dormant) sortPairs(s, out);
     searchSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();

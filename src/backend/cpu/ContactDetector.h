@@ -20,6 +20,19 @@ struct DetectedContacts {
     size_t bytes() const { return vectorBytes(geomA) + vectorBytes(geomB) + vectorBytes(type); }
 };
 
+// One thread's pairs while a search runs: B of each, and A either as each searched sphere's number
+// of pairs (the thread searches its spheres in order, so its pairs are runs of one A: 4 B a sphere
+// instead of 4 B a pair) or, where that is not smaller or the active box adds dormant partners
+// (keyed by the lower id, sorted afterwards), A of each pair. The type follows from B
+// (contactTypeOf) and is set as the pairs are gathered.
+struct ThreadPairs {
+    std::vector<bodyID_t> geomA, geomB;
+    std::vector<uint32_t> runs;  // pairs per searched sphere, from the thread's first
+    size_t firstSearched = 0;
+    size_t size() const { return geomB.size(); }
+    size_t bytes() const { return vectorBytes(geomA) + vectorBytes(geomB) + vectorBytes(runs); }
+};
+
 // Items registered in the bins their boxes touch (counting sort by bin).
 struct BinRegistry {
     std::vector<uint32_t> start, entries;
@@ -74,7 +87,7 @@ class ContactDetector {
     size_t bytes() const {
         size_t b = m_dormant.bytes() + m_spheres.bytes() + m_triangles.bytes() + vectorBytes(m_triLo) +
                    vectorBytes(m_triHi) + vectorBytes(m_threadOut);
-        for (const DetectedContacts& t : m_threadOut) b += t.bytes();
+        for (const ThreadPairs& t : m_threadOut) b += t.bytes();
         return b;
     }
 
@@ -86,7 +99,7 @@ class ContactDetector {
     BinRegistry m_spheres, m_triangles;
     size_t m_keepBinsUpTo = KEEP_REBUILT_ARRAYS_UP_TO;
     std::vector<double3> m_triLo, m_triHi;
-    std::vector<DetectedContacts> m_threadOut;  // each thread's pairs, only while a detection runs
+    std::vector<ThreadPairs> m_threadOut;       // each thread's pairs, only while a detection runs
     size_t m_lastPairs = 0;                     // how many the last detection found
 };
 
