@@ -10,6 +10,7 @@
 #include "runtime/ContactEdits.h"
 #include "runtime/SceneEdits.h"
 #include "runtime/Simulation.h"
+#include "state/SphereIds.h"
 
 namespace deme {
 
@@ -105,7 +106,7 @@ void DEMSolver::SetSphereWildcardValue(const std::string& name, size_t firstSphe
     const char* call = "SetSphereWildcardValue";
     requireInitialized(call);
     const SimState& s = m_sim->state();
-    setGeometry(*m_sim, call, "sphere", name, firstSphereID, values, s.sphereUserToInternal.size(),
+    setGeometry(*m_sim, call, "sphere", name, firstSphereID, values, userSphereCount(s),
                 [&](size_t u) { return liveSphere(s, u, call); });
 }
 
@@ -118,7 +119,7 @@ std::vector<float> DEMSolver::GetSphereWildcardValue(const std::string& name, si
     const char* call = "GetSphereWildcardValue";
     requireInitialized(call);
     const SimState& s = m_sim->state();
-    return getGeometry(*m_sim, call, "sphere", name, firstSphereID, count, s.sphereUserToInternal.size(),
+    return getGeometry(*m_sim, call, "sphere", name, firstSphereID, count, userSphereCount(s),
                        [&](size_t u) { return liveSphere(s, u, call); });
 }
 

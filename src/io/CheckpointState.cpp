@@ -1,8 +1,11 @@
 #include "io/CheckpointState.h"
 
 #include <map>
+#include <type_traits>
 
 #include <deme/Error.h>
+
+#include "state/SphereIds.h"
 
 namespace deme {
 
@@ -74,8 +77,15 @@ void writeStateSection(const SimState& s, ByteWriter& out) {
     forEachStoredArray(s, [&](const std::string&, const auto&) { records++; });
     records += s.wildcards.owner.size() + s.wildcards.geometry.size();
     out.value(records);
+    // Sphere id maps shared with the owners' (state/SphereIds.h) are written as the maps they are.
+    std::vector<bodyID_t> sphereToUser, userToSphere;
+    if (s.sphereIdsAreOwnerIds) sphereIdMaps(s, sphereToUser, userToSphere);
     forEachStoredArray(s, [&](const std::string& name, const auto& v) {
         out.text(name);
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::vector<bodyID_t>>) {
+            if (s.sphereIdsAreOwnerIds && name == "sphereInternalToUser") return out.array(sphereToUser);
+            if (s.sphereIdsAreOwnerIds && name == "sphereUserToInternal") return out.array(userToSphere);
+        }
         out.array(v);
     });
     for (size_t i = 0; i < s.wildcards.owner.size(); i++) {
@@ -102,6 +112,9 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
         throwError(call, file + " holds a state of another layout than this build's: " + what +
                              " (written by another version of the engine?)");
     };
+    // The file holds the sphere id maps themselves: shared with the owners' again below, if equal.
+    s.sphereIdsAreOwnerIds = false;
+    s.userSphereIds = 0;
     s.numClumps = (size_t)in.value<uint64_t>("the clump count");
     s.numAnalyticalOwners = (size_t)in.value<uint64_t>("the analytical owner count");
     s.numWildcards = in.value<uint32_t>("the contact wildcard count");
@@ -205,6 +218,7 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
     namedContactFields(s.contacts, [&](const char*, auto& v, FieldRole role) {
         if (role == FieldRole::HOST) v.clear();
     });
+    shareSphereIdsWithOwners(s);
 }
 
 }  // namespace deme

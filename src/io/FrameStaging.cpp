@@ -6,6 +6,7 @@
 #include "runtime/ContactForceView.h"
 #include "runtime/Simulation.h"
 #include "runtime/StressMeasure.h"
+#include "state/SphereIds.h"
 #include "state/SphereLayout.h"
 
 namespace deme {
@@ -53,11 +54,11 @@ void fillOwnerWildcards(const std::vector<FrameColumn*>& cols, const SimState& s
 // earlier clumps. rowOf[u] for each live user id u; empty while the ids are 0..n-1 as assigned.
 std::vector<uint32_t> sphereRows(const SimState& s) {
     std::vector<uint32_t> rowOf;
-    if (s.sphereUserToInternal.size() == s.spheres.size()) return rowOf;
-    rowOf.assign(s.sphereUserToInternal.size(), 0);
+    if (userSphereCount(s) == s.spheres.size()) return rowOf;
+    rowOf.assign(userSphereCount(s), 0);
     uint32_t row = 0;
     for (size_t u = 0; u < rowOf.size(); u++)
-        if (s.sphereUserToInternal[u] != SimState::REMOVED_ID) rowOf[u] = row++;
+        if (sphereInternalId(s, u) != SimState::REMOVED_ID) rowOf[u] = row++;
     return rowOf;
 }
 
@@ -98,7 +99,7 @@ OutputFrame stageSphereFrame(const Simulation& sim) {
     // about twice as fast for millions of spheres as gathering in row order.
 #pragma omp parallel for schedule(static) if ((long)n > PARALLEL_MIN_ROWS)
     for (long i = 0; i < (long)n; i++) {
-        const size_t k = rowOf.empty() ? s.sphereInternalToUser[i] : rowOf[s.sphereInternalToUser[i]];
+        const size_t k = rowOf.empty() ? sphereUserId(s, i) : rowOf[sphereUserId(s, i)];
         const bodyID_t ow = s.spheres.owner[i];
         const float4 q = s.owners.oriQ[ow];
         putPoint(xyz, k, sphereCentre(s, i));
@@ -198,8 +199,8 @@ OutputFrame stageContactFrame(const Simulation& sim) {
         // side's component (analytical) or triangle index counted from the first of its kind.
         const bool ss = t == SPHERE_SPHERE;
         type.values<uint8_t>()[k] = ss ? CONTACT_SS : t == SPHERE_ANALYTICAL ? CONTACT_SA : CONTACT_SM;
-        geomA.values<int32_t>()[k] = (int32_t)s.sphereInternalToUser[in.AGeo];
-        geomB.values<int32_t>()[k] = (int32_t)(ss ? s.sphereInternalToUser[in.BGeo]
+        geomA.values<int32_t>()[k] = (int32_t)sphereUserId(s, in.AGeo);
+        geomB.values<int32_t>()[k] = (int32_t)(ss                       ? sphereUserId(s, in.BGeo)
                                                : t == SPHERE_ANALYTICAL ? in.BGeo - s.analyticalIdBase()
                                                                         : in.BGeo - s.triangleIdBase());
         ownerA.values<int32_t>()[k] = (int32_t)s.ownerInternalToUser[in.AOwner];

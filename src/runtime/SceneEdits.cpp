@@ -6,6 +6,7 @@
 #include <deme/Error.h>
 
 #include "state/SphereLayoutChoice.h"
+#include "state/SphereIds.h"
 
 namespace deme {
 
@@ -62,6 +63,7 @@ void insertClumps(SimState& s, const SimState& part) {
     const bodyID_t nS = (bodyID_t)s.spheres.size();
     const inertiaID_t massBase = (inertiaID_t)s.massProps.mass.size();
     const bodyID_t userOwnerBase = (bodyID_t)s.ownerUserToInternal.size();
+    ownSphereIds(s);  // (shared again below where they can be)
     const bodyID_t userSphereBase = (bodyID_t)s.sphereUserToInternal.size();
     if (s.owners.size() + k >= (size_t(1) << 31) || s.sphereUserToInternal.size() + kS >= (size_t(1) << 31))
         throwError("UpdateClumps", "too many owners or spheres for 32-bit ids");
@@ -117,6 +119,7 @@ void insertClumps(SimState& s, const SimState& part) {
     rebuildOwnerRanges(s);
     resizeDerived(s);
     chooseSphereLayout(s);
+    shareSphereIdsWithOwners(s);
 }
 
 RemovedClumps removeClumps(SimState& s, const std::vector<uint8_t>& remove) {
@@ -131,6 +134,7 @@ RemovedClumps removeClumps(SimState& s, const std::vector<uint8_t>& remove) {
         r.mass += (double)s.massProps.mass[s.owners.inertia[o]];
     }
     if (r.count == 0) return r;
+    ownSphereIds(s);  // (shared again below where they can be)
     const std::vector<bodyID_t> newOwner = renumber(keepOwner);
     std::vector<uint8_t> keepSphere(nS);
     for (size_t i = 0; i < nS; i++) keepSphere[i] = keepOwner[s.spheres.owner[i]];
@@ -184,6 +188,7 @@ RemovedClumps removeClumps(SimState& s, const std::vector<uint8_t>& remove) {
     rebuildOwnerRanges(s);
     resizeDerived(s);
     chooseSphereLayout(s);
+    shareSphereIdsWithOwners(s);
     return r;
 }
 
@@ -198,10 +203,10 @@ bodyID_t liveOwner(const SimState& s, size_t user, const char* call) {
 }
 
 bodyID_t liveSphere(const SimState& s, size_t user, const char* call) {
-    if (user >= s.sphereUserToInternal.size())
-        throwError(call, "sphere id " + std::to_string(user) + " is out of range (ids issued so far: " +
-                             std::to_string(s.sphereUserToInternal.size()) + ")");
-    const bodyID_t i = s.sphereUserToInternal[user];
+    if (user >= userSphereCount(s))
+        throwError(call, "sphere id " + std::to_string(user) +
+                             " is out of range (ids issued so far: " + std::to_string(userSphereCount(s)) + ")");
+    const bodyID_t i = sphereInternalId(s, user);
     if (i == REMOVED) throwError(call, "sphere " + std::to_string(user) + " was removed from the simulation");
     return i;
 }

@@ -17,6 +17,7 @@
 #include "runtime/MemoryAccounting.h"
 #include "runtime/PeriodicLimits.h"
 #include "state/SphereLayoutChoice.h"
+#include "state/SphereIds.h"
 
 namespace deme {
 
@@ -46,6 +47,7 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     m_model = model;
     m_initialScene = sceneFingerprint(m_state, m_model);  // of the full layout, whichever is chosen
     chooseSphereLayout(m_state);
+    shareSphereIdsWithOwners(m_state);
     refreshKinematicCache(m_state);
     m_grid = makeBinGrid(m_state, settings.binSize);
     checkShearedGrid(m_state.frame.periodic, m_grid, "Initialize");
@@ -245,7 +247,7 @@ void Simulation::reportFault(const StepOutcome& r) const {
     const SimState& s = state();
     if (r.kernelError)
         throwError("DoDynamics", "simulation stopped at t = " + std::to_string(m_time) + " s: sphere " +
-                                     std::to_string(s.sphereInternalToUser[r.kernelErrorItem]) +
+                                     std::to_string(sphereUserId(s, r.kernelErrorItem)) +
                                      " overlaps more triangles than the GPU's mesh contact rule can sort (" +
                                      std::to_string(MAX_MESH_CANDIDATES) + ")");
     const OwnerFault fault = faultFromFlags(r.faultFlags);

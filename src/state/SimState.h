@@ -172,6 +172,10 @@ struct SimState {
     // ids in the order they added things (clumps batch by batch, then external objects).
     std::vector<bodyID_t> ownerUserToInternal, ownerInternalToUser;
     std::vector<bodyID_t> sphereInternalToUser, sphereUserToInternal;
+    // The sphere maps equal the owners' over the spheres and are not kept (state/SphereIds.h, which
+    // every reader of them goes through); userSphereIds is then how many sphere ids were issued.
+    bool sphereIdsAreOwnerIds = false;
+    size_t userSphereIds = 0;
     // Owners and spheres can be removed during a run (runtime/SceneEdits.h): their user ids stay
     // taken, mapped to REMOVED_ID, so the ids of the others never change.
     static constexpr bodyID_t REMOVED_ID = ~bodyID_t(0);
