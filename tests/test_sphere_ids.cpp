@@ -7,12 +7,14 @@
 #include <memory>
 #include <vector>
 
+#include "BackendFixture.h"
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
 #include "runtime/SceneEdits.h"
 #include "state/SphereIds.h"
 
 using namespace deme;
+using namespace deme_test;
 
 namespace {
 
@@ -61,6 +63,7 @@ void expectInverse(const SimState& s) {
 TEST(SphereIds, SharedWithTheOwnersWhereTheyAgreeAndReadTheSame) {
     const std::vector<float3> pos = {make_float3(0.5f, 0, 0), make_float3(-0.5f, 0, 0), make_float3(0, 0.5f, 0),
                                      make_float3(0, -0.5f, 0)};
+    const ScopedEnvironmentVariable shared("DEME_FULL_SPHERE_LAYOUT", "0");
     const ModelLayout layout;
     for (bool planeAfter : {true, false}) {
         SimState s = assembleScene(oneSphereClumps(pos, planeAfter), layout);

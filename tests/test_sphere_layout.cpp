@@ -26,6 +26,8 @@ constexpr size_t SPHERES = 2 * TOWERS;
 constexpr size_t OFFSETS_CENTRES_ARMS = sizeof(float3) + sizeof(double3) + sizeof(float3);  // per sphere
 // The host's sphere id maps, which such a scene shares with its owners' (state/SphereIds.h).
 constexpr size_t SPHERE_ID_MAPS = 2 * sizeof(bodyID_t);
+// The owners' sphere ranges, which it does not keep (the clumps, the plane's owner and the end).
+constexpr size_t SPHERE_RANGES = (SPHERES + 1 + 1) * sizeof(uint32_t);
 constexpr family_t DUMBBELL_FAMILY = 4;
 
 // Towers of two spheres on a floor, far apart, the upper one spun and pushed sideways so that it
@@ -130,9 +132,9 @@ EditedRun runWithEdits() {
 
 }  // namespace
 
-// The arrays are gone (48 bytes a sphere on the host exactly, and the 8 of the sphere id maps; at
-// least 48 on a GPU), and the run is the full layout's bit for bit, through the edits that switch
-// the layout and back.
+// The arrays are gone (48 bytes a sphere on the host exactly, and the 8 of the sphere id maps and
+// the owners' sphere ranges; at least 48 on a GPU), and the run is the full layout's bit for bit,
+// through the edits that switch the layout and back.
 DEME_BACKEND_TEST(SphereLayout, OneSphereClumpsKeepNoOffsetsCentresOrArmsAndStepAlike) {
     EditedRun full;
     {
@@ -141,7 +143,8 @@ DEME_BACKEND_TEST(SphereLayout, OneSphereClumpsKeepNoOffsetsCentresOrArmsAndStep
     }
     const EditedRun owners = runWithEdits();
 
-    EXPECT_EQ(full.hostGeometry[0] - owners.hostGeometry[0], SPHERES * (OFFSETS_CENTRES_ARMS + SPHERE_ID_MAPS));
+    EXPECT_EQ(full.hostGeometry[0] - owners.hostGeometry[0],
+              SPHERES * (OFFSETS_CENTRES_ARMS + SPHERE_ID_MAPS) + SPHERE_RANGES);
     if (onGpu()) {
         EXPECT_GE(full.deviceGeometry - owners.deviceGeometry, SPHERES * OFFSETS_CENTRES_ARMS);
     } else {

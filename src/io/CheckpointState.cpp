@@ -6,6 +6,7 @@
 #include <deme/Error.h>
 
 #include "state/SphereIds.h"
+#include "state/SphereLayoutChoice.h"
 
 namespace deme {
 
@@ -80,11 +81,17 @@ void writeStateSection(const SimState& s, ByteWriter& out) {
     // Sphere id maps shared with the owners' (state/SphereIds.h) are written as the maps they are.
     std::vector<bodyID_t> sphereToUser, userToSphere;
     if (s.sphereIdsAreOwnerIds) sphereIdMaps(s, sphereToUser, userToSphere);
+    // So are the owners' sphere ranges where spheres are their owners (state/SphereLayoutChoice.h).
+    std::vector<uint32_t> sphereRanges;
+    if (s.spheresAreOwners) ownerSphereRanges(s, sphereRanges);
     forEachStoredArray(s, [&](const std::string& name, const auto& v) {
         out.text(name);
         if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::vector<bodyID_t>>) {
             if (s.sphereIdsAreOwnerIds && name == "sphereInternalToUser") return out.array(sphereToUser);
             if (s.sphereIdsAreOwnerIds && name == "sphereUserToInternal") return out.array(userToSphere);
+        }
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::vector<uint32_t>>) {
+            if (s.spheresAreOwners && name == "ownerSphereStart") return out.array(sphereRanges);
         }
         out.array(v);
     });
@@ -219,6 +226,7 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
         if (role == FieldRole::HOST) v.clear();
     });
     shareSphereIdsWithOwners(s);
+    if (s.spheresAreOwners) std::vector<uint32_t>().swap(s.ownerSphereStart);  // as the layout keeps it
 }
 
 }  // namespace deme

@@ -43,7 +43,7 @@ void rebuildOwnerRanges(SimState& s) {
         for (bodyID_t o : ownerOf) start[o + 1]++;
         for (size_t o = 0; o < n; o++) start[o + 1] += start[o];
     };
-    build(s.ownerSphereStart, s.spheres.owner);
+    build(s.ownerSphereStart, s.spheres.owner);  // (let go again where spheres are their owners)
     build(s.ownerTriStart, s.triangles.owner);
 }
 

@@ -166,7 +166,7 @@ struct SimState {
     // Every clump one sphere at its centre, sphere i owner i's: no sphere offsets, centres or arms
     // are kept (state/SphereLayout.h; runtime/SphereLayoutChoice.h sets it).
     bool spheresAreOwners = false;
-    std::vector<uint32_t> ownerSphereStart;  // spheres of owner o: [start[o], start[o+1])
+    std::vector<uint32_t> ownerSphereStart;  // spheres of owner o: [start[o], start[o+1]); empty where spheresAreOwners
     std::vector<uint32_t> ownerTriStart;     // triangles of owner o: [start[o], start[o+1])
     // Owners and spheres are stored in a space-filling-curve order for memory locality; users see
     // ids in the order they added things (clumps batch by batch, then external objects).

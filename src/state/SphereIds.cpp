@@ -9,7 +9,7 @@ namespace {
 
 bool fullLayoutForced() {
     const char* v = std::getenv("DEME_FULL_SPHERE_LAYOUT");
-    return v && std::strcmp(v, "1") == 0;
+    return v && std::strcmp(v, "0") != 0 && *v;  // (as state/SphereLayoutChoice.cpp reads it)
 }
 
 template <class T>

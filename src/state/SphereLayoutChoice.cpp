@@ -20,6 +20,13 @@ void releaseStorage(std::vector<T>& v) {
 
 }  // namespace
 
+void ownerSphereRanges(const SimState& s, std::vector<uint32_t>& start) {
+    const size_t n = s.owners.size();
+    start.assign(n + 1, 0);
+    for (bodyID_t o : s.spheres.owner) start[o + 1]++;
+    for (size_t o = 0; o < n; o++) start[o + 1] += start[o];
+}
+
 bool spheresCanBeOwners(const SimState& s) {
     const size_t nS = s.spheres.size();
     if (fullLayoutForced() || nS == 0 || nS != s.numClumps) return false;
@@ -37,6 +44,7 @@ void chooseSphereLayout(SimState& s) {
         return;
     }
     s.spheresAreOwners = true;
+    releaseStorage(s.ownerSphereStart);  // owner o's sphere is sphere o (ownerSphereRanges)
     releaseStorage(s.spheres.relPos);
     releaseStorage(s.cache.spherePos);
     releaseStorage(s.cache.sphereArm);
@@ -46,6 +54,7 @@ void expandSphereLayout(SimState& s) {
     if (!s.spheresAreOwners) return;
     const size_t nS = s.spheres.size();
     s.spheresAreOwners = false;
+    ownerSphereRanges(s, s.ownerSphereStart);
     s.spheres.relPos.assign(nS, make_float3(0.f, 0.f, 0.f));
     // The cache, where it has been built: a centred sphere's centre is its owner's, its arm zero.
     if (s.cache.ownerPos.size() < nS) return;

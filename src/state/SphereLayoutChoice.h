@@ -16,6 +16,11 @@ bool spheresCanBeOwners(const SimState& s);
 // removals, a checkpoint read.
 void chooseSphereLayout(SimState& s);
 
+// Each owner's range of spheres, [start[o], start[o + 1]), from the spheres' owners: the state's
+// ownerSphereStart where spheres are not their owners (where they are, owner o's is sphere o and the
+// state keeps none).
+void ownerSphereRanges(const SimState& s, std::vector<uint32_t>& start);
+
 // The full arrays, whatever the scene: zero offsets, and centres and arms from the cached owner
 // positions (exactly what placing a centred sphere gives). Nothing if the state has them already.
 void expandSphereLayout(SimState& s);
