@@ -49,7 +49,7 @@ struct ReserveRows {
 };
 
 void addOwner(SimState& s, const double3& pos, const float4& q, const float3& v, const float3& w, family_t fam,
-              OwnerType type, bool dynamic, inertiaID_t inertia, float extent, size_t ownerIndex, const char* what) {
+              OwnerType type, bool dynamic, inertiaID_t inertia, size_t ownerIndex, const char* what) {
     OwnerArrays& o = s.owners;
     voxelID_t vox;
     subVoxelPos_t sx, sy, sz;
@@ -68,7 +68,6 @@ void addOwner(SimState& s, const double3& pos, const float4& q, const float3& v,
     o.type.push_back((uint8_t)type);
     o.dynamic.push_back(dynamic ? 1 : 0);
     o.inertia.push_back(inertia);
-    o.extent.push_back(extent);
 }
 
 // Appends a mesh's triangles; vertices with bit-identical coordinates are welded into one id.
@@ -164,6 +163,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
                 templateIndex[t.get()] = (inertiaID_t)s.massProps.mass.size();
                 s.massProps.mass.push_back(t->mass);
                 s.massProps.moi.push_back(t->MOI);
+                s.massProps.extent.push_back(t->GetExtent());
             }
 
     // Clumps in user order (batch by batch), validated, then laid out in space-filling-curve order
@@ -206,8 +206,8 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
         s.ownerUserToInternal[u] = (bodyID_t)owner;
         s.ownerInternalToUser[owner] = (bodyID_t)u;
         addOwner(s, to_double3(b->GetPositions()[i]), BatchValues::oriQ(*b, i), BatchValues::vel(*b, i),
-                 BatchValues::angVel(*b, i), BatchValues::family(*b, i), OWNER_CLUMP, true, templateIndex.at(&t),
-                 t.GetExtent(), u, "clump");
+                 BatchValues::angVel(*b, i), BatchValues::family(*b, i), OWNER_CLUMP, true, templateIndex.at(&t), u,
+                 "clump");
         for (size_t k = 0; k < t.GetNumSpheres(); k++) {
             s.spheres.owner.push_back((bodyID_t)owner);
             s.spheres.relPos.push_back(t.relPos[k]);
@@ -226,8 +226,9 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
         const inertiaID_t inertia = (inertiaID_t)s.massProps.mass.size();
         s.massProps.mass.push_back(obj->GetMass());
         s.massProps.moi.push_back(obj->GetMOI());
+        s.massProps.extent.push_back(0.f);
         addOwner(s, to_double3(obj->GetInitPos()), obj->GetInitQuat(), make_float3(0.f), make_float3(0.f),
-                 obj->GetFamily(), OWNER_ANALYTICAL, false, inertia, 0.f, owner, "external object");
+                 obj->GetFamily(), OWNER_ANALYTICAL, false, inertia, owner, "external object");
         for (const auto& c : obj->GetComponents()) {
             s.analytical.owner.push_back((bodyID_t)owner);
             s.analytical.type.push_back((uint8_t)c.type);
@@ -251,8 +252,9 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
         s.massProps.moi.push_back(mesh->GetMOI());
         float extent = 0.f;
         for (const auto& v : mesh->GetVertices()) extent = std::max(extent, length(v));
+        s.massProps.extent.push_back(extent);
         addOwner(s, to_double3(mesh->GetInitPos()), mesh->GetInitQuat(), make_float3(0.f), make_float3(0.f),
-                 mesh->GetFamily(), OWNER_MESH, mesh->IsFree(), inertia, extent, owner, "mesh");
+                 mesh->GetFamily(), OWNER_MESH, mesh->IsFree(), inertia, owner, "mesh");
         appendMeshTriangles(s, *mesh, (bodyID_t)owner);
     }
     finishTriangleTopology(s);

@@ -118,7 +118,7 @@ DEME_HD_INLINE OwnerStepInputs loadOwnerStepInputs(const S& s, size_t o, const F
     in.subY = ow.subY[o];
     in.subZ = ow.subZ[o];
     in.type = ow.type[o];
-    in.extent = ow.extent[o];
+    in.extent = s.massProps.extent[inertia];
     in.travel0 = ow.travel[o];
     in.travelBaseline = travelBaseline;
     in.moi = s.massProps.moi[inertia];

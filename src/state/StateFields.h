@@ -30,23 +30,22 @@ constexpr Slot inBlockSlotFlag() {
 }  // namespace deme
 
 // Owners (paper §2.4): clumps, then analytical objects, then meshes, in a space-filling-curve order.
-#define DEME_OWNER_FIELDS(X)                                                                               \
-    X(voxel, voxelID_t, EVOLVES)    /* compact position (§2.3): voxel index ... */                        \
-    X(subX, subVoxelPos_t, EVOLVES) /* ... and sub-voxel offsets */                                        \
-    X(subY, subVoxelPos_t, EVOLVES)                                                                        \
-    X(subZ, subVoxelPos_t, EVOLVES)                                                                        \
-    X(oriQ, oriQ_t, EVOLVES)                                                                               \
-    X(vel, float3, EVOLVES)    /* global frame */                                                          \
-    X(angVel, float3, EVOLVES) /* local (body) frame */                                                    \
-    X(family, family_t, EVOLVES) /* ChangeFamilyWhen changes it on the device */                         \
-    X(type, uint8_t, INPUT)           /* OwnerType */                                                      \
-    X(dynamic, uint8_t, INPUT)        /* 1: moved by forces (clumps, free meshes); 0: kinematic */         \
-    X(inertia, inertiaID_t, INPUT)    /* index into the mass properties */                                 \
-    X(extent, float, INPUT)           /* largest distance from the owner centre to its geometry */         \
-    X(contactForce, float3, EVOLVES)  /* contact force of the last step (global), for trackers */          \
-    X(contactTorque, float3, EVOLVES) /* contact torque of the last step (global) */                       \
-    /* Path length travelled since the start (bounds every point of its geometry); the travel     */       \
-    /* since a contact detection is the difference to a snapshot taken then.                      */       \
+#define DEME_OWNER_FIELDS(X)                                                                         \
+    X(voxel, voxelID_t, EVOLVES)    /* compact position (§2.3): voxel index ... */                  \
+    X(subX, subVoxelPos_t, EVOLVES) /* ... and sub-voxel offsets */                                  \
+    X(subY, subVoxelPos_t, EVOLVES)                                                                  \
+    X(subZ, subVoxelPos_t, EVOLVES)                                                                  \
+    X(oriQ, oriQ_t, EVOLVES)                                                                         \
+    X(vel, float3, EVOLVES)           /* global frame */                                             \
+    X(angVel, float3, EVOLVES)        /* local (body) frame */                                       \
+    X(family, family_t, EVOLVES)      /* ChangeFamilyWhen changes it on the device */                \
+    X(type, uint8_t, INPUT)           /* OwnerType */                                                \
+    X(dynamic, uint8_t, INPUT)        /* 1: moved by forces (clumps, free meshes); 0: kinematic */   \
+    X(inertia, inertiaID_t, INPUT)    /* index into the mass properties (and the extent) */          \
+    X(contactForce, float3, EVOLVES)  /* contact force of the last step (global), for trackers */    \
+    X(contactTorque, float3, EVOLVES) /* contact torque of the last step (global) */                 \
+    /* Path length travelled since the start (bounds every point of its geometry); the travel     */ \
+    /* since a contact detection is the difference to a snapshot taken then.                      */ \
     X(travel, double, EVOLVES)
 
 // Tracker loads (DEMTracker::AddAcc, AddAngAcc) for the coming DoDynamics call, per owner. They
@@ -56,10 +55,12 @@ constexpr Slot inBlockSlotFlag() {
     X(extraAcc, float3, INPUT)      \
     X(extraAngAcc, float3, INPUT) /* owner frame */
 
-// Mass properties, shared by owners of one template.
-#define DEME_MASS_FIELDS(X) \
-    X(mass, float, INPUT)   \
-    X(moi, float3, INPUT) /* principal moments, owner frame */
+// Mass properties, shared by owners of one template, with the extent of their geometry (the largest
+// distance from the owner centre to it: what bounds a point's travel from the owner's).
+#define DEME_MASS_FIELDS(X)                                    \
+    X(mass, float, INPUT)                                      \
+    X(moi, float3, INPUT) /* principal moments, owner frame */ \
+    X(extent, float, INPUT)
 
 #define DEME_SPHERE_FIELDS(X)                                  \
     X(owner, bodyID_t, INPUT)                                  \
