@@ -49,7 +49,7 @@ struct ReserveRows {
 };
 
 void addOwner(SimState& s, const double3& pos, const float4& q, const float3& v, const float3& w, family_t fam,
-              OwnerType type, bool dynamic, inertiaID_t inertia, size_t ownerIndex, const char* what) {
+              OwnerType type, inertiaID_t inertia, size_t ownerIndex, const char* what) {
     OwnerArrays& o = s.owners;
     voxelID_t vox;
     subVoxelPos_t sx, sy, sz;
@@ -66,7 +66,6 @@ void addOwner(SimState& s, const double3& pos, const float4& q, const float3& v,
     o.angVel.push_back(w);
     o.family.push_back(fam);
     o.type.push_back((uint8_t)type);
-    o.dynamic.push_back(dynamic ? 1 : 0);
     o.inertia.push_back(inertia);
 }
 
@@ -164,6 +163,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
                 s.massProps.mass.push_back(t->mass);
                 s.massProps.moi.push_back(t->MOI);
                 s.massProps.extent.push_back(t->GetExtent());
+                s.massProps.dynamic.push_back(1);
             }
 
     // Clumps in user order (batch by batch), validated, then laid out in space-filling-curve order
@@ -206,8 +206,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
         s.ownerUserToInternal[u] = (bodyID_t)owner;
         s.ownerInternalToUser[owner] = (bodyID_t)u;
         addOwner(s, to_double3(b->GetPositions()[i]), BatchValues::oriQ(*b, i), BatchValues::vel(*b, i),
-                 BatchValues::angVel(*b, i), BatchValues::family(*b, i), OWNER_CLUMP, true, templateIndex.at(&t), u,
-                 "clump");
+                 BatchValues::angVel(*b, i), BatchValues::family(*b, i), OWNER_CLUMP, templateIndex.at(&t), u, "clump");
         for (size_t k = 0; k < t.GetNumSpheres(); k++) {
             s.spheres.owner.push_back((bodyID_t)owner);
             s.spheres.relPos.push_back(t.relPos[k]);
@@ -227,8 +226,9 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
         s.massProps.mass.push_back(obj->GetMass());
         s.massProps.moi.push_back(obj->GetMOI());
         s.massProps.extent.push_back(0.f);
+        s.massProps.dynamic.push_back(0);
         addOwner(s, to_double3(obj->GetInitPos()), obj->GetInitQuat(), make_float3(0.f), make_float3(0.f),
-                 obj->GetFamily(), OWNER_ANALYTICAL, false, inertia, owner, "external object");
+                 obj->GetFamily(), OWNER_ANALYTICAL, inertia, owner, "external object");
         for (const auto& c : obj->GetComponents()) {
             s.analytical.owner.push_back((bodyID_t)owner);
             s.analytical.type.push_back((uint8_t)c.type);
@@ -253,8 +253,9 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
         float extent = 0.f;
         for (const auto& v : mesh->GetVertices()) extent = std::max(extent, length(v));
         s.massProps.extent.push_back(extent);
+        s.massProps.dynamic.push_back(mesh->IsFree() ? 1 : 0);
         addOwner(s, to_double3(mesh->GetInitPos()), mesh->GetInitQuat(), make_float3(0.f), make_float3(0.f),
-                 mesh->GetFamily(), OWNER_MESH, mesh->IsFree(), inertia, owner, "mesh");
+                 mesh->GetFamily(), OWNER_MESH, inertia, owner, "mesh");
         appendMeshTriangles(s, *mesh, (bodyID_t)owner);
     }
     finishTriangleTopology(s);

@@ -103,7 +103,7 @@ DEME_HD_INLINE OwnerStepInputs loadOwnerStepInputs(const S& s, size_t o, const F
     const auto& ow = s.owners;
     OwnerStepInputs in;
     in.m = m;
-    in.dynamic = ow.dynamic[o] != 0 && !m.fixed;
+    in.dynamic = s.massProps.dynamic[ow.inertia[o]] != 0 && !m.fixed;
     in.v0 = ow.vel[o];
     in.w0 = ow.angVel[o];
     in.q0 = ow.oriQ[o];

@@ -48,8 +48,8 @@ DEME_HD_INLINE double dormantReachOf(const S& s, const float* familyExtraMargin,
 // kinematic owner keeps its own).
 template <class S>
 DEME_HD_INLINE bool ownerCanMove(const S& s, const uint8_t* prescribed, size_t o) {
-    return s.owners.dynamic[o] != 0 || prescribed[s.owners.family[o]] || dot(s.owners.vel[o], s.owners.vel[o]) > 0.f ||
-           dot(s.owners.angVel[o], s.owners.angVel[o]) > 0.f;
+    return s.massProps.dynamic[s.owners.inertia[o]] != 0 || prescribed[s.owners.family[o]] ||
+           dot(s.owners.vel[o], s.owners.vel[o]) > 0.f || dot(s.owners.angVel[o], s.owners.angVel[o]) > 0.f;
 }
 
 // Whether a wall or mesh owner that can move, now of family f, forbids the registry: it has contacts

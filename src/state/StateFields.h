@@ -40,8 +40,7 @@ constexpr Slot inBlockSlotFlag() {
     X(angVel, float3, EVOLVES)        /* local (body) frame */                                       \
     X(family, family_t, EVOLVES)      /* ChangeFamilyWhen changes it on the device */                \
     X(type, uint8_t, INPUT)           /* OwnerType */                                                \
-    X(dynamic, uint8_t, INPUT)        /* 1: moved by forces (clumps, free meshes); 0: kinematic */   \
-    X(inertia, inertiaID_t, INPUT)    /* index into the mass properties (and the extent) */          \
+    X(inertia, inertiaID_t, INPUT)    /* index into the mass properties (extent, dynamic) */         \
     X(contactForce, float3, EVOLVES)  /* contact force of the last step (global), for trackers */    \
     X(contactTorque, float3, EVOLVES) /* contact torque of the last step (global) */                 \
     /* Path length travelled since the start (bounds every point of its geometry); the travel     */ \
@@ -55,12 +54,15 @@ constexpr Slot inBlockSlotFlag() {
     X(extraAcc, float3, INPUT)      \
     X(extraAngAcc, float3, INPUT) /* owner frame */
 
-// Mass properties, shared by owners of one template, with the extent of their geometry (the largest
-// distance from the owner centre to it: what bounds a point's travel from the owner's).
+// Mass properties, shared by owners of one template (a clump template, or one external object or
+// mesh), with what else such owners share: the extent of their geometry (the largest distance from
+// the owner centre to it: what bounds a point's travel from the owner's), and whether forces move
+// them.
 #define DEME_MASS_FIELDS(X)                                    \
     X(mass, float, INPUT)                                      \
     X(moi, float3, INPUT) /* principal moments, owner frame */ \
-    X(extent, float, INPUT)
+    X(extent, float, INPUT)                                    \
+    X(dynamic, uint8_t, INPUT) /* 1: moved by forces (clumps, free meshes); 0: kinematic */
 
 #define DEME_SPHERE_FIELDS(X)                                  \
     X(owner, bodyID_t, INPUT)                                  \
