@@ -27,20 +27,13 @@ char* touchedBlock(size_t bytes) {
     return p;
 }
 
-bool userTunedTheAllocator() {
-    for (const char* name :
-         {"MALLOC_MMAP_THRESHOLD_", "MALLOC_TRIM_THRESHOLD_", "MALLOC_TOP_PAD_", "MALLOC_MMAP_MAX_", "GLIBC_TUNABLES"})
-        if (std::getenv(name)) return true;
-    return false;
-}
-
 }  // namespace
 
 TEST(AllocatorPolicy, LargeBlocksStayMappedAfterALargerOneIsFreed) {
     DEMSolver solver;  // sets the bound (once per process)
 #if defined(__GLIBC__)
     // Where the user set the allocator's variables, theirs hold and the solver leaves them.
-    if (userTunedTheAllocator()) {
+    if (allocatorTunedByUser()) {
         EXPECT_FALSE(fixLargeBlockBound());
         return;
     }

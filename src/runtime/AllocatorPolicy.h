@@ -12,6 +12,8 @@ namespace deme {
 // user has set the allocator's own variables (MALLOC_MMAP_THRESHOLD_ and the like, GLIBC_TUNABLES):
 // those win. Returns whether the bound was set.
 bool fixLargeBlockBound();
+// Whether the environment sets the allocator's own variables (fixLargeBlockBound then leaves it).
+bool allocatorTunedByUser();
 
 constexpr unsigned long LARGE_BLOCK_BYTES = 4ul << 20;
 
