@@ -1,6 +1,7 @@
 #include "runtime/AllocatorPolicy.h"
 
 #include <cstdlib>
+#include <initializer_list>
 #include <mutex>
 
 #if defined(__GLIBC__)
