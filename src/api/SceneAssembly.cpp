@@ -261,12 +261,8 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
     finishTriangleTopology(s);
 
     const size_t nOwners = s.owners.size();
-    s.ownerTriStart.assign(nOwners + 1, 0);
-    for (bodyID_t o : s.triangles.owner) s.ownerTriStart[o + 1]++;
-    for (size_t o = 0; o < nOwners; o++) s.ownerTriStart[o + 1] += s.ownerTriStart[o];
-    s.ownerSphereStart.assign(nOwners + 1, 0);
-    for (bodyID_t o : s.spheres.owner) s.ownerSphereStart[o + 1]++;
-    for (size_t o = 0; o < nOwners; o++) s.ownerSphereStart[o + 1] += s.ownerSphereStart[o];
+    rangesByOwner(nOwners, s.triangles.owner, s.ownerTriStart);
+    rangesByOwner(nOwners, s.spheres.owner, s.ownerSphereStart);
     s.owners.contactForce.assign(nOwners, make_float3(0.f));
     s.owners.contactTorque.assign(nOwners, make_float3(0.f));
     s.owners.travel.assign(nOwners, 0.0);

@@ -158,16 +158,16 @@ class DynamicsBackend {
     virtual size_t applyFamilyConditions(double time, const FamilyRules& families) = 0;
 
     // Contact sets. markOrderBaseline(): the owners' travel now is the snapshot of an order sent now.
-    virtual void markOrderBaseline() = 0;
+    // `installedBeforeNextStep` (a synchronous detection's order): its snapshot is then the travel at
+    // its installation, and a backend need keep no copy of it meanwhile (the CPU keeps none).
+    virtual void markOrderBaseline(bool installedBeforeNextStep) = 0;
     // The largest travel of any owner since the last markOrderBaseline().
     virtual double maxTravelSinceOrder() = 0;
     // The result of the last order taken from the kinematics side becomes the set in use, with the
     // history of the set it replaces (wildcards, mesh state, persistent pairs); travel is measured
     // from the order's snapshot from now on.
     virtual void install(const DetectionReport& report, TimingStats& timing) = 0;
-    // A detection whose set is installed before the next step (synchronous) is about to run (its
-    // order is marked next, markOrderBaseline, with no step between: the CPU keeps no copy of the
-    // travel for it, which is the travel at the installation): what
+    // A detection whose set is installed before the next step (synchronous) is about to run: what
     // only the steps read of the set in use may go now (the CPU's reduction index, rebuilt by the
     // installation, or by the next step if the installation fails), lowering the detection's peak.
     // Returns true where the set in use then serves no step (the CPU keeps only the pairs that

@@ -64,7 +64,7 @@ void ContactSetManager::detectNow(const Settings& settings, unsigned long long s
     m_schedule.beforeSyncDetection(settings.asyncDetection, step, m_stats, timing.seconds[(int)Phase::FORCE]);
     if (beforeDetection) beforeDetection();
     const bool setServesNoStep = m_dynamics->beforeDetectNow();
-    m_dynamics->markOrderBaseline();
+    m_dynamics->markOrderBaseline(true);
     try {
         DetectionReport r;
         m_kinematics->detectNow(orderFor(settings, step, maxSpeed), r);
@@ -122,7 +122,7 @@ void ContactSetManager::prepareStep(const Settings& settings, unsigned long long
         // The kinematics side is idle and the set in use is due for a successor: send the state now.
         PhaseTimer t(timing, Phase::EXCHANGE);
         if (beforeDetection) beforeDetection();
-        m_dynamics->markOrderBaseline();
+        m_dynamics->markOrderBaseline(false);
         m_kinematics->submit(orderFor(settings, step, maxSpeed));
         m_schedule.ordered(m_stats);
     }

@@ -37,14 +37,8 @@ std::vector<bodyID_t> renumber(const std::vector<uint8_t>& keep) {
 
 // Spheres (triangles) of owner o: [start[o], start[o + 1]).
 void rebuildOwnerRanges(SimState& s) {
-    const size_t n = s.owners.size();
-    auto build = [n](std::vector<uint32_t>& start, const std::vector<bodyID_t>& ownerOf) {
-        start.assign(n + 1, 0);
-        for (bodyID_t o : ownerOf) start[o + 1]++;
-        for (size_t o = 0; o < n; o++) start[o + 1] += start[o];
-    };
-    build(s.ownerSphereStart, s.spheres.owner);  // (let go again where spheres are their owners)
-    build(s.ownerTriStart, s.triangles.owner);
+    rangesByOwner(s.owners.size(), s.spheres.owner, s.ownerSphereStart);  // (let go where spheres are owners)
+    rangesByOwner(s.owners.size(), s.triangles.owner, s.ownerTriStart);
 }
 
 // The per-step scratch and the CPU's per-owner contact index follow the owner count; the index is

@@ -33,6 +33,18 @@ constexpr size_t PENDING_HISTORY_KEPT_UP_TO = 32u << 20;
 // costs a pass over the pool.
 constexpr size_t LATE_PAIRS_RANKED_FROM = 4096;
 
+struct PooledHistory;
+
+// The slots of consecutive pairs from pair b on: next(b), next(b + 1), ... in turn, each pair's slot
+// or NO_HISTORY_SLOT, the ranked ones by a counter and the late ones by a cursor into their list (no
+// rank or search per pair).
+struct PooledSlotCursor {
+    inline PooledSlotCursor(const PooledHistory& pool, size_t b);
+    inline uint32_t next(size_t i);
+    const PooledHistory& p;
+    uint32_t ranked = 0, late = 0;
+};
+
 struct PooledHistory {
     size_t pairs = 0;                          // the set's size when the pool was made (in use while equal)
     std::vector<uint64_t> ranked;              // bit i: pair i has a ranked slot
@@ -124,16 +136,11 @@ struct PooledHistory {
         std::vector<uint64_t> bits(ranked);
         for (uint32_t p : latePair) bits[p >> 6] |= 1ull << (p & 63);
         std::vector<float> pool(values.size());
-        size_t at = 0, late = 0;
-        uint32_t next = 0;  // the next ranked slot
+        size_t at = 0;
+        PooledSlotCursor cursor(*this, 0);
         for (size_t i = 0; i < pairs; i++) {
-            uint32_t s;
-            if (isRanked(i))
-                s = next++;
-            else if (late < latePair.size() && latePair[late] == i)
-                s = lateSlot[late++];
-            else
-                continue;
+            const uint32_t s = cursor.next(i);
+            if (s == NO_HISTORY_SLOT) continue;
             std::copy(values.begin() + (size_t)s * W, values.begin() + (size_t)(s + 1) * W, pool.begin() + at * W);
             at++;
         }
@@ -153,5 +160,16 @@ struct PooledHistory {
         return b;
     }
 };
+
+inline PooledSlotCursor::PooledSlotCursor(const PooledHistory& pool, size_t b) : p(pool) {
+    if (b < pool.pairs) ranked = rankAt(pool.ranked.data(), pool.rankBase.data(), b);
+    late = lateAtOrAfter(pool.latePair.data(), (uint32_t)pool.latePair.size(), b);
+}
+
+inline uint32_t PooledSlotCursor::next(size_t i) {
+    if (p.isRanked(i)) return ranked++;
+    if (late < p.latePair.size() && p.latePair[late] == i) return p.lateSlot[late++];
+    return NO_HISTORY_SLOT;
+}
 
 }  // namespace deme

@@ -123,6 +123,13 @@ struct ContactArrays : ContactFields<HostArray> {
 using KinematicCache = CacheFields<HostArray>;
 using IntegrationScratch = ScratchFields<HostArray>;
 
+// Each of n owners' range of items [start[o], start[o + 1]) from the items' owners (which ascend).
+inline void rangesByOwner(size_t n, const std::vector<bodyID_t>& ownerOf, std::vector<uint32_t>& start) {
+    start.assign(n + 1, 0);
+    for (bodyID_t o : ownerOf) start[o + 1]++;
+    for (size_t o = 0; o < n; o++) start[o + 1] += start[o];
+}
+
 inline uint64_t contactKey(bodyID_t a, bodyID_t b) { return (uint64_t(a) << 32) | uint64_t(b); }
 
 // Material property tables for the force model.

@@ -1,16 +1,10 @@
 #include "state/SphereIds.h"
 
-#include <cstdlib>
-#include <cstring>
+#include "state/SphereLayoutChoice.h"
 
 namespace deme {
 
 namespace {
-
-bool fullLayoutForced() {
-    const char* v = std::getenv("DEME_FULL_SPHERE_LAYOUT");
-    return v && std::strcmp(v, "0") != 0 && *v;  // (as state/SphereLayoutChoice.cpp reads it)
-}
 
 template <class T>
 void release(std::vector<T>& v) {
@@ -20,7 +14,7 @@ void release(std::vector<T>& v) {
 }  // namespace
 
 void shareSphereIdsWithOwners(SimState& s) {
-    if (s.sphereIdsAreOwnerIds || fullLayoutForced()) return;
+    if (s.sphereIdsAreOwnerIds || fullSphereLayoutForced()) return;
     const size_t nS = s.spheres.size(), users = s.sphereUserToInternal.size();
     if (s.sphereInternalToUser.size() != nS || nS > s.ownerInternalToUser.size() ||
         users > s.ownerUserToInternal.size())

@@ -23,8 +23,8 @@ inline bodyID_t sphereInternalId(const SimState& s, size_t u) {
     return s.sphereIdsAreOwnerIds ? s.ownerUserToInternal[u] : s.sphereUserToInternal[u];
 }
 
-// The maps dropped where they equal the owners' over the spheres (DEME_FULL_SPHERE_LAYOUT=1 keeps
-// them, as it keeps the spheres' full arrays: tests compare the two).
+// The maps dropped where they equal the owners' over the spheres (not where the full sphere layout
+// is forced: fullSphereLayoutForced, state/SphereLayoutChoice.h).
 void shareSphereIdsWithOwners(SimState& s);
 // The maps made again from the owners' (before an edit changes them). Nothing where they are kept.
 void ownSphereIds(SimState& s);

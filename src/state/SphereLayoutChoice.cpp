@@ -5,13 +5,12 @@
 
 namespace deme {
 
-namespace {
-
-// DEME_FULL_SPHERE_LAYOUT=1: every scene keeps the full arrays.
-bool fullLayoutForced() {
+bool fullSphereLayoutForced() {
     const char* v = std::getenv("DEME_FULL_SPHERE_LAYOUT");
     return v && std::strcmp(v, "0") != 0 && *v;
 }
+
+namespace {
 
 template <class T>
 void releaseStorage(std::vector<T>& v) {
@@ -21,15 +20,12 @@ void releaseStorage(std::vector<T>& v) {
 }  // namespace
 
 void ownerSphereRanges(const SimState& s, std::vector<uint32_t>& start) {
-    const size_t n = s.owners.size();
-    start.assign(n + 1, 0);
-    for (bodyID_t o : s.spheres.owner) start[o + 1]++;
-    for (size_t o = 0; o < n; o++) start[o + 1] += start[o];
+    rangesByOwner(s.owners.size(), s.spheres.owner, start);
 }
 
 bool spheresCanBeOwners(const SimState& s) {
     const size_t nS = s.spheres.size();
-    if (fullLayoutForced() || nS == 0 || nS != s.numClumps) return false;
+    if (fullSphereLayoutForced() || nS == 0 || nS != s.numClumps) return false;
     for (size_t i = 0; i < nS; i++)
         if (s.spheres.owner[i] != (bodyID_t)i) return false;
     if (s.spheresAreOwners) return true;  // the offsets are zero by construction

@@ -6,6 +6,10 @@
 
 namespace deme {
 
+// DEME_FULL_SPHERE_LAYOUT=1 (or any value but 0) in the environment: every scene keeps the full
+// sphere arrays and its own sphere id maps (how tests compare the layouts).
+bool fullSphereLayoutForced();
+
 // Whether the state's spheres can be their owners: every clump is one sphere at its centre, and
 // sphere i is owner i's. Always false with DEME_FULL_SPHERE_LAYOUT=1 in the environment (the full
 // arrays for every scene: how tests compare the two layouts).

@@ -31,9 +31,11 @@ void keepPooledMarked(PooledHistory& p, const std::vector<uint8_t>& keep, size_t
     std::vector<uint64_t> bits((kept + 63) / 64, 0);
     std::vector<float> values;
     size_t at = 0;
+    PooledSlotCursor cursor(p, 0);
     for (size_t i = 0; i < keep.size(); i++) {
+        const uint32_t k = cursor.next(i);  // (every pair in turn)
         if (!keep[i]) continue;
-        if (const uint32_t k = p.slotOf(i); k != NO_HISTORY_SLOT) {
+        if (k != NO_HISTORY_SLOT) {
             bits[at >> 6] |= 1ull << (at & 63);
             values.insert(values.end(), p.values.begin() + (size_t)k * W, p.values.begin() + (size_t)(k + 1) * W);
         }
@@ -52,21 +54,28 @@ bool keepOnlyCarriedPairs(SimState& s) {
     // DEME_KEEP_WHOLE_SET=1 keeps every pair (tests compare the two; the trajectory is the same).
     if (const char* v = std::getenv("DEME_KEEP_WHOLE_SET"); v && std::strcmp(v, "1") == 0) return false;
     const bool pooled = c.historyPooled(W);
-    const bool anyPersistent = c.persistent.size() == n;
+    const bool hasMeshState = c.meshState.size() == n, hasPersistent = c.persistent.size() == n;
     std::vector<uint8_t> keep(n);
+    const int T = n > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
+    std::vector<size_t> keptBy(T, 0);
+    forEachThreadShare(n, T, [&](int t, size_t b, size_t e) {
+        PooledSlotCursor cursor(c.pooled, b);
+        size_t k = 0;
+        for (size_t i = b; i < e; i++) {
+            const float* h = nullptr;
+            if (!pooled)
+                h = W ? &c.wildcards[i * W] : nullptr;
+            else if (const uint32_t slot = cursor.next(i); slot != NO_HISTORY_SLOT)
+                h = &c.pooled.values[(size_t)slot * W];
+            const uint8_t ms = hasMeshState ? c.meshState[i] : (uint8_t)0;
+            const uint8_t ps = hasPersistent ? c.persistent[i] : (uint8_t)0;
+            keep[i] = pairCarriesHistory(h, h ? W : 0u, ms, ps) ? 1u : 0u;
+            k += keep[i];
+        }
+        keptBy[t] = k;
+    });
     size_t kept = 0;
-#pragma omp parallel for schedule(static) reduction(+ : kept) if (n > PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < n; i++) {
-        const float* h = nullptr;
-        if (!pooled)
-            h = W ? &c.wildcards[i * W] : nullptr;
-        else if (const uint32_t k = c.pooled.slotOf(i); k != NO_HISTORY_SLOT)
-            h = &c.pooled.values[(size_t)k * W];
-        const uint8_t ms = c.meshState.size() == n ? c.meshState[i] : (uint8_t)0;
-        const uint8_t ps = anyPersistent ? c.persistent[i] : (uint8_t)0;
-        keep[i] = pairCarriesHistory(h, h ? W : 0u, ms, ps) ? 1u : 0u;
-        kept += keep[i];
-    }
+    for (size_t k : keptBy) kept += k;
     // Where most pairs carry something (a settled bed), the copies would cost a pass for little.
     if (2 * kept > n) return false;
     keepMarked(c.geomA, keep, kept, 1);

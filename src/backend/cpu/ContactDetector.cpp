@@ -128,10 +128,13 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
         releaseVector(t.runs);
     }
     out.type.resize(total);
-#pragma omp parallel for schedule(static) if (total > PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < total; i++) out.type[i] = contactTypeOf(s, out.geomB[i]);
     m_lastPairs = total;
-    if (dormant) sortPairs(s, out);
+    if (dormant) {
+        sortPairs(s, out);  // (which sets the types)
+    } else {
+#pragma omp parallel for schedule(static) if (total > PARALLEL_MIN_ITEMS)
+        for (size_t i = 0; i < total; i++) out.type[i] = contactTypeOf(s, out.geomB[i]);
+    }
     searchSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 }
 

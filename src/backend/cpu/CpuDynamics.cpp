@@ -96,11 +96,10 @@ void CpuDynamics::downloadContacts(SimState& s) {
     if (densifyHistory(s)) m_chooseHistoryForm = true;
 }
 
-void CpuDynamics::markOrderBaseline() {
-    // A synchronous detection's order (beforeDetectNow came first) is installed before any step:
-    // its snapshot is the travel then, and no copy of 8 B per owner is held through the detection.
-    m_orderAtInstall = m_syncOrderNext;
-    m_syncOrderNext = false;
+void CpuDynamics::markOrderBaseline(bool installedBeforeNextStep) {
+    // A synchronous detection's order is installed before any step: its snapshot is the travel
+    // then, and no copy of 8 B per owner is held through the detection.
+    m_orderAtInstall = installedBeforeNextStep;
     if (m_orderAtInstall)
         releaseOrderBaseline();
     else
@@ -144,7 +143,6 @@ void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
 }
 
 bool CpuDynamics::beforeDetectNow() {
-    m_syncOrderNext = true;
     m_s.contacts.resetIndex();
     m_setTrimmed = keepOnlyCarriedPairs(m_s) || m_setTrimmed;
     return m_setTrimmed;

@@ -31,7 +31,7 @@ class CpuDynamics : public DynamicsBackend {
                           TimingStats& timing) override;
     void downloadStepFlags(std::vector<uint8_t>& flags) override { flags = m_s.integrationScratch.flags; }
     size_t applyFamilyConditions(double time, const FamilyRules& families) override;
-    void markOrderBaseline() override;
+    void markOrderBaseline(bool installedBeforeNextStep) override;
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;
     bool beforeDetectNow() override;
@@ -71,7 +71,7 @@ class CpuDynamics : public DynamicsBackend {
     // while there is none, and for a synchronous detection's order, whose snapshot is the travel at
     // its installation: m_orderAtInstall).
     std::vector<double> m_baseline, m_orderBaseline;
-    bool m_syncOrderNext = false, m_orderAtInstall = false;
+    bool m_orderAtInstall = false;
     void releaseOrderBaseline();
 };
 

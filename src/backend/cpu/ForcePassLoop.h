@@ -90,48 +90,27 @@ inline void storeChunkForces(StoredContactForces& st, int thread, size_t b, size
 }
 
 // A chunk's pooled histories (state/PooledHistory.h) copied out for the steps, zeros where a pair
-// has no slot: the ranked slots are consecutive in pair order, so a counter walks them ...
+// has no slot ...
 template <unsigned int W>
 inline void fetchPooledHistory(const PooledHistory& p, size_t b, size_t m, float* history) {
     std::fill(history, history + m * W, 0.f);
-    const uint64_t* ranked = p.ranked.data();
-    const float* values = p.values.data();
-    uint32_t slot = rankAt(ranked, p.rankBase.data(), b);
-    const uint32_t lateCount = (uint32_t)p.latePair.size();
-    uint32_t late = lateCount ? lateAtOrAfter(p.latePair.data(), lateCount, b) : 0;
-    for (size_t j = 0; j < m; j++) {
-        const size_t i = b + j;
-        const float* h = nullptr;
-        if ((ranked[i >> 6] >> (i & 63)) & 1ull)
-            h = values + (size_t)slot++ * W;
-        else if (late < lateCount && p.latePair[late] == i)
-            h = values + (size_t)p.lateSlot[late++] * W;
-        if (h)
-            for (unsigned int w = 0; w < W; w++) history[j * W + w] = h[w];
-    }
+    PooledSlotCursor cursor(p, b);
+    for (size_t j = 0; j < m; j++)
+        if (const uint32_t k = cursor.next(b + j); k != NO_HISTORY_SLOT)
+            std::copy(&p.values[(size_t)k * W], &p.values[(size_t)k * W] + W, history + j * W);
 }
 
 // ... and back: into the pair's slot, or, for a pair without one that now has a history, into the
 // thread's pending list (PooledHistory::commitPending gives it a slot after the pass).
 template <unsigned int W>
 inline void keepPooledHistory(PooledHistory& p, int thread, size_t b, size_t m, const float* history) {
-    const uint64_t* ranked = p.ranked.data();
-    float* values = p.values.data();
-    uint32_t slot = rankAt(ranked, p.rankBase.data(), b);
-    const uint32_t lateCount = (uint32_t)p.latePair.size();
-    uint32_t late = lateCount ? lateAtOrAfter(p.latePair.data(), lateCount, b) : 0;
+    PooledSlotCursor cursor(p, b);
     for (size_t j = 0; j < m; j++) {
-        const size_t i = b + j;
         const float* h = history + j * W;
-        float* to = nullptr;
-        if ((ranked[i >> 6] >> (i & 63)) & 1ull)
-            to = values + (size_t)slot++ * W;
-        else if (late < lateCount && p.latePair[late] == i)
-            to = values + (size_t)p.lateSlot[late++] * W;
-        if (to) {
-            for (unsigned int w = 0; w < W; w++) to[w] = h[w];
+        if (const uint32_t k = cursor.next(b + j); k != NO_HISTORY_SLOT) {
+            std::copy(h, h + W, &p.values[(size_t)k * W]);
         } else if (!historyIsZero<W>(h)) {
-            p.pendingPair[thread].push_back((uint32_t)i);
+            p.pendingPair[thread].push_back((uint32_t)(b + j));
             p.pendingValues[thread].insert(p.pendingValues[thread].end(), h, h + W);
         }
     }

@@ -32,21 +32,16 @@ void chooseHistoryForm(SimState& s) {
     // state) goes.
     c.pooled.release();
     if (W == 0 || n == 0) return;
-    // Which pairs keep a slot, a bit each, counted per thread's share of the words (so no two
-    // threads write one), then their histories copied in pair order: the pool's slots.
-    const size_t nWords = (n + 63) / 64;
+    // Which pairs keep a slot, a bit each, counted per thread's share of the words, then their
+    // histories copied in pair order: the pool's slots.
+    std::vector<uint64_t> bits =
+        pairBits(n, [&](size_t i) { return pairNeedsHistorySlot(c.type[i], &c.wildcards[i * W], W); });
+    const size_t nWords = bits.size();
     const int T = n > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
     std::vector<size_t> first(T + 1, 0);
-    std::vector<uint64_t> bits(nWords, 0);
     forEachThreadShare(nWords, T, [&](int t, size_t b, size_t e) {
         size_t k = 0;  // (counted here: neighbouring threads' counts share a cache line)
-        for (size_t w = b; w < e; w++) {
-            uint64_t word = 0;
-            for (size_t i = 64 * w; i < std::min(n, 64 * w + 64); i++)
-                if (pairNeedsHistorySlot(c.type[i], &c.wildcards[i * W], W)) word |= 1ull << (i & 63);
-            bits[w] = word;
-            k += popcount64(word);
-        }
+        for (size_t w = b; w < e; w++) k += popcount64(bits[w]);
         first[t + 1] = k;
     });
     for (int t = 0; t < T; t++) first[t + 1] += first[t];
@@ -74,12 +69,12 @@ bool densifyHistory(SimState& s) {
     const size_t n = c.size();
     std::vector<float> wildcards(n * W);
     const PooledHistory& p = c.pooled;
-#pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < n; i++) {
-        const uint32_t k = p.slotOf(i);
-        for (unsigned int w = 0; w < W; w++)
-            wildcards[i * W + w] = k == NO_HISTORY_SLOT ? 0.f : p.values[(size_t)k * W + w];
-    }
+    forEachThreadShare(n, n > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1, [&](int, size_t b, size_t e) {
+        PooledSlotCursor cursor(p, b);
+        for (size_t i = b; i < e; i++)
+            if (const uint32_t k = cursor.next(i); k != NO_HISTORY_SLOT)
+                std::copy(&p.values[(size_t)k * W], &p.values[(size_t)k * W] + W, &wildcards[i * W]);
+    });
     c.wildcards.swap(wildcards);
     c.pooled.release();
     return true;

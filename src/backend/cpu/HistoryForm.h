@@ -4,6 +4,10 @@
 // trajectory is the same bit for bit in either (test ContactHistoryForm.*).
 #pragma once
 
+#include <algorithm>
+#include <vector>
+
+#include "parallel/Parallel.h"
 #include "dynamics/ContactStep.h"
 #include "state/SimState.h"
 
@@ -25,6 +29,21 @@ inline bool pairNeedsHistorySlot(uint8_t type, const float* h, unsigned int W) {
     for (unsigned int w = 0; w < W; w++)
         if (!isPositiveZero(h[w])) return true;
     return false;
+}
+
+// A bit per pair, set where keep(i): the pool's ranked slots (state/PooledHistory.h). Made a word
+// (64 pairs) at a time, so no two threads write one.
+template <class Keep>
+std::vector<uint64_t> pairBits(size_t n, Keep&& keep) {
+    std::vector<uint64_t> bits((n + 63) / 64, 0);
+#pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
+    for (size_t w = 0; w < bits.size(); w++) {
+        uint64_t word = 0;
+        for (size_t i = 64 * w; i < std::min(n, 64 * w + 64); i++)
+            if (keep(i)) word |= 1ull << (i & 63);
+        bits[w] = word;
+    }
+    return bits;
 }
 
 // A set whose history is in `wildcards` moves into the pool where poolsHistory says so: after an

@@ -121,15 +121,7 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
         wildcards.swap(values);
         return false;
     }
-    // The pairs that keep a slot, a bit each (a word per 64 pairs: no two threads write one).
-    std::vector<uint64_t> bits((nNew + 63) / 64, 0);
-#pragma omp parallel for schedule(static) if (nNew > PARALLEL_MIN_ITEMS)
-    for (size_t w = 0; w < bits.size(); w++) {
-        uint64_t word = 0;
-        for (size_t i = 64 * w; i < std::min(nNew, 64 * w + 64); i++)
-            if (at[i] & KEEPS_SLOT) word |= 1ull << (i & 63);
-        bits[w] = word;
-    }
+    std::vector<uint64_t> bits = pairBits(nNew, [&](size_t i) { return (at[i] & KEEPS_SLOT) != 0; });
     releaseVector(at);
     pool.assign(nNew, std::move(bits), std::move(values));
     return true;

@@ -18,7 +18,7 @@ double now() { return std::chrono::duration<double>(std::chrono::steady_clock::n
 
 }  // namespace
 
-void CudaDynamics::markOrderBaseline() {
+void CudaDynamics::markOrderBaseline(bool /*installedBeforeNextStep: the copy is on the device*/) {
     select();
     // The owners' travel now: the set an order sent now yields serves while nobody travels its margin
     // beyond it.

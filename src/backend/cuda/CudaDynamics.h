@@ -50,7 +50,7 @@ class CudaDynamics : public DynamicsBackend {
                           TimingStats& timing) override;
     void downloadStepFlags(std::vector<uint8_t>& flags) override;
     size_t applyFamilyConditions(double time, const FamilyRules& families) override;
-    void markOrderBaseline() override;
+    void markOrderBaseline(bool installedBeforeNextStep) override;
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;
     size_t numContacts() const override { return m_numContacts; }
