@@ -31,7 +31,6 @@ std::set<std::pair<bodyID_t, bodyID_t>> detectPairs(ContactDetector& det, const 
         if (i > 0) {  // sorted by (A, B), no duplicates: what history mapping needs
             EXPECT_LT(contactKey(found.geomA[i - 1], found.geomB[i - 1]), contactKey(found.geomA[i], found.geomB[i]));
         }
-        EXPECT_EQ(found.type[i], contactTypeOf(s, found.geomB[i]));
         got.insert({found.geomA[i], found.geomB[i]});
     }
     return got;

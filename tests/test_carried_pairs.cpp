@@ -33,7 +33,6 @@ SimState handMadeSet() {
     for (bodyID_t i = 0; i < 10; i++) {
         c.geomA.push_back(i);
         c.geomB.push_back(i + 1);
-        c.type.push_back(SPHERE_SPHERE);
         c.persistent.push_back(i == 5);
         c.meshState.push_back(i == 7 ? 1 : 0);
         c.wildcards.push_back(i == 2 ? 1.5f : i == 8 ? -0.f : 0.f);

@@ -282,6 +282,64 @@ TEST_F(Checkpoint, RestartInANewProcessIsBitForBit) {
     }
 }
 
+// A state written by an earlier build, which stored each pair's type (`contacts.type`, now derived
+// from B: state/ContactTypeOf.h), reads as the same state: the record is spliced into this build's
+// section after its record count.
+TEST_F(Checkpoint, ReadsAStateThatStillStoresContactTypes) {
+    CheckpointScene sc;
+    const std::string path = (dir / "mid.ckpt").string();
+    {
+        DEMSolver sim;
+        buildCheckpointScene(sim, sc);
+        checkpointScenePhase1(sim, sc, N);
+        sim.WriteCheckpoint(path);
+    }
+    const CheckpointSections secs = readCheckpointFile(path, "test");
+    std::string section;
+    for (const auto& [name, bytes] : secs.list)
+        if (name == "state") section = bytes;
+    // The header: clump count, analytical owner count, wildcard count, tracker load flag, removed
+    // clump count, removed mass; then the record count.
+    const size_t countAt = 8 + 8 + 4 + 1 + 8 + 8;
+    ASSERT_GT(section.size(), countAt + 8);
+    Saved now;
+    {
+        ByteReader in(section.data(), section.size(), "test", path);
+        readStateSection(in, now.state, "test", path);
+    }
+    const size_t pairs = now.state.contacts.size();
+    ASSERT_GT(pairs, 0u);
+    uint64_t records = 0;
+    std::memcpy(&records, section.data() + countAt, 8);
+    records++;
+    std::string old = section;
+    std::memcpy(&old[countAt], &records, 8);
+    ByteWriter typeRecord;
+    typeRecord.text("contacts.type");
+    typeRecord.array(std::vector<uint8_t>(pairs, (uint8_t)SPHERE_SPHERE));
+    old.insert(countAt + 8, typeRecord.buffer());
+    Saved before;
+    {
+        ByteReader in(old.data(), old.size(), "test", path);
+        readStateSection(in, before.state, "test", path);
+    }
+    EXPECT_EQ(before.state.contacts.geomA, now.state.contacts.geomA);
+    EXPECT_EQ(before.state.contacts.geomB, now.state.contacts.geomB);
+    EXPECT_TRUE(sameBits(before.state.contacts.wildcards, now.state.contacts.wildcards));
+    forEachOwnerField(before.state.owners, now.state.owners,
+                      [](const auto& x, const auto& y, FieldRole) { EXPECT_TRUE(sameBits(x, y)); });
+    // Any other field this build does not know is still refused.
+    ByteWriter unknown;
+    unknown.text("contacts.colour");
+    unknown.array(std::vector<uint8_t>(pairs, 0));
+    std::string other = section;
+    std::memcpy(&other[countAt], &records, 8);
+    other.insert(countAt + 8, unknown.buffer());
+    ByteReader in(other.data(), other.size(), "test", path);
+    SimState refused;
+    EXPECT_THROW(readStateSection(in, refused, "test", path), deme::Error);
+}
+
 // CPU -> GPU and GPU -> CPU (a GpuParity test: tests/gpu/run.sh runs it; skipped without a GPU). The GPU sums contact forces
 // in another order, so its trajectories are not the CPU's bit for bit; measured here: how far a GPU
 // run of 2N steps ends from the CPU's (the spread between the backends), and the continued runs

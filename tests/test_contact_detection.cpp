@@ -46,7 +46,6 @@ TEST(ContactDetection, MatchesBruteForceExactly) {
                             ASSERT_LT(contactKey(found.geomA[i - 1], found.geomB[i - 1]),
                                       contactKey(found.geomA[i], found.geomB[i]));
                         }
-                        ASSERT_EQ(found.type[i], contactTypeOf(s, found.geomB[i])) << "pair " << i;
                         got.insert({found.geomA[i], found.geomB[i]});
                     }
                     const auto expected = bruteForce(s, margin, rules.contactMask(), extra);
@@ -79,7 +78,6 @@ TEST(ContactDetection, LargeBinsAreLetGoAfterEachDetection) {
         ASSERT_GT(kept.size(), 500u);
         EXPECT_EQ(kept.geomA, released.geomA);
         EXPECT_EQ(kept.geomB, released.geomB);
-        EXPECT_EQ(kept.type, released.type);
         EXPECT_GT(keeping.bytes(), 1500 * sizeof(uint32_t));  // entries and bins' starts
         EXPECT_LT(releasing.bytes(), 1500u);                  // the per-thread lists' headers only
     }

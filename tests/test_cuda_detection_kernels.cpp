@@ -15,6 +15,7 @@
 #include "DetectionScenes.h"
 #include "MeshBuilders.h"
 #include "api/SceneAssembly.h"
+#include "state/ContactTypeOf.h"
 #include "kinematics/BinGridSizing.h"
 #include "dynamics/KinematicCache.h"
 #include "backend/cpu/ContactDetector.h"
@@ -196,7 +197,7 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     else
         runThreads(nSearched, [&] {
             deme_pair_search(v, args, dormantBins, ids, nSearched, spread.wideRadius, offset.data(),
-                             (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr, (uint8_t*)nullptr);
+                             (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr);
         });
     runThreads((size_t)nWide * lanes, [&] {
         deme_pair_search_wide(v, args, wide.data(), nWide, lanes, offset.data(), (const unsigned int*)nullptr,
@@ -207,7 +208,6 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     DetectedContacts& c = r.contacts;
     c.geomA.assign(total, 0);
     c.geomB.assign(total, 0);
-    c.type.assign(total, 0);
     if (sLanes > 1) {
         // Backwards: a sphere's lanes write its partners in the order of their atomics, which
         // deme_pair_order must undo whatever it was.
@@ -217,13 +217,12 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
                                    offset.data(), cursor.data(), c.geomB.data());
         });
         runThreads(nSearched, [&] {
-            deme_pair_order(v, nSearched, spread.wideRadius, offset.data(), c.geomA.data(), c.geomB.data(),
-                            c.type.data());
+            deme_pair_order(v, nSearched, spread.wideRadius, offset.data(), c.geomA.data(), c.geomB.data());
         });
     } else {
         runThreads(nSearched, [&] {
             deme_pair_search(v, args, dormantBins, ids, nSearched, spread.wideRadius, (unsigned int*)nullptr,
-                             offset.data(), c.geomA.data(), c.geomB.data(), c.type.data());
+                             offset.data(), c.geomA.data(), c.geomB.data());
         });
     }
     if (nWide) {
@@ -239,8 +238,7 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
             deme_pair_rank_wide(wide.data(), nWide, lanes, offset.data(), c.geomA.data(), c.geomB.data());
         });
         runThreads((size_t)nWide * lanes, [&] {
-            deme_pair_finish_wide(v, wide.data(), nWide, lanes, offset.data(), c.geomA.data(), c.geomB.data(),
-                                  c.type.data());
+            deme_pair_finish_wide(wide.data(), nWide, lanes, offset.data(), c.geomA.data(), c.geomB.data());
         });
     }
     if (r.usedRegistry) {  // DeviceDormantRegistry::sortPairs
@@ -252,9 +250,8 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
         runThreads(total,
                    [&] { deme_pair_keys(c.geomA.data(), c.geomB.data(), total, bBits, keys.data(), idx.data()); });
         stableSortPairs(keys, idx, sortedKeys, sortedIdx);
-        runThreads(total, [&] {
-            deme_pairs_from_keys(v, sortedKeys.data(), total, bBits, c.geomA.data(), c.geomB.data(), c.type.data());
-        });
+        runThreads(total,
+                   [&] { deme_pairs_from_keys(sortedKeys.data(), total, bBits, c.geomA.data(), c.geomB.data()); });
     }
     return r;
 }
@@ -292,14 +289,14 @@ Scene sceneWithMeshes(unsigned seed, size_t nClumps) {
 // many sphere-triangle pairs.
 // The kernels' contact list is the CPU's, pair for pair, on a list of over 500 pairs with more than
 // `minSphereTriangle` sphere-triangle pairs.
-static void expectSameList(const DetectedContacts& gpu, const DetectedContacts& cpu, size_t minSphereTriangle) {
+static void expectSameList(const SimState& s, const DetectedContacts& gpu, const DetectedContacts& cpu,
+                           size_t minSphereTriangle) {
     size_t sphereTriangle = 0;
-    for (uint8_t t : cpu.type) sphereTriangle += t == SPHERE_TRIANGLE;
+    for (bodyID_t b : cpu.geomB) sphereTriangle += contactTypeOf(s, b) == SPHERE_TRIANGLE;
     EXPECT_GT(cpu.size(), 500u);
     EXPECT_GT(sphereTriangle, minSphereTriangle);
     EXPECT_EQ(gpu.geomA, cpu.geomA);
     EXPECT_EQ(gpu.geomB, cpu.geomB);
-    EXPECT_EQ(gpu.type, cpu.type);
 }
 
 // Spreads for the scenes of randomScene (radii 0.3-2 mm): a thread an item; 3 threads an item
@@ -319,7 +316,7 @@ static void expectTheCpuDetectorsPairs(SimState& s, const BinGrid& grid, double 
         SCOPED_TRACE(testing::Message() << spread.binLanes << " threads an item, wide from " << spread.wideRadius);
         const EmulatedDetection gpu =
             emulateDetect(s, grid, margin, dr.rules.contactMask(), dr.extra, nullptr, nullptr, spread);
-        expectSameList(gpu.contacts, cpu, 20);
+        expectSameList(s, gpu.contacts, cpu, 20);
     }
 }
 
@@ -446,7 +443,6 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorWithABallAmongSmallGrains) {
             emulateDetect(s, grid, margin, dr.rules.contactMask(), dr.extra, nullptr, nullptr, spread);
         EXPECT_EQ(gpu.contacts.geomA, cpu.geomA);
         EXPECT_EQ(gpu.contacts.geomB, cpu.geomB);
-        EXPECT_EQ(gpu.contacts.type, cpu.type);
         cases++;
     }
     EXPECT_EQ(cases, 2);
@@ -558,7 +554,7 @@ TEST(CudaDetectionKernels, DormantRegistryMatchesTheCpuCachedDetectorExactly) {
                 EXPECT_LT(c.moving().size(), s.spheres.size());
                 EXPECT_GT(c.moving().size(), 0u);
             }
-            expectSameList(gpu.contacts, cpu, 5);
+            expectSameList(s, gpu.contacts, cpu, 5);
             cases++;
         };
         for (double margin : {0.0, 1e-4, 3e-4}) compare(margin, true);

@@ -69,7 +69,6 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         ContactArrays& c = s.contacts;
         c.geomA = old.a;
         c.geomB = old.b;
-        c.type.assign(nOld, SPHERE_SPHERE);
         c.wildcards.resize(nOld);
         for (float& w : c.wildcards) w = (float)(rng() % 1000) + 0.5f;
         c.persistent = oldPersistent;
@@ -80,11 +79,9 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         DetectedContacts detected;
         detected.geomA = fresh.a;
         detected.geomB = fresh.b;
-        detected.type.assign(nFresh, SPHERE_SPHERE);
         installDetectedContacts(s, detected);
 
         // The GPU's steps, as DeviceHistoryMapping runs them.
-        const std::vector<uint8_t> oldType(nOld, SPHERE_SPHERE), freshType(nFresh, SPHERE_SPHERE);
         const ContactKeys freshKeys{fresh.a.data(), fresh.b.data(), (unsigned int)nFresh};
         const ContactKeys oldKeys{old.a.data(), old.b.data(), (unsigned int)nOld};
         std::vector<unsigned int> missing(nOld + 1, 0), before(nOld + 1, 0);
@@ -97,10 +94,8 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         for (size_t j = 1; j <= nOld; j++) before[j] = before[j - 1] + missing[j - 1];
         const size_t total = nFresh + before[nOld];
         std::vector<bodyID_t> A(total), B(total);
-        std::vector<uint8_t> T(total);
         runThreads(nFresh + nOld, [&] {
-            deme_persistent_merge(freshKeys, freshType.data(), oldKeys, oldType.data(), missing.data(), before.data(),
-                                  A.data(), B.data(), T.data());
+            deme_persistent_merge(freshKeys, oldKeys, missing.data(), before.data(), A.data(), B.data());
         });
         ASSERT_EQ(A, c.geomA);
         ASSERT_EQ(B, c.geomB);
@@ -115,8 +110,7 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
             oldKeys, oldWildcards.data(), oldMeshState.data(), any ? oldPersistent.data() : nullptr, 1, &rule, 1};
         const ContactKeys mergedKeys{A.data(), B.data(), (unsigned int)total};
         runThreads(total, [&] {
-            deme_map_history(view, mergedKeys, T.data(), history, wildcards.data(), meshState.data(),
-                             persistent.data());
+            deme_map_history(view, mergedKeys, history, wildcards.data(), meshState.data(), persistent.data());
         });
         EXPECT_EQ(persistent, c.persistent);
         EXPECT_EQ(meshState, c.meshState);

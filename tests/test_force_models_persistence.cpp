@@ -35,7 +35,6 @@ void setContacts(SimState& s, const std::vector<std::pair<bodyID_t, bodyID_t>>& 
     c.geomA.clear();
     c.geomB.clear();
     for (const auto& p : pairs) c.geomA.push_back(p.first), c.geomB.push_back(p.second);
-    c.type.assign(pairs.size(), SPHERE_SPHERE);
     c.wildcards = wildcards;
     c.persistent = persistent;
     c.meshState.assign(pairs.size(), 0);
@@ -44,7 +43,6 @@ void setContacts(SimState& s, const std::vector<std::pair<bodyID_t, bodyID_t>>& 
 DetectedContacts detected(const std::vector<std::pair<bodyID_t, bodyID_t>>& pairs) {
     DetectedContacts d;
     for (const auto& p : pairs) d.geomA.push_back(p.first), d.geomB.push_back(p.second);
-    d.type.assign(pairs.size(), SPHERE_SPHERE);
     return d;
 }
 

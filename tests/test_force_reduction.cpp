@@ -17,6 +17,7 @@
 
 #include "BackendFixture.h"
 #include "api/ForceModelSetup.h"
+#include "state/ContactTypeOf.h"
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
 #include "backend/cpu/CpuForceModel.h"
@@ -110,7 +111,7 @@ TEST(ForceReduction, OwnersSumsCancelAndDoNotDependOnTheThreadCount) {
     ASSERT_GT(s.contacts.size(), 8 * PARALLEL_MIN_ITEMS);
     ASSERT_GT(s.owners.size(), 3 * FORCE_PASS_BLOCK_OWNERS);
     size_t wallPairs = 0;
-    for (uint8_t t : s.contacts.type) wallPairs += t == SPHERE_ANALYTICAL;
+    for (size_t i = 0; i < s.contacts.size(); i++) wallPairs += contactTypeAt(s, i) == SPHERE_ANALYTICAL;
     ASSERT_GT(wallPairs, 100u);
 
     // Newton's third law and the balance of angular momentum over all owners (the walls included):

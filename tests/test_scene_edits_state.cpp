@@ -58,7 +58,6 @@ void tag(SimState& s) {
     for (bodyID_t i = 0; i < (bodyID_t)s.spheres.size(); i++) {
         c.geomA.push_back(i);
         c.geomB.push_back(s.analyticalIdBase());
-        c.type.push_back(SPHERE_ANALYTICAL);
         c.wildcards.push_back(10000.f + s.sphereInternalToUser[i]);
         c.persistent.push_back(0);
         c.meshState.push_back(0);

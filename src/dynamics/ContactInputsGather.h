@@ -8,6 +8,7 @@
 #include "physics/ContactInputs.h"
 #include "physics/Periodic.h"
 #include "physics/RigidBody.h"
+#include "state/ContactTypeOf.h"
 #include "state/SphereLayout.h"
 
 namespace deme {
@@ -21,7 +22,7 @@ DEME_HD_INLINE bodyID_t geometryOwner(const S& s, uint8_t type, bodyID_t b) {
 
 template <class S>
 DEME_HD_INLINE bodyID_t contactOwnerB(const S& s, size_t c) {
-    return geometryOwner(s, s.contacts.type[c], s.contacts.geomB[c]);
+    return geometryOwner(s, contactTypeAt(s, c), s.contacts.geomB[c]);
 }
 
 // Across a periodic face (physics/Periodic.h): the shift that takes triangle `tri` to its image
@@ -139,7 +140,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type
 
 template <class S>
 DEME_HD_INLINE void gatherContactInputs(const S& s, size_t c, float time, float ts, ContactInputs& in) {
-    gatherContactInputsOfType(s, c, s.contacts.type[c], time, ts, in);
+    gatherContactInputsOfType(s, c, contactTypeAt(s, c), time, ts, in);
 }
 
 }  // namespace deme

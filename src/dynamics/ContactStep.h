@@ -26,6 +26,7 @@
 #pragma once
 
 #include "dynamics/ContactInputsGather.h"
+#include "state/ContactTypeOf.h"
 #include "state/HistorySlot.h"
 #include "state/SphereLayout.h"
 
@@ -91,8 +92,8 @@ constexpr uint8_t ANY_CONTACT_TYPE = 0xFF;
 constexpr uint8_t NO_TRIANGLE_CONTACT = 0xFE;
 
 // What a contact's step reads first: its two geometries and, where the caller does not know it
-// (KnownType below), its type. Apart from the rest, so that the GPU's pass can read them before its
-// dependent launch's wait (no kernel of a step writes them; kernels/ForcePassKernel.cuh).
+// (KnownType below), its type (from B: state/ContactTypeOf.h). Apart from the rest, so that the GPU's pass can read
+// them before its dependent launch's wait (no kernel of a step writes them; kernels/ForcePassKernel.cuh).
 struct ContactIds {
     bodyID_t a, b;
     uint8_t type;
@@ -101,7 +102,8 @@ struct ContactIds {
 template <uint8_t KnownType, class S>
 DEME_HD_INLINE ContactIds contactIds(const S& s, size_t i) {
     const auto& c = s.contacts;
-    return ContactIds{c.geomA[i], c.geomB[i], KnownType < NO_TRIANGLE_CONTACT ? KnownType : c.type[i]};
+    const bodyID_t b = c.geomB[i];
+    return ContactIds{c.geomA[i], b, KnownType < NO_TRIANGLE_CONTACT ? KnownType : contactTypeOf(s, b)};
 }
 
 // Contact i's step, its ids read (contactIds) and its W history floats at `wc` (the set's own

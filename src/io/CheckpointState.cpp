@@ -151,6 +151,9 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
         records.erase(it);
     };
     forEachStoredArray(s, fill);
+    // Fields that earlier builds wrote and this one derives: a pair's type follows from B
+    // (state/ContactTypeOf.h).
+    records.erase("contacts.type");
     // Owner and geometry wildcards: as many as the force model declares (the fingerprint checked it).
     for (size_t i = 0; i < s.wildcards.owner.size(); i++) fill("wildcards.owner." + std::to_string(i), s.wildcards.owner[i]);
     for (size_t i = 0; i < s.wildcards.geometry.size(); i++)

@@ -6,6 +6,7 @@
 #include "runtime/ContactForceView.h"
 #include "runtime/Simulation.h"
 #include "runtime/StressMeasure.h"
+#include "state/ContactTypeOf.h"
 #include "state/SphereIds.h"
 #include "state/SphereLayout.h"
 
@@ -160,7 +161,7 @@ OutputFrame stageContactFrame(const Simulation& sim) {
     std::vector<uint8_t> keep(nc);
 #pragma omp parallel for schedule(static) if (nc > PARALLEL_MIN_ROWS)
     for (long c = 0; c < nc; c++) {
-        const uint8_t type = s.contacts.type[c];
+        const uint8_t type = contactTypeAt(s, c);
         const float3 F = forces[c];
         const bool counts = type != SPHERE_TRIANGLE || (s.contacts.meshState[c] & 1u);
         const bool loaded = F.x != 0.f || F.y != 0.f || F.z != 0.f;
@@ -194,7 +195,7 @@ OutputFrame stageContactFrame(const Simulation& sim) {
         const size_t k = row[c];
         ContactInputs in;
         gatherContactInputs(s, c, time, dt, in);
-        const uint8_t t = s.contacts.type[c];
+        const uint8_t t = contactTypeAt(s, c);
         // Ids in user order: spheres as laid out by the templates of the clumps as added; the other
         // side's component (analytical) or triangle index counted from the first of its kind.
         const bool ss = t == SPHERE_SPHERE;

@@ -154,14 +154,6 @@ DEME_HD_INLINE void sortIds(bodyID_t* ids, unsigned int n) {
     }
 }
 
-// The contact type of a pair (sphere, b) from b's place in the unified geometry id space.
-template <class S>
-DEME_HD_INLINE uint8_t contactTypeOf(const S& s, bodyID_t b) {
-    return b < s.analyticalIdBase() ? (uint8_t)SPHERE_SPHERE
-           : b < s.triangleIdBase() ? (uint8_t)SPHERE_ANALYTICAL
-                                    : (uint8_t)SPHERE_TRIANGLE;
-}
-
 // A sphere that searches for its partners: what the search of any of its bins reads.
 struct SearchedSphere {
     bodyID_t id, owner;

@@ -98,13 +98,12 @@ DEME_HD_INLINE unsigned int oldIndexOfPair(const ContactKeys& fresh, const OldCo
     return keyAt(old.keys, at, key) ? at : old.keys.n;
 }
 
-// 2b. The history of pair i of the new set (keys `fresh`, types `freshType`), `at` its index in the
+// 2b. The history of pair i of the new set (keys `fresh`), `at` its index in the
 // old set (oldIndexOfPair): its W wildcards, mesh state and persistent flag. `s` gives the
 // geometries' owners and families.
 template <class S>
-DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const uint8_t* freshType,
-                                    const OldContactHistory& old, unsigned int i, unsigned int at, float* wildcards,
-                                    uint8_t& meshState, uint8_t& persistent) {
+DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const OldContactHistory& old, unsigned int i,
+                                    unsigned int at, float* wildcards, uint8_t& meshState, uint8_t& persistent) {
     if (at < old.keys.n) {
         const float* h = oldPairHistory(old, at);
         for (unsigned int w = 0; w < old.W; w++) wildcards[w] = h ? h[w] : 0.f;
@@ -117,7 +116,8 @@ DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const 
     persistent = 0;
     if (old.numRules == 0) return;
     const family_t fa = s.owners.family[s.spheres.owner[fresh.geomA[i]]];
-    const family_t fb = s.owners.family[geometryOwner(s, freshType[i], fresh.geomB[i])];
+    const bodyID_t b = fresh.geomB[i];
+    const family_t fb = s.owners.family[geometryOwner(s, contactTypeOf(s, b), b)];
     for (unsigned int r = 0; r < old.numRules; r++) {
         const ContactInitRule& rule = old.rules[r];
         if ((rule.a == fa && rule.b == fb) || (rule.a == fb && rule.b == fa)) wildcards[rule.index] = rule.value;
@@ -126,10 +126,9 @@ DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const 
 
 // 2. Both: the history of pair i of the new set.
 template <class S>
-DEME_HD_INLINE void carryPairHistory(const S& s, const ContactKeys& fresh, const uint8_t* freshType,
-                                     const OldContactHistory& old, unsigned int i, float* wildcards, uint8_t& meshState,
-                                     uint8_t& persistent) {
-    pairHistoryFrom(s, fresh, freshType, old, i, oldIndexOfPair(fresh, old, i), wildcards, meshState, persistent);
+DEME_HD_INLINE void carryPairHistory(const S& s, const ContactKeys& fresh, const OldContactHistory& old, unsigned int i,
+                                     float* wildcards, uint8_t& meshState, uint8_t& persistent) {
+    pairHistoryFrom(s, fresh, old, i, oldIndexOfPair(fresh, old, i), wildcards, meshState, persistent);
 }
 
 }  // namespace deme

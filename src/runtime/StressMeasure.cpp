@@ -63,7 +63,7 @@ std::vector<StressTensor> measureStressField(const SimState& s, const double3& l
         const float3 f = forces[i];
         if (f.x == 0.f && f.y == 0.f && f.z == 0.f) continue;
         ContactInputs in;
-        gatherContactInputsOfType(s, i, ct.type[i], 0.f, 0.f, in);
+        gatherContactInputs(s, i, 0.f, 0.f, in);
         const double3 force = to_double3(f);  // on A; B feels -force
         if (in.AOwner < numClumps && cellOfOwner[in.AOwner] >= 0) {
             StressTensor& t = out[cellOfOwner[in.AOwner]];

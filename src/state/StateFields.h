@@ -94,11 +94,11 @@ constexpr Slot inBlockSlotFlag() {
 // The active-contact set, sorted by key = (geomA << 32) | geomB with geometry ids in one space:
 // spheres [0, nSpheres), analytical components [nSpheres, nSpheres + nAnalytical), then triangles.
 // The CUDA backend keeps its contact sets itself (two, for history mapping): these lists give their
-// fields too, and the host copy is its record between calls.
+// fields too, and the host copy is its record between calls. A pair's type is not stored: it
+// follows from B's place in the id space (state/ContactTypeOf.h).
 #define DEME_CONTACT_FIELDS(X)                                                                          \
     X(geomA, bodyID_t, EVOLVES)                                                                         \
     X(geomB, bodyID_t, EVOLVES)                                                                         \
-    X(type, uint8_t, EVOLVES)    /* ContactType */                                                      \
     X(wildcards, float, EVOLVES) /* numWildcards values per contact, contact-major */                   \
     /* 1: the pair stays in the set when detection no longer finds it, until the force model      */    \
     /* clears the flag or the user removes it (DEMSolver::MarkPersistentContact).                 */    \

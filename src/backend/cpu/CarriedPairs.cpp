@@ -80,7 +80,6 @@ bool keepOnlyCarriedPairs(SimState& s) {
     if (2 * kept > n) return false;
     keepMarked(c.geomA, keep, kept, 1);
     keepMarked(c.geomB, keep, kept, 1);
-    keepMarked(c.type, keep, kept, 1);
     keepMarked(c.persistent, keep, kept, 1);
     keepMarked(c.meshState, keep, kept, 1);
     if (pooled)

@@ -127,20 +127,14 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
         releaseVector(t.geomA);
         releaseVector(t.runs);
     }
-    out.type.resize(total);
     m_lastPairs = total;
-    if (dormant) {
-        sortPairs(s, out);  // (which sets the types)
-    } else {
-#pragma omp parallel for schedule(static) if (total > PARALLEL_MIN_ITEMS)
-        for (size_t i = 0; i < total; i++) out.type[i] = contactTypeOf(s, out.geomB[i]);
-    }
+    if (dormant) sortPairs(out);
     searchSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 }
 
-// Pairs into (A, B) order; the type follows from B (contactTypeOf), so it need not travel along.
-// The keys live only while they sort (held between detections they were 8 B per pair).
-void ContactDetector::sortPairs(const SimState& s, DetectedContacts& out) {
+// Pairs into (A, B) order. The keys live only while they sort (held between detections they were
+// 8 B per pair).
+void ContactDetector::sortPairs(DetectedContacts& out) {
     const size_t n = out.size();
     std::vector<uint64_t> keys(n);
     for (size_t i = 0; i < n; i++) keys[i] = ((uint64_t)out.geomA[i] << 32) | (uint64_t)out.geomB[i];
@@ -148,7 +142,6 @@ void ContactDetector::sortPairs(const SimState& s, DetectedContacts& out) {
     for (size_t i = 0; i < n; i++) {
         out.geomA[i] = (bodyID_t)(keys[i] >> 32);
         out.geomB[i] = (bodyID_t)(keys[i] & 0xFFFFFFFFu);
-        out.type[i] = contactTypeOf(s, out.geomB[i]);
     }
 }
 

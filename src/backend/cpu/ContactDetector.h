@@ -14,17 +14,15 @@ namespace deme {
 
 // Candidate pairs, sorted by (geomA, geomB); geomB uses the unified geometry id space of SimState.
 struct DetectedContacts {
-    std::vector<bodyID_t> geomA, geomB;
-    std::vector<uint8_t> type;
+    std::vector<bodyID_t> geomA, geomB;  // (a pair's type follows from B: state/ContactTypeOf.h)
     size_t size() const { return geomA.size(); }
-    size_t bytes() const { return vectorBytes(geomA) + vectorBytes(geomB) + vectorBytes(type); }
+    size_t bytes() const { return vectorBytes(geomA) + vectorBytes(geomB); }
 };
 
 // One thread's pairs while a search runs: B of each, and A either as each searched sphere's number
 // of pairs (the thread searches its spheres in order, so its pairs are runs of one A: 4 B a sphere
 // instead of 4 B a pair) or, where that is not smaller or the active box adds dormant partners
-// (keyed by the lower id, sorted afterwards), A of each pair. The type follows from B
-// (contactTypeOf) and is set as the pairs are gathered.
+// (keyed by the lower id, sorted afterwards), A of each pair.
 struct ThreadPairs {
     std::vector<bodyID_t> geomA, geomB;
     std::vector<uint32_t> runs;  // pairs per searched sphere, from the thread's first
@@ -93,7 +91,7 @@ class ContactDetector {
 
   private:
     // Sorts the pairs by (A, B) (with dormant partners, found from the moving side).
-    void sortPairs(const SimState& s, DetectedContacts& out);
+    static void sortPairs(DetectedContacts& out);
     DormantCache m_dormant;
     // One detection's bins (rebuilt by every detection).
     BinRegistry m_spheres, m_triangles;

@@ -160,6 +160,7 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
     ContactArrays& c = s.contacts;
     OwnerArrays& ow = s.owners;
     const size_t n = c.size(), nOwners = ow.size();
+    const bodyID_t sphereIdEnd = s.analyticalIdBase();  // B below it: a sphere pair
     const float t = (float)time, h = (float)dt;
     const int T = n > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
     // The last storing step's forces go as the next step starts (the lists' capacity stays, and
@@ -206,12 +207,12 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
                 // Sphere pairs first, as one vectorisable sweep (masked lanes for other types) ...
 #pragma omp simd reduction(+ : realSS)
                 for (size_t j = 0; j < m; j++)
-                    if (c.type[b + j] == SPHERE_SPHERE)
+                    if (c.geomB[b + j] < sphereIdEnd)  // a sphere pair (state/ContactTypeOf.h)
                         realSS += forcePassContact<Model, true>(s, model, b + j, W ? history + j * W : nullptr, t, h,
                                                                 force[j], torqueA[j], torqueB[j]);
                 // ... then the rest ...
                 for (size_t j = 0; j < m; j++)
-                    if (c.type[b + j] != SPHERE_SPHERE)
+                    if (c.geomB[b + j] >= sphereIdEnd)
                         real += forcePassContact<Model, false>(s, model, b + j, W ? history + j * W : nullptr, t, h,
                                                                force[j], torqueA[j], torqueB[j]);
                 if (pooled) keepPooledHistory<W>(c.pooled, thread, b, m, history);

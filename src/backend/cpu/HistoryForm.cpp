@@ -35,7 +35,7 @@ void chooseHistoryForm(SimState& s) {
     // Which pairs keep a slot, a bit each, counted per thread's share of the words, then their
     // histories copied in pair order: the pool's slots.
     std::vector<uint64_t> bits =
-        pairBits(n, [&](size_t i) { return pairNeedsHistorySlot(c.type[i], &c.wildcards[i * W], W); });
+        pairBits(n, [&](size_t i) { return pairNeedsHistorySlot(contactTypeAt(s, i), &c.wildcards[i * W], W); });
     const size_t nWords = bits.size();
     const int T = n > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
     std::vector<size_t> first(T + 1, 0);

@@ -38,20 +38,17 @@ void mergePersistentPairs(const ContactArrays& c, DetectedContacts& fresh) {
     DetectedContacts merged;
     merged.geomA.resize(nFresh + sum);
     merged.geomB.resize(nFresh + sum);
-    merged.type.resize(nFresh + sum);
 #pragma omp parallel for schedule(static) if (nFresh > PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < nFresh; i++) {
         const unsigned int at = mergedSlotOfFresh(freshKeys, old, missingBefore.data(), (unsigned int)i);
         merged.geomA[at] = fresh.geomA[i];
         merged.geomB[at] = fresh.geomB[i];
-        merged.type[at] = fresh.type[i];
     }
     for (size_t j = 0; j < nOld; j++) {
         if (!missing[j]) continue;
         const unsigned int at = mergedSlotOfOld(freshKeys, old, missingBefore.data(), (unsigned int)j);
         merged.geomA[at] = c.geomA[j];
         merged.geomB[at] = c.geomB[j];
-        merged.type[at] = c.type[j];
     }
     fresh = std::move(merged);
 }
@@ -73,8 +70,7 @@ void mapDenseHistory(const SimState& s, const DetectedContacts& fresh, const Old
     wildcards.resize(nNew * W);
 #pragma omp parallel for schedule(static) if (nNew > PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < nNew; i++)
-        carryPairHistory(s, freshKeys, fresh.type.data(), old, (unsigned int)i, wildcards.data() + i * W, meshState[i],
-                         persistent[i]);
+        carryPairHistory(s, freshKeys, old, (unsigned int)i, wildcards.data() + i * W, meshState[i], persistent[i]);
 }
 
 // The same where the set in use is pooled, or there is none: first each pair's old index and
@@ -95,9 +91,8 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
         size_t k = 0;  // (counted here: neighbouring threads' counts share a cache line)
         for (size_t i = b; i < e; i++) {
             const unsigned int j = oldIndexOfPair(freshKeys, old, (unsigned int)i);
-            pairHistoryFrom(s, freshKeys, fresh.type.data(), old, (unsigned int)i, j, h.data(), meshState[i],
-                            persistent[i]);
-            const bool keep = pairNeedsHistorySlot(fresh.type[i], h.data(), W);
+            pairHistoryFrom(s, freshKeys, old, (unsigned int)i, j, h.data(), meshState[i], persistent[i]);
+            const bool keep = pairNeedsHistorySlot(contactTypeOf(s, fresh.geomB[i]), h.data(), W);
             at[i] = (uint32_t)j | (keep ? KEEPS_SLOT : 0u);
             k += keep;
         }
@@ -112,9 +107,9 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
         for (size_t i = b; i < e; i++) {
             const unsigned int j = at[i] & ~KEEPS_SLOT;
             if (!pooled)
-                pairHistoryFrom(s, freshKeys, fresh.type.data(), old, (unsigned int)i, j, &values[i * W], ms, ps);
+                pairHistoryFrom(s, freshKeys, old, (unsigned int)i, j, &values[i * W], ms, ps);
             else if (at[i] & KEEPS_SLOT)
-                pairHistoryFrom(s, freshKeys, fresh.type.data(), old, (unsigned int)i, j, &values[next++ * W], ms, ps);
+                pairHistoryFrom(s, freshKeys, old, (unsigned int)i, j, &values[next++ * W], ms, ps);
         }
     });
     if (!pooled) {
@@ -161,7 +156,6 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     if (mapDense) mapDenseHistory(s, fresh, old, wildcards, meshState, persistent);
     c.geomA.swap(fresh.geomA);
     c.geomB.swap(fresh.geomB);
-    c.type.swap(fresh.type);
     c.meshState.swap(meshState);
     c.persistent.swap(persistent);
     if (pooled) {
@@ -190,7 +184,7 @@ void indexContactSet(SimState& s) {
     // stored for it) is emptied: an installation has done so already, before its new arrays.
     c.resetIndex();
     for (size_t i = 0; i < nNew; i++) {
-        if (c.type[i] != SPHERE_TRIANGLE) continue;
+        if (contactTypeAt(s, i) != SPHERE_TRIANGLE) continue;
         if (c.meshContacts.empty() || c.geomA[c.meshContacts.back()] != c.geomA[i])
             c.meshContactGroups.push_back((uint32_t)c.meshContacts.size());
         c.meshContacts.push_back((uint32_t)i);

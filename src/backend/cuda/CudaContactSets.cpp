@@ -75,7 +75,6 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     KinematicsOutbox& out = m_kinematics->outbox();
     std::swap(fresh.geomA, out.geomA);
     std::swap(fresh.geomB, out.geomB);
-    std::swap(fresh.type, out.type);
     // Persistent pairs the detection missed stay in the set; every pair takes its history over.
     const MemoryGroupScope group(MemoryGroup::CONTACTS);  // history mapping's scratch
     const unsigned int total =

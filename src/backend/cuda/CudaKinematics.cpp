@@ -253,8 +253,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
                (bodyID_t*)nullptr);
     else if (nSearched)
         launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
-               searchWideFrom, pairOffset.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr,
-               (uint8_t*)nullptr);
+               searchWideFrom, pairOffset.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr);
     if (nWide)
         launch(kPairSearchWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, args,
                (const bodyID_t*)wideSpheres.data(), nWide, WIDE_SPHERE_LANES, pairOffset.data(),
@@ -265,13 +264,11 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     onDevice(dTDevice, device, [&] {
         out.geomA.resizeDiscarding(total);
         out.geomB.resizeDiscarding(total);
-        out.type.resizeDiscarding(total);
     });
     KinematicsOutbox& dst = staged ? localOut : out;
     if (staged) {
         localOut.geomA.resizeDiscarding(total);
         localOut.geomB.resizeDiscarding(total);
-        localOut.type.resizeDiscarding(total);
     }
     if (total && sLanes > 1) {
         // Several threads a sphere fill its partners in no order; then each sphere's into
@@ -282,11 +279,11 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
                searchWideFrom, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(), laneCursor.data(),
                dst.geomB.data());
         launch(kPairOrder, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, nSearched, searchWideFrom,
-               (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data(), dst.type.data());
+               (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data());
     } else if (total) {
         launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
                searchWideFrom, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(), dst.geomA.data(),
-               dst.geomB.data(), dst.type.data());
+               dst.geomB.data());
     }
     if (total && nWide) {
         // The wide spheres' lanes fill their partners in no order; then each one's into contact-set
@@ -299,16 +296,14 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
                WIDE_SPHERE_LANES, (unsigned int*)nullptr, offsets, wideCursor.data(), dst.geomB.data());
         launch(kPairRankWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, wide, nWide, WIDE_SPHERE_LANES,
                offsets, dst.geomA.data(), (const bodyID_t*)dst.geomB.data());
-        launch(kPairFinishWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, wide, nWide,
-               WIDE_SPHERE_LANES, offsets, dst.geomA.data(), dst.geomB.data(), dst.type.data());
+        launch(kPairFinishWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, wide, nWide, WIDE_SPHERE_LANES,
+               offsets, dst.geomA.data(), dst.geomB.data());
     }
     // Pairs found from the moving side with a dormant sphere of lower id: into (A, B) order.
-    if (useDormant)
-        dormant.sortPairs(v, dst.geomA.data(), dst.geomB.data(), dst.type.data(), total, prim, stream);
+    if (useDormant) dormant.sortPairs(v, dst.geomA.data(), dst.geomB.data(), total, prim, stream);
     if (staged) {
         out.geomA.copyFromAsync(localOut.geomA, total, stream);
         out.geomB.copyFromAsync(localOut.geomB, total, stream);
-        out.type.copyFromAsync(localOut.type, total, stream);
     }
     // Reported only once everything is in the outbox: dT reads it on its own stream, unordered
     // with this one.
@@ -323,7 +318,6 @@ CudaKinematics::CudaKinematics(int kTDevice, int dTDevice, const DeviceState& so
     // The outbox's pairs become a contact set when dT takes them (their buffers are swapped).
     m_outbox.geomA.setGroup(MemoryGroup::CONTACTS);
     m_outbox.geomB.setGroup(MemoryGroup::CONTACTS);
-    m_outbox.type.setGroup(MemoryGroup::CONTACTS);
     m_inbox.spherePos.setGroup(MemoryGroup::DETECTION);
     m_inbox.triVert.setGroup(MemoryGroup::DETECTION);
     m_inbox.analPos.setGroup(MemoryGroup::DETECTION);

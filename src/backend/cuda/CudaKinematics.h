@@ -47,8 +47,7 @@ struct KinematicsInbox {
 // The contact list kT found, sorted by (A, B), on dT's GPU (written by kT). dT may swap these buffers
 // with its own after taking a result: kT resizes them before every write.
 struct KinematicsOutbox {
-    DeviceBuffer<bodyID_t> geomA, geomB;
-    DeviceBuffer<uint8_t> type;
+    DeviceBuffer<bodyID_t> geomA, geomB;  // (a pair's type follows from B: state/ContactTypeOf.h)
 };
 
 class CudaKinematics : public KinematicsBackend {

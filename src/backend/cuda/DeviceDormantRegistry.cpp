@@ -123,8 +123,8 @@ void DeviceDormantRegistry::rebuild(const StateView& v, const BinGrid& grid, con
     m_valid = true;
 }
 
-void DeviceDormantRegistry::sortPairs(const StateView& v, bodyID_t* geomA, bodyID_t* geomB, uint8_t* type,
-                                      unsigned int n, DevicePrimitives& prim, Stream stream) {
+void DeviceDormantRegistry::sortPairs(const StateView& v, bodyID_t* geomA, bodyID_t* geomB, unsigned int n,
+                                      DevicePrimitives& prim, Stream stream) {
     if (n == 0) return;
     // A is a sphere; B any geometry (unified ids).
     const int aBits = bitsFor(v.numSpheres);
@@ -137,8 +137,8 @@ void DeviceDormantRegistry::sortPairs(const StateView& v, bodyID_t* geomA, bodyI
            bBits, (unsigned long long*)m_pairKeys.data(), m_pairIdx.data());
     prim.sortPairs(m_pairKeys.data(), m_pairKeysSorted.data(), m_pairIdx.data(), m_pairIdxSorted.data(), n, stream, 0,
                    aBits + bBits);
-    launch(m_kPairsFromKeys, blocksFor(n, THREADS), THREADS, 0, stream, v,
-           (const unsigned long long*)m_pairKeysSorted.data(), n, bBits, geomA, geomB, type);
+    launch(m_kPairsFromKeys, blocksFor(n, THREADS), THREADS, 0, stream,
+           (const unsigned long long*)m_pairKeysSorted.data(), n, bBits, geomA, geomB);
 }
 
 }  // namespace deme::cuda

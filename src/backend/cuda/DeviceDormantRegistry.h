@@ -46,9 +46,9 @@ class DeviceDormantRegistry {
     DormantBinsView view() const { return DormantBinsView{m_start.data(), m_sortedItems.data(), m_maxReach}; }
     size_t rebuilds() const { return m_rebuilds; }
 
-    // Pairs (geomA, geomB)[0, n) into (A, B) order (A a sphere of v, B any geometry), the type from B.
-    void sortPairs(const StateView& v, bodyID_t* geomA, bodyID_t* geomB, uint8_t* type, unsigned int n,
-                   DevicePrimitives& prim, Stream stream);
+    // Pairs (geomA, geomB)[0, n) into (A, B) order (A a sphere of v, B any geometry).
+    void sortPairs(const StateView& v, bodyID_t* geomA, bodyID_t* geomB, unsigned int n, DevicePrimitives& prim,
+                   Stream stream);
 
   private:
     void rebuild(const StateView& v, const BinGrid& grid, const DeviceBuffer<family_t>& ownerFamily, size_t numOwners,

@@ -67,15 +67,12 @@ unsigned int DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, uns
     const unsigned int total = nFresh + missing;
     m_mergedA.resize(total, stream);
     m_mergedB.resize(total, stream);
-    m_mergedType.resize(total, stream);
-    launch(m_merge, blocksFor((unsigned long long)nFresh + nOld, THREADS), THREADS, 0, stream, fresh,
-           (const uint8_t*)freshSet.type.data(), old, (const uint8_t*)oldSet.type.data(),
+    launch(m_merge, blocksFor((unsigned long long)nFresh + nOld, THREADS), THREADS, 0, stream, fresh, old,
            (const unsigned int*)m_isMissing.data(), (const unsigned int*)m_missingBefore.data(), m_mergedA.data(),
-           m_mergedB.data(), m_mergedType.data());
+           m_mergedB.data());
     // The merged arrays become the fresh set's; its former arrays are the next merge's scratch.
     std::swap(freshSet.geomA, m_mergedA);
     std::swap(freshSet.geomB, m_mergedB);
-    std::swap(freshSet.type, m_mergedType);
     return total;
 }
 
@@ -92,9 +89,8 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, unsigned int n
                                     W,
                                     m_rules.data(),
                                     m_numRules};
-    launch(m_map, blocksFor(total, THREADS), THREADS, 0, stream, view, keysOf(fresh, total),
-           (const uint8_t*)fresh.type.data(), history, fresh.wildcards.data(), fresh.meshState.data(),
-           fresh.persistent.data());
+    launch(m_map, blocksFor(total, THREADS), THREADS, 0, stream, view, keysOf(fresh, total), history,
+           fresh.wildcards.data(), fresh.meshState.data(), fresh.persistent.data());
     return total;
 }
 

@@ -45,7 +45,6 @@ class DeviceHistoryMapping {
     CudaKernel m_missing, m_merge, m_map;
     DeviceBuffer<unsigned int> m_isMissing, m_missingBefore, m_any;
     DeviceBuffer<bodyID_t> m_mergedA, m_mergedB;
-    DeviceBuffer<uint8_t> m_mergedType;
     DeviceBuffer<ContactInitRule> m_rules;
     unsigned int m_numRules = 0;
     bool m_oldHadPersistent = false;

@@ -42,7 +42,7 @@ void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, Contact
 // Points the view's contact arrays at `d`'s (n pairs).
 void viewContacts(DeviceContacts& d, uint32_t n, StateView& v);
 // Sizes the per-contact state of `d` for n pairs of W wildcards each (the pairs themselves are set by
-// whoever fills geomA, geomB, type; the per-contact forces by CudaDynamics::install).
+// whoever fills geomA and geomB; the per-contact forces by CudaDynamics::install).
 void resizeContactState(DeviceContacts& d, size_t n, unsigned int W);
 
 }  // namespace deme::cuda

@@ -90,8 +90,7 @@ extern "C" __global__ void deme_bin_counts(const unsigned int* keys, unsigned in
 // radius `wideRadius` or more are left to deme_pair_search_wide (count[k] stays 0 here).
 extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, DormantBinsView d, const bodyID_t* ids,
                                             unsigned int n, float wideRadius, unsigned int* count,
-                                            const unsigned int* offset, bodyID_t* outA, bodyID_t* outB,
-                                            uint8_t* outType) {
+                                            const unsigned int* offset, bodyID_t* outA, bodyID_t* outB) {
     const size_t k = globalIndex();
     if (k >= n) return;
     const bodyID_t sa = ids ? ids[k] : (bodyID_t)k;
@@ -102,10 +101,7 @@ extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, Dorman
     }
     const unsigned int base = offset[k], found = offset[k + 1] - base;
     const unsigned int own = spherePartners(s, a, sa, outB + base, found);
-    for (unsigned int j = 0; j < own; j++) {
-        outA[base + j] = sa;
-        outType[base + j] = contactTypeOf(s, outB[base + j]);
-    }
+    for (unsigned int j = 0; j < own; j++) outA[base + j] = sa;
     if (!d.start) return;
     bodyID_t* more = outB + base + own;
     const unsigned int nd = dormantPartners(s, a, d, sa, more, found - own);
@@ -113,7 +109,6 @@ extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, Dorman
         const bodyID_t b = more[j];
         outA[base + own + j] = sa < b ? sa : b;
         outB[base + own + j] = sa < b ? b : sa;
-        outType[base + own + j] = (uint8_t)SPHERE_SPHERE;
     }
 }
 
@@ -153,18 +148,16 @@ extern "C" __global__ void __launch_bounds__(256, 4)
 }
 
 // After deme_pair_search_lanes: each sphere's partners, outB[offset[k], offset[k + 1]), in
-// contact-set order (ascending unified id: spheres, analytical components, triangles), and A and
-// the types. Not the wide spheres (deme_pair_rank_wide, deme_pair_finish_wide).
+// contact-set order (ascending unified id: spheres, analytical components, triangles), and A (a
+// pair's type follows from B: state/ContactTypeOf.h). Not the wide spheres (deme_pair_rank_wide,
+// deme_pair_finish_wide).
 extern "C" __global__ void deme_pair_order(StateView s, unsigned int n, float wideRadius, const unsigned int* offset,
-                                           bodyID_t* outA, bodyID_t* outB, uint8_t* outType) {
+                                           bodyID_t* outA, bodyID_t* outB) {
     const size_t k = globalIndex();
     if (k >= n || s.spheres.radius[k] >= wideRadius) return;
     const unsigned int first = offset[k], last = offset[k + 1];
     sortIds(outB + first, last - first);
-    for (unsigned int j = first; j < last; j++) {
-        outA[j] = (bodyID_t)k;
-        outType[j] = contactTypeOf(s, outB[j]);
-    }
+    for (unsigned int j = first; j < last; j++) outA[j] = (bodyID_t)k;
 }
 
 // The wide spheres wide[0, nWide), `lanes` threads each (thread t: sphere wide[t / lanes]; cursor[w]
@@ -195,17 +188,15 @@ extern "C" __global__ void deme_pair_rank_wide(const bodyID_t* wide, unsigned in
     }
 }
 
-// Then the ordered ids back into outB, A into outA and the types.
-extern "C" __global__ void deme_pair_finish_wide(StateView s, const bodyID_t* wide, unsigned int nWide,
-                                                 unsigned int lanes, const unsigned int* offset, bodyID_t* outA,
-                                                 bodyID_t* outB, uint8_t* outType) {
+// Then the ordered ids back into outB, and A into outA.
+extern "C" __global__ void deme_pair_finish_wide(const bodyID_t* wide, unsigned int nWide, unsigned int lanes,
+                                                 const unsigned int* offset, bodyID_t* outA, bodyID_t* outB) {
     const size_t t = globalIndex(), w = t / lanes;
     if (w >= nWide) return;
     const bodyID_t k = wide[w];
     for (unsigned int e = offset[k] + (unsigned int)(t % lanes); e < offset[k + 1]; e += lanes) {
         outB[e] = outA[e];
         outA[e] = k;
-        outType[e] = contactTypeOf(s, outB[e]);
     }
 }
 
@@ -262,14 +253,13 @@ extern "C" __global__ void deme_pair_keys(const bodyID_t* geomA, const bodyID_t*
     idx[i] = (unsigned int)i;
 }
 
-// The sorted keys back into pairs; the type follows from B.
-extern "C" __global__ void deme_pairs_from_keys(StateView s, const unsigned long long* keys, unsigned int n, int bBits,
-                                                bodyID_t* geomA, bodyID_t* geomB, uint8_t* type) {
+// The sorted keys back into pairs.
+extern "C" __global__ void deme_pairs_from_keys(const unsigned long long* keys, unsigned int n, int bBits,
+                                                bodyID_t* geomA, bodyID_t* geomB) {
     const size_t i = globalIndex();
     if (i >= n) return;
     geomA[i] = (bodyID_t)(keys[i] >> bBits);
     geomB[i] = (bodyID_t)(keys[i] & ((1ull << bBits) - 1ull));
-    type[i] = contactTypeOf(s, geomB[i]);
 }
 
 }  // namespace deme

@@ -120,10 +120,11 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
     if (ctl->stop) return;
     const size_t i = globalIndex();
     const ContactView& c = s.contacts;
-    if (i >= s.numContacts || c.type[i] != SPHERE_TRIANGLE) return;
-    if (i > 0 && c.type[i - 1] == SPHERE_TRIANGLE && c.geomA[i - 1] == c.geomA[i]) return;
+    const bodyID_t firstTriangle = s.triangleIdBase();  // B from here on: a sphere-triangle pair
+    if (i >= s.numContacts || c.geomB[i] < firstTriangle) return;
+    if (i > 0 && c.geomB[i - 1] >= firstTriangle && c.geomA[i - 1] == c.geomA[i]) return;
     size_t n = 1;
-    while (i + n < s.numContacts && c.type[i + n] == SPHERE_TRIANGLE && c.geomA[i + n] == c.geomA[i]) n++;
+    while (i + n < s.numContacts && c.geomB[i + n] >= firstTriangle && c.geomA[i + n] == c.geomA[i]) n++;
     MeshCandidate cand[MAX_MESH_CANDIDATES];
     if (!resolveSphereMeshContacts(s, i, n, cand, MAX_MESH_CANDIDATES))
         raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, c.geomA[i]);
@@ -413,7 +414,7 @@ extern "C" __global__ void deme_mark_contact_owners(StateView s, unsigned int* f
     if (i >= s.numContacts) return;
     const ContactView& c = s.contacts;
     flags[s.spheres.owner[c.geomA[i]]] = 1u;
-    flags[geometryOwner(s, c.type[i], c.geomB[i])] = 1u;
+    flags[geometryOwner(s, contactTypeAt(s, i), c.geomB[i])] = 1u;
 }
 
 // ids[offset[i]] = i for every i < n with flags[i] set (offset: the flags' exclusive sum).

@@ -29,36 +29,30 @@ extern "C" __global__ void deme_persistent_missing(ContactKeys fresh, ContactKey
 
 // One thread per pair of the fresh set, then per pair of the old set: each goes to its place in the
 // merged set. missingBefore is the exclusive sum of deme_persistent_missing's flags.
-extern "C" __global__ void deme_persistent_merge(ContactKeys fresh, const uint8_t* freshType, ContactKeys old,
-                                                 const uint8_t* oldType, const unsigned int* missing,
-                                                 const unsigned int* missingBefore, bodyID_t* outA, bodyID_t* outB,
-                                                 uint8_t* outType) {
+extern "C" __global__ void deme_persistent_merge(ContactKeys fresh, ContactKeys old, const unsigned int* missing,
+                                                 const unsigned int* missingBefore, bodyID_t* outA, bodyID_t* outB) {
     const size_t t = globalIndex();
     if (t < fresh.n) {
         const unsigned int i = (unsigned int)t;
         const unsigned int at = mergedSlotOfFresh(fresh, old, missingBefore, i);
         outA[at] = fresh.geomA[i];
         outB[at] = fresh.geomB[i];
-        outType[at] = freshType[i];
     } else if (t < (size_t)fresh.n + old.n) {
         const unsigned int j = (unsigned int)(t - fresh.n);
         if (!missing[j]) return;
         const unsigned int at = mergedSlotOfOld(fresh, old, missingBefore, j);
         outA[at] = old.geomA[j];
         outB[at] = old.geomB[j];
-        outType[at] = oldType[j];
     }
 }
 
 // The history of every pair of the new set. `s` is for the geometries' owners and families.
-extern "C" __global__ void deme_map_history(StateView s, ContactKeys fresh, const uint8_t* freshType,
-                                            OldContactHistory old, float* freshWildcards, uint8_t* freshMeshState,
-                                            uint8_t* freshPersistent) {
+extern "C" __global__ void deme_map_history(StateView s, ContactKeys fresh, OldContactHistory old,
+                                            float* freshWildcards, uint8_t* freshMeshState, uint8_t* freshPersistent) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
     const unsigned int i = (unsigned int)t;
-    carryPairHistory(s, fresh, freshType, old, i, freshWildcards + (size_t)i * old.W, freshMeshState[i],
-                     freshPersistent[i]);
+    carryPairHistory(s, fresh, old, i, freshWildcards + (size_t)i * old.W, freshMeshState[i], freshPersistent[i]);
 }
 
 }  // namespace deme
