@@ -5,7 +5,8 @@
 // host read of the contact set between calls (which makes the history dense until the next batch)
 // and a user's model that sees the pairs that are apart; and so must a run that keeps every pair of
 // the set in use through its detections (not only those that hand something on:
-// backend/cpu/CarriedPairs.h). CPU only: the GPU keeps its sets dense and whole.
+// backend/cpu/CarriedPairs.h), and a run whose set keeps every pair's A (not as runs of A's owners,
+// backend/cpu/ContactARuns.h). CPU only: the GPU keeps its sets dense and whole, A per pair.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,6 +20,7 @@
 #include "MeshBuilders.h"
 #include "ScratchDirTest.h"
 #include "TestHelpers.h"
+#include "state/SimState.h"
 
 using namespace deme;
 using namespace deme_test;
@@ -116,16 +118,22 @@ class ContactHistoryForm : public ScratchDirTest {
         const std::vector<Trajectory> chosen = run("auto", customModel, autoBytes);
         // Every pair of the set in use kept through each detection, not only the pairs that hand
         // something to the next set (backend/cpu/CarriedPairs.h): the same too.
-        std::vector<Trajectory> whole;
+        std::vector<Trajectory> whole, aPerPair;
         {
             const ScopedEnvironmentVariable keep("DEME_KEEP_WHOLE_SET", "1");
             size_t wholeBytes;
             whole = run("auto", customModel, wholeBytes);
         }
+        {
+            const ScopedEnvironmentVariable perPair("DEME_CONTACT_A_PER_PAIR", "1");
+            size_t perPairBytes;
+            aPerPair = run("auto", customModel, perPairBytes);  // (by default the bed's keeps A as runs)
+        }
         for (size_t k = 0; k < dense.size(); k++) {
             EXPECT_EQ(differing(dense[k], pooled[k]), 0u) << "part " << k;
             EXPECT_EQ(differing(dense[k], chosen[k]), 0u) << "part " << k;
             EXPECT_EQ(differing(dense[k], whole[k]), 0u) << "part " << k;
+            EXPECT_EQ(differing(dense[k], aPerPair[k]), 0u) << "part " << k;
         }
         // The bed is moving (the comparison is not of grains at rest) and touches the mesh.
         EXPECT_GT(length(dense[1].vel[0]) + length(dense[1].vel[dense[1].vel.size() / 2]), 0.f);
@@ -146,8 +154,9 @@ namespace {
 
 // Spheres on a lattice 0.1 % wider than their diameter, at rest, with a margin of 50 um: every
 // neighbour within the margin (six per sphere), none touching: the early mixer's contact set.
-size_t latticeContactsBytes(const char* form, float gap, int steps) {
+size_t latticeContactsBytes(const char* form, float gap, int steps, bool aPerPair = false) {
     const ScopedEnvironmentVariable chosen("DEME_CONTACT_HISTORY", form);
+    const ScopedEnvironmentVariable perPair("DEME_CONTACT_A_PER_PAIR", aPerPair ? "1" : "0");
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
     sim.SetBackend("cpu");
@@ -192,4 +201,36 @@ TEST(ContactHistoryFormChoice, AnUnknownFormIsANamedError) {
     const std::string msg = demeErrorMessage([] { latticeContactsBytes("sparse", 0.002f * R, 1); });
     EXPECT_TRUE(contains(msg, "DEME_CONTACT_HISTORY")) << msg;
     EXPECT_TRUE(contains(msg, "sparse")) << msg;
+}
+
+// Spheres that are their owners keep A as runs (backend/cpu/ContactARuns.h): exactly 4 bytes a pair
+// less than with A per pair, the set's n pairs measured as above (the dense form's 16 B a pair of
+// history against the pool's).
+TEST(ContactARuns, FourBytesAPairLessWhereSpheresAreTheirOwners) {
+    const size_t dense = latticeContactsBytes("dense", 0.002f * R, 5);
+    const size_t pooled = latticeContactsBytes("pooled", 0.002f * R, 5);
+    const size_t n = (size_t)std::llround((double)(dense - pooled) / (16.0 - 12.0 / 64.0));
+    ASSERT_GT(n, 1000u);
+    const size_t perPair = latticeContactsBytes("pooled", 0.002f * R, 5, true);
+    EXPECT_EQ(perPair - pooled, 4 * n);
+}
+
+// The runs give every pair's A (ContactArrays::pairA), and A comes back before the runs go
+// (resetIndex) or when asked (restoreA).
+TEST(ContactARuns, RunsGiveEveryPairsAAndComeBackBeforeTheIndexGoes) {
+    ContactArrays c;
+    // Owners 0..4 as A of 2, 0, 3, 1, 0 pairs.
+    c.geomB = {7, 9, 3, 5, 6, 8, 9};
+    c.ownerAStart = {0, 2, 2, 5, 6, 7, 7};
+    c.aAsRuns = true;
+    const std::vector<bodyID_t> expected = {0, 0, 2, 2, 2, 3, 4};
+    for (size_t i = 0; i < expected.size(); i++) EXPECT_EQ(c.pairA(i), expected[i]) << i;
+    ContactArrays copy = c;
+    copy.restoreA();
+    EXPECT_FALSE(copy.aAsRuns);
+    EXPECT_EQ(copy.geomA, expected);
+    c.resetIndex();
+    EXPECT_FALSE(c.aAsRuns);
+    EXPECT_EQ(c.geomA, expected);
+    EXPECT_TRUE(c.ownerAStart.empty());
 }

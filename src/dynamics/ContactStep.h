@@ -99,11 +99,16 @@ struct ContactIds {
     uint8_t type;
 };
 
+// The same where the caller knows A (the CPU's set may keep A as runs: backend/cpu/ContactARuns.h).
+template <uint8_t KnownType, class S>
+DEME_HD_INLINE ContactIds contactIdsWithA(const S& s, size_t i, bodyID_t a) {
+    const bodyID_t b = s.contacts.geomB[i];
+    return ContactIds{a, b, KnownType < NO_TRIANGLE_CONTACT ? KnownType : contactTypeOf(s, b)};
+}
+
 template <uint8_t KnownType, class S>
 DEME_HD_INLINE ContactIds contactIds(const S& s, size_t i) {
-    const auto& c = s.contacts;
-    const bodyID_t b = c.geomB[i];
-    return ContactIds{c.geomA[i], b, KnownType < NO_TRIANGLE_CONTACT ? KnownType : contactTypeOf(s, b)};
+    return contactIdsWithA<KnownType>(s, i, s.contacts.geomA[i]);
 }
 
 // Contact i's step, its ids read (contactIds) and its W history floats at `wc` (the set's own

@@ -64,17 +64,16 @@ DEME_HD_INLINE bool isLocalMinimum(const S& s, const double3& x, const MeshCandi
     return true;
 }
 
-// Decides which contacts of one sphere count (see MeshContacts.h) and hands history over. The
+// Decides which contacts of sphere `a` count (see MeshContacts.h) and hands history over. The
 // sphere's triangle contacts are the n contacts from `first` on (contacts are sorted by sphere, and a
 // sphere's triangle contacts come last). Only overlapping contacts can count; those are sorted in
 // `cand`, which has room for `capacity`. Returns false (changing nothing) if they do not fit.
 // `historyAt(i)`: contact i's W history floats (the CPU's pooled form gives every sphere-triangle
 // pair a slot, state/PooledHistory.h).
 template <class S, class HistoryAt>
-DEME_HD_INLINE bool resolveSphereMeshContactsWith(S& s, size_t first, size_t n, MeshCandidate* cand, size_t capacity,
-                                                  const HistoryAt& historyAt) {
+DEME_HD_INLINE bool resolveSphereMeshContactsWith(S& s, bodyID_t a, size_t first, size_t n, MeshCandidate* cand,
+                                                  size_t capacity, const HistoryAt& historyAt) {
     auto& c = s.contacts;
-    const bodyID_t a = c.geomA[first];
     const double3 x = sphereCentre(s, a);
     const double r = s.spheres.radius[a];
     const bodyID_t triBase = s.triangleIdBase();
@@ -150,7 +149,7 @@ struct HistoryInSet {
 
 template <class S>
 DEME_HD_INLINE bool resolveSphereMeshContacts(S& s, size_t first, size_t n, MeshCandidate* cand, size_t capacity) {
-    return resolveSphereMeshContactsWith(s, first, n, cand, capacity,
+    return resolveSphereMeshContactsWith(s, s.contacts.geomA[first], first, n, cand, capacity,
                                          HistoryInSet{s.contacts.wildcards, s.numWildcards});
 }
 

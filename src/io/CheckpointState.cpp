@@ -150,6 +150,7 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
         if (!v.empty()) std::memcpy(v.data(), it->second.bytes, v.size() * sizeof(T));
         records.erase(it);
     };
+    s.contacts.aAsRuns = false;  // the file holds every pair's A
     forEachStoredArray(s, fill);
     // Fields that earlier builds wrote and this one derives: a pair's type follows from B
     // (state/ContactTypeOf.h).

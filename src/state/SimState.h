@@ -5,6 +5,7 @@
 // are between geometries.
 #pragma once
 
+#include <algorithm>
 #include <type_traits>
 #include <vector>
 
@@ -73,7 +74,27 @@ struct StoredContactForces {
 constexpr size_t KEEP_REBUILT_ARRAYS_UP_TO = 32u << 20;
 
 struct ContactArrays : ContactFields<HostArray> {
-    size_t size() const { return geomA.size(); }
+    size_t size() const { return geomB.size(); }
+    // The CPU's steps keep A as runs where spheres are their owners (backend/cpu/ContactARuns.h):
+    // sphere o is then owner o, so the force reduction's runs (ownerAStart) give every pair's A and
+    // geomA (4 B a pair) is let go. Whatever empties the index, or reads the set on the host, first
+    // gets geomA back (restoreA).
+    bool aAsRuns = false;
+    // The owner of pair i's A, from the runs (the index must be built).
+    size_t pairAOwner(size_t i) const {
+        return (size_t)(std::upper_bound(ownerAStart.begin(), ownerAStart.end(), (uint32_t)i) - ownerAStart.begin()) -
+               1;
+    }
+    // Pair i's A sphere.
+    bodyID_t pairA(size_t i) const { return aAsRuns ? (bodyID_t)pairAOwner(i) : geomA[i]; }
+    // geomA made again from the runs (one sphere per owner: A's owner is A).
+    void restoreA() {
+        if (!aAsRuns) return;
+        geomA.resize(size());
+        for (size_t o = 0; o + 1 < ownerAStart.size(); o++)
+            std::fill(geomA.begin() + ownerAStart[o], geomA.begin() + ownerAStart[o + 1], (bodyID_t)o);
+        aAsRuns = false;
+    }
     StoredContactForces stored;  // the CPU's (a GPU run's host copy has `force` per contact)
     // The CPU steps' pooled form of the history (state/PooledHistory.h), in use where `wildcards`
     // is empty and the pool has a slot per pair: `wildcards` wins wherever it holds the history.
@@ -90,6 +111,9 @@ struct ContactArrays : ContactFields<HostArray> {
     // sphere-triangle runs, the force reduction's index and windows, the stored forces; their
     // memory is let go too where it is large (KEEP_REBUILT_ARRAYS_UP_TO) or `release` says so.
     void resetIndex(bool release = false) {
+        // A kept as runs comes back before the runs go; the other arrays first, so that geomA is
+        // made where they were.
+        const bool restore = aAsRuns;
         const size_t bytes =
             sizeof(uint32_t) *
                 (meshContacts.capacity() + meshContactGroups.capacity() + ownerAStart.capacity() +
@@ -105,7 +129,6 @@ struct ContactArrays : ContactFields<HostArray> {
         };
         reset(meshContacts);
         reset(meshContactGroups);
-        reset(ownerAStart);
         reset(bSlot);
         reset(bSlotWide);
         reset(blockWindowStart);
@@ -118,6 +141,8 @@ struct ContactArrays : ContactFields<HostArray> {
             stored = StoredContactForces();
         else
             stored.clear();
+        if (restore) restoreA();
+        reset(ownerAStart);
     }
 };
 using KinematicCache = CacheFields<HostArray>;

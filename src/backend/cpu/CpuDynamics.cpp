@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "backend/cpu/CarriedPairs.h"
+#include "backend/cpu/ContactARuns.h"
 #include "backend/cpu/CpuKinematics.h"
 #include "backend/cpu/ForcePass.h"
 #include "backend/cpu/HistoryForm.h"
@@ -34,7 +35,13 @@ StepBatchResult CpuDynamics::steps(const StepBatchRequest& batch, const Settings
     StepBatchResult r;
     // A history a host reader, an edit or a restart left dense is pooled where that pays (an
     // installation chooses for its own set).
-    if (m_chooseHistoryForm) chooseHistoryForm(m_s);
+    // So is A (backend/cpu/ContactARuns.h): kept as runs again, or, where a reader or edit changed the
+    // set, indexed again first (the step below does so where the index is empty).
+    if (m_chooseHistoryForm) {
+        chooseHistoryForm(m_s);
+        if (m_s.contacts.size() && contactAAsRunsAllowed(m_s) && !keepContactAAsRuns(m_s, false))
+            m_s.contacts.resetIndex();
+    }
     m_chooseHistoryForm = false;
     while (c.stepsDone < batch.maxSteps && !c.stop) {
         // Per-contact forces are kept by the step a call may end after (as on the GPU): every
@@ -93,6 +100,10 @@ StepOutcome CpuDynamics::step(double time, const Settings& settings, const Famil
 }
 
 void CpuDynamics::downloadContacts(SimState& s) {
+    // Host readers get every pair's A and W floats of history (the steps' forms are made again
+    // before the next step).
+    if (s.contacts.aAsRuns) m_chooseHistoryForm = true;
+    s.contacts.restoreA();
     if (densifyHistory(s)) m_chooseHistoryForm = true;
 }
 

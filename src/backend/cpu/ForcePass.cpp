@@ -8,6 +8,7 @@
 #include <deme/Error.h>
 
 #include "parallel/Parallel.h"
+#include "backend/cpu/ContactARuns.h"
 #include "backend/cpu/ForcePassLoop.h"
 #include "physics/BuiltInForceModels.h"
 
@@ -79,6 +80,9 @@ void buildOwnerContactIndex(SimState& s) {
         c.ownerAStart[o + 1]++;
     }
     for (size_t o = 0; o < nOwners; o++) c.ownerAStart[o + 1] += c.ownerAStart[o];
+    // A as runs where spheres are their owners (backend/cpu/ContactARuns.h): let go before B's side
+    // is indexed, which reads B only.
+    keepContactAAsRuns(s, true);
     // B's side: per block of A's owners, the distinct owners its contacts have as B outside the
     // block (the block's window, ascending), and each contact's slot in it; a B owner inside the
     // block is summed by the block's own thread (most of them: a block is a compact clump of

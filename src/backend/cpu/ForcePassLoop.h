@@ -17,18 +17,18 @@
 
 namespace deme {
 
-// One contact of the set (dynamics/ContactStep.h): its force on A and torques about A's and B's
-// owners, into the chunk's arrays. Instantiated separately for sphere-sphere contacts (most of any
+// One contact of the set (dynamics/ContactStep.h), A sphere `a`: its force on A and torques about
+// A's and B's owners, into the chunk's arrays. Instantiated separately for sphere-sphere contacts (most of any
 // granular scene) so that the compiler drops the other geometry branches from that path.
 // `history`: the pair's W floats (in the set, or the chunk's copy of a pooled history).
 template <class Model, bool SphereSphere>
-DEME_HD_INLINE bool forcePassContact(SimState& s, const Model& model, size_t i, float* history, float time, float dt,
-                                     float3& force, float3& torqueA, float3& torqueB) {
+DEME_HD_INLINE bool forcePassContact(SimState& s, const Model& model, size_t i, bodyID_t a, float* history, float time,
+                                     float dt, float3& force, float3& torqueA, float3& torqueB) {
     constexpr uint8_t kType = SphereSphere ? (uint8_t)SPHERE_SPHERE : ANY_CONTACT_TYPE;
     bool applied;
     ContactLoad load;
-    const bool touching =
-        contactStepWithHistory<Model, kType>(s, model, i, contactIds<kType>(s, i), history, time, dt, applied, load);
+    const bool touching = contactStepWithHistory<Model, kType>(s, model, i, contactIdsWithA<kType>(s, i, a), history,
+                                                               time, dt, applied, load);
     force = applied ? load.force : make_float3(0.f);
     torqueA = applied ? load.torqueA : make_float3(0.f);
     torqueB = applied ? load.torqueB : make_float3(0.f);
@@ -66,7 +66,7 @@ inline void forcePassThreadBlocks(const SimState& s, int t, int T, size_t& first
     auto blockAt = [&](size_t k) -> size_t {
         if (k == 0) return 0;
         if (k >= n) return nBlocks;
-        return s.spheres.owner[c.geomA[k]] / FORCE_PASS_BLOCK_OWNERS;
+        return c.pairAOwner(k) / FORCE_PASS_BLOCK_OWNERS;
     };
     size_t begin, end;
     threadRange(n, t, T, begin, end);
@@ -186,6 +186,7 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
     {
         const int thread = T > 1 ? cpuThreadIndex() : 0;
         float3 chunkForce[FORCE_PASS_CHUNK], torqueA[FORCE_PASS_CHUNK], torqueB[FORCE_PASS_CHUNK];
+        bodyID_t chunkA[FORCE_PASS_CHUNK], chunkOwner[FORCE_PASS_CHUNK];  // each pair's A and A's owner
         std::vector<float> chunkHistory(pooled ? FORCE_PASS_CHUNK * W : 0);
         // B's sums for the block's own owners (zeros between blocks: each is reset as it is added).
         std::vector<WindowLoad> inBlock(FORCE_PASS_BLOCK_OWNERS, WindowLoad{make_float3(0.f), make_float3(0.f)});
@@ -197,9 +198,20 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
             for (uint32_t w = c.blockWindowStart[k]; w < c.blockWindowStart[k + 1]; w++)
                 window[w].force = window[w].negTorque = make_float3(0.f);
             bodyID_t owner = 0;
+            size_t run = k * FORCE_PASS_BLOCK_OWNERS;  // the owner whose run as A holds the pair
             float3 F = make_float3(0.f), tau = make_float3(0.f);
             for (size_t b = begin; b < end; b += FORCE_PASS_CHUNK) {
                 const size_t m = std::min(FORCE_PASS_CHUNK, end - b);
+                // A's owner from the runs; A itself too where the set keeps A as runs (spheres
+                // that are their owners: backend/cpu/ContactARuns.h).
+                for (size_t j = 0; j < m; j++) {
+                    while (c.ownerAStart[run + 1] <= b + j) run++;
+                    chunkOwner[j] = (bodyID_t)run;
+                }
+                if (c.aAsRuns)
+                    std::copy(chunkOwner, chunkOwner + m, chunkA);
+                else
+                    std::copy(c.geomA.begin() + b, c.geomA.begin() + b + m, chunkA);
                 float* history = pooled ? chunkHistory.data() : W ? c.wildcards.data() + b * W : nullptr;
                 if (pooled) fetchPooledHistory<W>(c.pooled, b, m, history);
                 // The forces go straight to the per-pair array where the step keeps every pair's.
@@ -208,18 +220,20 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
 #pragma omp simd reduction(+ : realSS)
                 for (size_t j = 0; j < m; j++)
                     if (c.geomB[b + j] < sphereIdEnd)  // a sphere pair (state/ContactTypeOf.h)
-                        realSS += forcePassContact<Model, true>(s, model, b + j, W ? history + j * W : nullptr, t, h,
-                                                                force[j], torqueA[j], torqueB[j]);
+                        realSS +=
+                            forcePassContact<Model, true>(s, model, b + j, chunkA[j], W ? history + j * W : nullptr, t,
+                                                          h, force[j], torqueA[j], torqueB[j]);
                 // ... then the rest ...
                 for (size_t j = 0; j < m; j++)
                     if (c.geomB[b + j] >= sphereIdEnd)
-                        real += forcePassContact<Model, false>(s, model, b + j, W ? history + j * W : nullptr, t, h,
-                                                               force[j], torqueA[j], torqueB[j]);
+                        real +=
+                            forcePassContact<Model, false>(s, model, b + j, chunkA[j], W ? history + j * W : nullptr, t,
+                                                           h, force[j], torqueA[j], torqueB[j]);
                 if (pooled) keepPooledHistory<W>(c.pooled, thread, b, m, history);
                 // ... and the loads, in contact order, onto A's owner and B's slot.
                 for (size_t j = 0; j < m; j++) {
                     const size_t i = b + j;
-                    const bodyID_t o = s.spheres.owner[c.geomA[i]];
+                    const bodyID_t o = chunkOwner[j];
                     if (o != owner || i == begin) {
                         if (i != begin) {
                             ow.contactForce[owner] = F;

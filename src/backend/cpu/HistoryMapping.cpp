@@ -57,8 +57,8 @@ void mergePersistentPairs(const ContactArrays& c, DetectedContacts& fresh) {
 
 namespace {
 
-// Pair i's index in the old set (oldIndexOfPair) with, in the top bit, whether it keeps a slot.
-constexpr uint32_t KEEPS_SLOT = 0x80000000u;
+// The most pairs a CPU set indexes (its indices are 32-bit, and a flag bit is kept free).
+constexpr size_t MAX_INDEXED_PAIRS = 0x80000000u;
 
 // The new set's history, W floats per pair, where the set in use keeps that form (a settled bed:
 // most pairs touch): one pass, no other array. The form is chosen afterwards (chooseHistoryForm).
@@ -73,51 +73,65 @@ void mapDenseHistory(const SimState& s, const DetectedContacts& fresh, const Old
         carryPairHistory(s, freshKeys, old, (unsigned int)i, wildcards.data() + i * W, meshState[i], persistent[i]);
 }
 
-// The same where the set in use is pooled, or there is none: first each pair's old index and
-// whether it has a history (counted per thread's share), then the history in the form that count
-// picks (poolsHistory): W floats per pair into `wildcards`, or the pairs that have one into `pool`.
-// Returns whether it pooled.
+// The same where the set in use is pooled, or there is none: first whether each pair has a history,
+// a bit each (counted per thread's share of the words), then the history in the form that count
+// picks (poolsHistory): W floats per pair into `wildcards`, or the pairs that have one into `pool`,
+// each pair's old index found again where it is needed (kept between the passes it was 4 B a pair
+// at the installation's peak; pooled, only the pairs with a history need it). Returns whether it
+// pooled.
 bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, const OldContactHistory& old,
                             std::vector<float>& wildcards, PooledHistory& pool, std::vector<uint8_t>& meshState,
                             std::vector<uint8_t>& persistent) {
     const size_t nNew = fresh.size();
     const unsigned int W = old.W;
     const ContactKeys freshKeys = keysOf(fresh.geomA, fresh.geomB);
+    std::vector<uint64_t> bits((nNew + 63) / 64, 0);
+    const size_t nWords = bits.size();
     const int T = nNew > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
-    std::vector<uint32_t> at(nNew);
     std::vector<size_t> first(T + 1, 0);
-    forEachThreadShare(nNew, T, [&](int t, size_t b, size_t e) {
+    auto pairsOf = [nNew](size_t w, size_t& b, size_t& e) {
+        b = 64 * w;
+        e = std::min(nNew, b + 64);
+    };
+    forEachThreadShare(nWords, T, [&](int t, size_t wb, size_t we) {
         std::vector<float> h(W);
         size_t k = 0;  // (counted here: neighbouring threads' counts share a cache line)
-        for (size_t i = b; i < e; i++) {
-            const unsigned int j = oldIndexOfPair(freshKeys, old, (unsigned int)i);
-            pairHistoryFrom(s, freshKeys, old, (unsigned int)i, j, h.data(), meshState[i], persistent[i]);
-            const bool keep = pairNeedsHistorySlot(contactTypeOf(s, fresh.geomB[i]), h.data(), W);
-            at[i] = (uint32_t)j | (keep ? KEEPS_SLOT : 0u);
-            k += keep;
+        for (size_t w = wb; w < we; w++) {
+            size_t b, e;
+            pairsOf(w, b, e);
+            uint64_t word = 0;
+            for (size_t i = b; i < e; i++) {
+                carryPairHistory(s, freshKeys, old, (unsigned int)i, h.data(), meshState[i], persistent[i]);
+                if (pairNeedsHistorySlot(contactTypeOf(s, fresh.geomB[i]), h.data(), W)) {
+                    word |= 1ull << (i & 63);
+                    k++;
+                }
+            }
+            bits[w] = word;
         }
         first[t + 1] = k;
     });
     for (int t = 0; t < T; t++) first[t + 1] += first[t];
     const bool pooled = nNew > 0 && poolsHistory(nNew, first[T]);
     std::vector<float> values(pooled ? first[T] * W : nNew * W);
-    forEachThreadShare(nNew, T, [&](int t, size_t b, size_t e) {
+    forEachThreadShare(nWords, T, [&](int t, size_t wb, size_t we) {
         size_t next = first[t];
         uint8_t ms, ps;  // (the same as the first pass's)
-        for (size_t i = b; i < e; i++) {
-            const unsigned int j = at[i] & ~KEEPS_SLOT;
-            if (!pooled)
-                pairHistoryFrom(s, freshKeys, old, (unsigned int)i, j, &values[i * W], ms, ps);
-            else if (at[i] & KEEPS_SLOT)
-                pairHistoryFrom(s, freshKeys, old, (unsigned int)i, j, &values[next++ * W], ms, ps);
+        for (size_t w = wb; w < we; w++) {
+            size_t b, e;
+            pairsOf(w, b, e);
+            for (size_t i = b; i < e; i++) {
+                if (!pooled)
+                    carryPairHistory(s, freshKeys, old, (unsigned int)i, &values[i * W], ms, ps);
+                else if ((bits[w] >> (i & 63)) & 1u)
+                    carryPairHistory(s, freshKeys, old, (unsigned int)i, &values[next++ * W], ms, ps);
+            }
         }
     });
     if (!pooled) {
         wildcards.swap(values);
         return false;
     }
-    std::vector<uint64_t> bits = pairBits(nNew, [&](size_t i) { return (at[i] & KEEPS_SLOT) != 0; });
-    releaseVector(at);
     pool.assign(nNew, std::move(bits), std::move(values));
     return true;
 }
@@ -134,7 +148,7 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     const bool anyPersistent = std::find(c.persistent.begin(), c.persistent.end(), 1) != c.persistent.end();
     if (anyPersistent) mergePersistentPairs(c, fresh);
     const size_t nNew = fresh.size();
-    if (c.size() >= KEEPS_SLOT || nNew >= KEEPS_SLOT)
+    if (c.size() >= MAX_INDEXED_PAIRS || nNew >= MAX_INDEXED_PAIRS)
         throwError("DoDynamics", "a contact set of " + std::to_string(std::max(c.size(), nNew)) +
                                      " pairs is more than the CPU backend indexes (2^31)");
     const bool oldPooled = c.historyPooled(W);

@@ -31,13 +31,15 @@ void resolveMeshContacts(SimState& s) {
     {
         std::vector<MeshCandidate> cand(largest);
 #pragma omp for schedule(static)
-        for (size_t g = 0; g < nGroups; g++)
+        for (size_t g = 0; g < nGroups; g++) {
+            const uint32_t first = c.meshContacts[groups[g]], n = groups[g + 1] - groups[g];
+            const bodyID_t a = c.pairA(first);
             if (pooled)
-                resolveSphereMeshContactsWith(s, c.meshContacts[groups[g]], groups[g + 1] - groups[g], cand.data(),
-                                              largest, HistoryInPool{&c.pooled, W});
+                resolveSphereMeshContactsWith(s, a, first, n, cand.data(), largest, HistoryInPool{&c.pooled, W});
             else
-                resolveSphereMeshContactsWith(s, c.meshContacts[groups[g]], groups[g + 1] - groups[g], cand.data(),
-                                              largest, HistoryInSet{c.wildcards.data(), W});
+                resolveSphereMeshContactsWith(s, a, first, n, cand.data(), largest,
+                                              HistoryInSet{c.wildcards.data(), W});
+        }
     }
 }
 
