@@ -92,8 +92,9 @@ constexpr uint8_t ANY_CONTACT_TYPE = 0xFF;
 constexpr uint8_t NO_TRIANGLE_CONTACT = 0xFE;
 
 // What a contact's step reads first: its two geometries and, where the caller does not know it
-// (KnownType below), its type (from B: state/ContactTypeOf.h). Apart from the rest, so that the GPU's pass can read
-// them before its dependent launch's wait (no kernel of a step writes them; kernels/ForcePassKernel.cuh).
+// (KnownType below), its type (from B: state/ContactTypeOf.h). Apart from the rest, so that the
+// GPU's pass can read them before its dependent launch's wait (no kernel of a step writes them;
+// kernels/ForcePassKernel.cuh).
 struct ContactIds {
     bodyID_t a, b;
     uint8_t type;

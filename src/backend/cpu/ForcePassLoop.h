@@ -186,7 +186,7 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
     {
         const int thread = T > 1 ? cpuThreadIndex() : 0;
         float3 chunkForce[FORCE_PASS_CHUNK], torqueA[FORCE_PASS_CHUNK], torqueB[FORCE_PASS_CHUNK];
-        bodyID_t chunkA[FORCE_PASS_CHUNK], chunkOwner[FORCE_PASS_CHUNK];  // each pair's A and A's owner
+        bodyID_t chunkOwner[FORCE_PASS_CHUNK];  // each pair's A's owner
         std::vector<float> chunkHistory(pooled ? FORCE_PASS_CHUNK * W : 0);
         // B's sums for the block's own owners (zeros between blocks: each is reset as it is added).
         std::vector<WindowLoad> inBlock(FORCE_PASS_BLOCK_OWNERS, WindowLoad{make_float3(0.f), make_float3(0.f)});
@@ -208,10 +208,7 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
                     while (c.ownerAStart[run + 1] <= b + j) run++;
                     chunkOwner[j] = (bodyID_t)run;
                 }
-                if (c.aAsRuns)
-                    std::copy(chunkOwner, chunkOwner + m, chunkA);
-                else
-                    std::copy(c.geomA.begin() + b, c.geomA.begin() + b + m, chunkA);
+                const bodyID_t* chunkA = c.aAsRuns ? chunkOwner : c.geomA.data() + b;
                 float* history = pooled ? chunkHistory.data() : W ? c.wildcards.data() + b * W : nullptr;
                 if (pooled) fetchPooledHistory<W>(c.pooled, b, m, history);
                 // The forces go straight to the per-pair array where the step keeps every pair's.
