@@ -2,6 +2,7 @@
 // from how often and on how many threads detection and forces run.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <set>
 
@@ -58,6 +59,54 @@ TEST(ContactDetection, MatchesBruteForceExactly) {
         }
     }
     EXPECT_EQ(cases, 36);
+}
+
+// Spheres are registered by their centres where none reaches beyond 3/4 of a bin
+// (kinematics/DetectionRules.h, centreReachFor), by their boxes otherwise, in a sheared cell and with
+// DEME_BIN_BY_BOXES=1; both find exactly the brute force's pairs, and by centre each sphere is one
+// bin entry.
+TEST(ContactDetection, SpheresByCentreFindTheSamePairsWithOneEntryEach) {
+    const DetectionRules dr;
+    const Scene scene = randomScene(5, 1500);
+    SimState s = detectionState(scene, "ContactDetection");
+    const float largest = *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end());
+    const double margin = 1e-4;
+    const double reach = (double)largest + margin + (double)*std::max_element(dr.extra, dr.extra + NUM_FAMILIES);
+    const BinGrid coarse = makeBinGrid(s, 0.004), fine = makeBinGrid(s, 0.0015);
+    ASSERT_GE(0.75 * coarse.size, reach);
+    ASSERT_LT(0.75 * fine.size, reach);
+    EXPECT_DOUBLE_EQ(centreReachFor(coarse, margin, dr.extra, largest), reach);
+    EXPECT_EQ(centreReachFor(fine, margin, dr.extra, largest), 0.0);
+    BinGrid sheared = coarse;
+    sheared.shear = 1u;
+    EXPECT_EQ(centreReachFor(sheared, margin, dr.extra, largest), 0.0);
+    // A family's extra margin counts in the reach: enough of it and the boxes are registered.
+    float extra[NUM_FAMILIES];
+    std::copy(dr.extra, dr.extra + NUM_FAMILIES, extra);
+    extra[7] = 0.002f;
+    EXPECT_EQ(centreReachFor(coarse, margin, extra, largest), 0.0);
+
+    const auto expected = bruteForce(s, margin, dr.rules.contactMask(), dr.extra);
+    ASSERT_GT(expected.size(), 500u);
+    auto detectWith = [&](const char* byBoxes, size_t& bytes) {
+        ::setenv("DEME_BIN_BY_BOXES", byBoxes, 1);
+        ContactDetector det;
+        DetectedContacts found;
+        double binning = 0.0, search = 0.0;
+        det.detect(s, coarse, margin, dr.rules.contactMask(), dr.extra, found, binning, search);
+        bytes = det.bytes();
+        ::unsetenv("DEME_BIN_BY_BOXES");
+        std::set<std::pair<bodyID_t, bodyID_t>> got;
+        for (size_t i = 0; i < found.size(); i++) got.insert({found.geomA[i], found.geomB[i]});
+        EXPECT_EQ(got.size(), found.size()) << "a pair reported twice";
+        return got;
+    };
+    size_t byCentre = 0, byBoxes = 0;
+    EXPECT_EQ(detectWith("0", byCentre), expected);
+    EXPECT_EQ(detectWith("1", byBoxes), expected);
+    // One entry a sphere by centre, several by boxes, whose boxes span bins (the bins' starts and
+    // the threads' lists are the same in both): at least two entries a sphere fewer here.
+    EXPECT_GE(byBoxes, byCentre + 2 * s.spheres.size() * sizeof(uint32_t));
 }
 
 // The bins of one detection are kept for the next where they are small, and let go at its end

@@ -161,6 +161,9 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     v.numTriangles = (uint32_t)s.triangles.size();
     const unsigned int nS = v.numSpheres, nT = v.numTriangles;
     DetectionArgs args{grid, margin, extra, mask, {}, {}, nullptr, nullptr, sharedExtraMarginOf(extra)};
+    // Spheres by centre where CudaKinematics::detect would (its largest radius is every sphere's).
+    const float largest = nS ? *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end()) : 0.f;
+    args.centreReach = centreReachFor(grid, margin, extra, (double)largest);
 
     EmulatedDetection r;
     DormantBinsView dormantBins{nullptr, nullptr, 0.0};
@@ -257,12 +260,16 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
 }
 
 // The CPU's registry of the same items (its counting sort), for the bin starts and the entries in
-// bin order; the boxes are the shared rule's, with the margin written out here.
+// bin order; the boxes are the shared rule's, with the margin written out here (by centre, each
+// sphere's centre's bin, where the CPU's detector registers so).
 BinRegistry cpuSphereBins(const SimState& s, const BinGrid& grid, double margin, const float* extra) {
+    const float largest = *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end());
+    const bool byCentre = centreReachFor(grid, margin, extra, (double)largest) > 0.0;
     BinRegistry reg;
     reg.build(grid, nullptr, s.spheres.size(), [&](size_t i) {
-        const double e = (double)s.spheres.radius[i] + margin + (double)extra[s.owners.family[s.spheres.owner[i]]];
         const double3 p = s.cache.spherePos[i];
+        if (byCentre) return pointBin(grid, p);
+        const double e = (double)s.spheres.radius[i] + margin + (double)extra[s.owners.family[s.spheres.owner[i]]];
         return binBox(grid, make_double3(p.x - e, p.y - e, p.z - e), make_double3(p.x + e, p.y + e, p.z + e));
     });
     return reg;

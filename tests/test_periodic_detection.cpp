@@ -3,6 +3,7 @@
 // (A, B) order; on the CPU's detector and on the GPU's detection kernels run on the host.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "DetectionScenes.h"
@@ -56,6 +57,39 @@ TEST(PeriodicDetection, MatchesTheMinimumImageBruteForceExactly) {
         }
     }
     EXPECT_EQ(cases, 24);
+}
+
+// Spheres by centre in a periodic cell of two and three bins a side: the search box of a sphere
+// then spans a whole period along some axes, whose bins are searched once each (withinOnePeriod),
+// and every pair through the nearest images is found once, as by boxes (DEME_BIN_BY_BOXES=1).
+TEST(PeriodicDetection, SpheresByCentreInACellOfFewBins) {
+    const DetectionRules dr;
+    int cases = 0;
+    for (unsigned int axes : {7u, 3u}) {
+        const Scene scene = randomPeriodicScene(31 + axes, 1500, axes);
+        SimState s = detectionState(scene, "PeriodicDetection");
+        const float largest = *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end());
+        for (double binSize : {0.02, 0.0133}) {
+            const BinGrid grid = makeBinGrid(s, binSize);
+            const double margin = 2e-4;
+            ASSERT_GT(centreReachFor(grid, margin, dr.extra, largest), 0.0) << "bin " << binSize;
+            const auto expected = bruteForce(s, margin, dr.rules.contactMask(), dr.extra);
+            for (const char* byBoxes : {"0", "1"}) {
+                ::setenv("DEME_BIN_BY_BOXES", byBoxes, 1);
+                ContactDetector det;
+                DetectedContacts found;
+                double binning = 0.0, search = 0.0;
+                det.detect(s, grid, margin, dr.rules.contactMask(), dr.extra, found, binning, search);
+                ::unsetenv("DEME_BIN_BY_BOXES");
+                EXPECT_EQ(pairsOf(found), expected)
+                    << "axes " << axes << ", bin " << binSize << ", by boxes " << byBoxes;
+                EXPECT_EQ(pairsOf(found).size(), found.size())
+                    << "a pair reported twice: axes " << axes << ", bin " << binSize << ", by boxes " << byBoxes;
+                cases++;
+            }
+        }
+    }
+    EXPECT_EQ(cases, 8);
 }
 
 // A sheared cell (Lees–Edwards): the images across the z faces are displaced along x by the offset;

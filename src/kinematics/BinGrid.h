@@ -76,6 +76,17 @@ DEME_HD inline BinBox binBox(const BinGrid& g, const double3& lo, const double3&
     b.hi[0] = binCoord(g, 0, hi.x + sx);
     b.hi[1] = binCoord(g, 1, hi.y + sy);
     b.hi[2] = binCoord(g, 2, hi.z + sz);
+    // A box that spans a whole period (a cell of one or two bins along an axis, or a sphere as wide
+    // as the cell) is cut to that period's bins, each once: listed twice, a bin would register an
+    // item twice and report its pairs twice. Not in a sheared cell (its image layers' bins shift).
+    if (g.periodic && !g.shear) {
+        const int n[3] = {g.nx, g.ny, g.nz};
+        for (int a = 0; a < 3; a++)
+            if (((g.periodic >> a) & 1u) && b.hi[a] - b.lo[a] + 1 >= n[a]) {
+                b.lo[a] = 0;
+                b.hi[a] = n[a] - 1;
+            }
+    }
     return b;
 }
 

@@ -9,11 +9,22 @@
 // come in contact-set order: spheres by id, analytical components by id, triangles by id. So the
 // whole set is sorted by (A, B), which history mapping's binary searches need.
 //
+// Spheres by centre (DetectionArgs::centreReach > 0): where no sphere reaches far beyond a bin, each
+// sphere is registered only in the bin of its centre (one entry instead of about eight), and A looks
+// for its sphere partners B > A in the bins of its centre's box grown by the largest reach: every B
+// within reach has its centre there, and is in one bin, so each pair is found once without the
+// lower-corner rule. Triangles stay registered by their boxes and are searched as above. The same
+// pairs either way (docs/memory.md, "Spheres binned by their centres").
+//
 // No-miss bound: every geometry is enlarged by `margin`. A pair left out is more than 2*margin apart.
 // The step loop re-detects before any owner's accumulated travel (an upper bound on how far any of
 // its surface points moved) exceeds the margin, so such a pair cannot touch before the next
 // detection: the gap can shrink by at most travelA + travelB <= 2*margin.
 #pragma once
+
+#if !defined(__CUDACC_RTC__)
+#include <cstdlib>
+#endif
 
 #include "kinematics/BinGrid.h"
 #include "physics/ContactGeometry.h"
@@ -41,6 +52,9 @@ struct DetectionArgs {
     // candidate's enlarged radius needs no lookup of its owner and family, which the pair search
     // does only for the candidates that pass the geometric tests.
     double sharedExtraMargin;
+    // Above zero: spheres are registered by their centres (above), and no sphere's enlarged radius
+    // (radius, margin and its family's extra margin) exceeds this. Zero: by their boxes.
+    double centreReach = 0.0;
 };
 
 // The grid of a detection from a state whose periodic box is p: in a sheared cell its image layers
@@ -56,6 +70,27 @@ inline double sharedExtraMarginOf(const float* extra) {
     for (unsigned int f = 1; f < NUM_FAMILIES; f++)
         if (extra[f] != extra[0]) return -1.0;
     return (double)extra[0];
+}
+
+// DetectionArgs::centreReach for a detection with margin `margin` whose binned spheres' largest
+// radius is maxRadius: their largest enlarged radius where they are registered by centre, else 0.
+// By centre where no sphere reaches beyond 3/4 of a bin's edge: beyond, a centre's search box takes
+// more bins than registering the boxes costs (a ball among grains would make every grain search
+// the ball's reach). Not in a sheared cell, whose image layers register a box's bins shifted and
+// one bin wider. DEME_BIN_BY_BOXES=1 registers by boxes always (for comparisons).
+// (The same from the spheres' largest enlarged radius, `reach`: radius, margin and extra margin.)
+inline double centreReachFor(const BinGrid& g, double reach) {
+    if (const char* v = std::getenv("DEME_BIN_BY_BOXES"); v && v[0] == '1' && v[1] == 0) return 0.0;
+    if (g.shear || !(reach > 0.0)) return 0.0;
+    const double edge =
+        g.edge.x < g.edge.y ? (g.edge.x < g.edge.z ? g.edge.x : g.edge.z) : (g.edge.y < g.edge.z ? g.edge.y : g.edge.z);
+    return reach <= 0.75 * edge ? reach : 0.0;
+}
+inline double centreReachFor(const BinGrid& g, double margin, const float* extra, double maxRadius) {
+    if (!(maxRadius > 0.0)) return 0.0;
+    float largestExtra = extra[0];
+    for (unsigned int f = 1; f < NUM_FAMILIES; f++) largestExtra = extra[f] > largestExtra ? extra[f] : largestExtra;
+    return centreReachFor(g, maxRadius + margin + (double)largestExtra);
 }
 #endif
 
@@ -76,9 +111,20 @@ DEME_HD_INLINE void sphereBox(const S& s, const DetectionArgs& a, size_t i, doub
     boxAround(sphereCentre(s, i), (double)s.spheres.radius[i] + marginOf(s, a, s.spheres.owner[i]), lo, hi);
 }
 
-// The bins sphere i's enlarged box covers: registration and search compute them alike.
+// The one bin that holds point p (not widened: a point is registered once).
+DEME_HD_INLINE BinBox pointBin(const BinGrid& g, const double3& p) {
+    BinBox b;
+    b.lo[0] = b.hi[0] = binCoord(g, 0, p.x);
+    b.lo[1] = b.hi[1] = binCoord(g, 1, p.y);
+    b.lo[2] = b.hi[2] = binCoord(g, 2, p.z);
+    return b;
+}
+
+// The bins sphere i is registered in: those its enlarged box covers (registration and search
+// compute them alike), or by centre the bin of its centre.
 template <class S>
 DEME_HD_INLINE BinBox sphereBinBox(const S& s, const DetectionArgs& a, size_t i) {
+    if (a.centreReach > 0.0) return pointBin(a.grid, sphereCentre(s, i));
     double3 lo, hi;
     sphereBox(s, a, i, lo, hi);
     return binBox(a.grid, lo, hi);
@@ -101,13 +147,18 @@ enum BinnedKind : unsigned int { BINNED_SPHERES = 0u, BINNED_TRIANGLES = 1u };
 // The bins triangle t's enlarged box covers (its box stored in a.triLo, a.triHi).
 DEME_HD_INLINE BinBox triangleBinBox(const DetectionArgs& a, size_t t) { return binBox(a.grid, a.triLo[t], a.triHi[t]); }
 
-// Whether bin (x, y, z) holds the lower corner of the intersection of boxes starting at loA and lo.
-// In a sheared cell, x of a layer beyond a z face is a bin of the image layer (layerXBins), where the
-// corner lies displaced by minus the offset times the layer's image; x is compared modulo the period.
-DEME_HD_INLINE bool binOwnsPair(const BinGrid& g, const double3& loA, const double3& lo, int x, int y, int z) {
+// Whether bin (x, y, z), of index `bin`, holds the lower corner of the intersection of boxes starting
+// at loA and lo. Outside a sheared cell by bin index, so that along a periodic axis the place in the
+// period counts (a box cut to one period's bins, binBox, lists the corner's bin by it). In a sheared
+// cell, x of a layer beyond a z face is a bin of the image layer (layerXBins), where the corner lies
+// displaced by minus the offset times the layer's image; x is compared modulo the period.
+DEME_HD_INLINE bool binOwnsPair(const BinGrid& g, const double3& loA, const double3& lo, int x, int y, int z,
+                                uint64_t bin) {
     const double cx = fmax(loA.x, lo.x);
+    if (!g.shear)
+        return binIndex(g, binCoord(g, 0, cx), binCoord(g, 1, fmax(loA.y, lo.y)), binCoord(g, 2, fmax(loA.z, lo.z))) ==
+               bin;
     if (binCoord(g, 1, fmax(loA.y, lo.y)) != y || binCoord(g, 2, fmax(loA.z, lo.z)) != z) return false;
-    if (!g.shear) return binCoord(g, 0, cx) == x;
     const int cxBin = binCoord(g, 0, cx - (double)layerImage(g, z) * g.shearOffset);
     return wrapBin(cxBin, g.nx) == wrapBin(x, g.nx);
 }
@@ -159,7 +210,10 @@ struct SearchedSphere {
     bodyID_t id, owner;
     double3 centre, lo, hi;  // its box, enlarged by its margin
     double reach;            // its enlarged radius
-    BinBox bins;             // the bins of its box, as its registration computed them (sphereBox)
+    // The bins its partners are looked for in: those of its box (as a registration by boxes
+    // computes them, sphereBox), or by centre those of its centre's box grown by the largest reach
+    // (which hold its box's bins, where its triangles are found by the lower-corner rule).
+    BinBox bins;
     const uint8_t* maskRow;  // its family's row of the contact mask
 };
 
@@ -171,13 +225,20 @@ DEME_HD_INLINE SearchedSphere searchedSphere(const S& s, const DetectionArgs& a,
     A.owner = s.spheres.owner[sa];
     A.reach = (double)s.spheres.radius[sa] + marginOf(s, a, A.owner);
     boxAround(A.centre, A.reach, A.lo, A.hi);
-    A.bins = binBox(a.grid, A.lo, A.hi);
+    if (a.centreReach > 0.0) {
+        const double h = A.reach + a.centreReach;  // a partner's centre is nearer than this
+        A.bins = binBox(a.grid, make_double3(A.centre.x - h, A.centre.y - h, A.centre.z - h),
+                        make_double3(A.centre.x + h, A.centre.y + h, A.centre.z + h));
+    } else {
+        A.bins = binBox(a.grid, A.lo, A.hi);
+    }
     A.maskRow = a.familyMask + (size_t)s.owners.family[A.owner] * NUM_FAMILIES;
     return A;
 }
 
 // A's sphere partners that bin (x, y, z) reports: spheres b > A of another owner within reach, each
-// pair from the one bin that holds the lower corner of the two boxes' intersection; f(b) for each.
+// pair from the one bin that holds the lower corner of the two boxes' intersection (by centre, from
+// the one bin b is in); f(b) for each.
 template <class S, class F>
 DEME_HD_INLINE void spherePartnersInBin(const S& s, const DetectionArgs& a, const SearchedSphere& A, int x, int y,
                                         int z, F&& f) {
@@ -199,7 +260,8 @@ DEME_HD_INLINE void spherePartnersInBin(const S& s, const DetectionArgs& a, cons
         const double reach = A.reach + eB;
         const double3 d = A.centre - pB;
         if (fabs(d.x) > reach || fabs(d.y) > reach || fabs(d.z) > reach) continue;
-        if (!binOwnsPair(g, A.lo, make_double3(pB.x - eB, pB.y - eB, pB.z - eB), x, y, z)) continue;
+        if (a.centreReach <= 0.0 && !binOwnsPair(g, A.lo, make_double3(pB.x - eB, pB.y - eB, pB.z - eB), x, y, z, bin))
+            continue;
         if (dot(d, d) >= reach * reach) continue;
         const bodyID_t oB = shared ? s.spheres.owner[b] : oB0;
         if (oB == A.owner || !A.maskRow[s.owners.family[oB]]) continue;
@@ -224,7 +286,7 @@ DEME_HD_INLINE void trianglePartnersInBin(const S& s, const DetectionArgs& a, co
         const double3 lo = a.triLo[tri] + shift, hi = a.triHi[tri] + shift;
         if (lo.x > A.hi.x || lo.y > A.hi.y || lo.z > A.hi.z || hi.x < A.lo.x || hi.y < A.lo.y || hi.z < A.lo.z)
             continue;
-        if (!binOwnsPair(a.grid, A.lo, lo, x, y, z)) continue;
+        if (!binOwnsPair(a.grid, A.lo, lo, x, y, z, bin)) continue;
         double3 bary;
         const double3 c = closestPointOnTriangle(A.centre, v0[0] + shift, v0[1] + shift, v0[2] + shift, bary);
         if (length(A.centre - c) >= A.reach + marginOf(s, a, oT)) continue;

@@ -11,6 +11,7 @@
 #include <deme/Error.h>
 
 #include "dynamics/StepBatch.h"
+#include "kinematics/DetectionRules.h"
 #include "runtime/MemoryAccounting.h"
 #include "state/FamilyStepMotion.h"
 
@@ -114,13 +115,17 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     const size_t bins = (size_t)grid.numBins() + 1;
     size_t& contacts = b[(int)MemoryGroup::CONTACTS];
     size_t& detection = b[(int)MemoryGroup::DETECTION];
+    // Spheres binned by their centres (kinematics/DetectionRules.h) are one entry each; the margin,
+    // not known here, is taken as nothing.
+    const float largest = nS ? *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end()) : 0.f;
+    const bool byCentre = centreReachFor(grid, (double)largest) > 0.0;
     if (onGpu) {
         contacts = contactSetBytes(s, true, e.pairs);
         // kT's snapshot (sphere centres, owner families), pair offsets; the bins' entries (an item
         // id each) and starts, from the counting sort (backend/cuda/CudaKinematics.cpp,
         // Work::detect; the bins an item covers are computed from its box, not stored). (kT on a
         // second GPU also copies the spheres' owners and radii there, 8 B per sphere not counted.)
-        detection = nS * (24 + 4) + nO + (size_t)(4.0 * entries) + 4 * (bins + 1);
+        detection = nS * (24 + 4) + nO + (size_t)(4.0 * (byCentre ? (double)nS : entries)) + 4 * (bins + 1);
         // Triangles, where there are any: their global boxes (2 double3), entries and their own
         // bins' starts.
         if (nT) detection += nT * 48 + (size_t)(4.0 * triEntries) + 4 * (bins + 1);
@@ -131,7 +136,7 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         contacts = contactSetBytes(s, false, e.pairs);
         // The registry's entries and bins' starts, for spheres and for triangles (whose global
         // boxes, 2 double3, are kept too) (backend/cpu/ContactDetector).
-        detection = (size_t)(4.0 * entries) + 4 * bins;
+        detection = (size_t)(4.0 * (byCentre ? (double)nS : entries)) + 4 * bins;
         if (nT) detection += nT * 48 + (size_t)(4.0 * triEntries) + 4 * bins;
     }
     return e;

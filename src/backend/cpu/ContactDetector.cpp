@@ -22,8 +22,14 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
     const bodyID_t* searched = dormant ? m_dormant.moving().data() : nullptr;  // null: every sphere
     const size_t nSearched = dormant ? m_dormant.moving().size() : nS;
     auto sphereAt = [searched](size_t k) { return searched ? (size_t)searched[k] : k; };
+    // Spheres by centre where none reaches far beyond a bin (kinematics/DetectionRules.h).
+    float maxRadius = 0.f;
+#pragma omp parallel for reduction(max : maxRadius) if (nSearched > PARALLEL_MIN_ITEMS)
+    for (size_t k = 0; k < nSearched; k++) maxRadius = std::max(maxRadius, s.spheres.radius[sphereAt(k)]);
+    args.centreReach = centreReachFor(grid, margin, familyExtraMargin, (double)maxRadius);
 
-    // 1. Every geometry, enlarged by its margin, is registered in each bin its box touches.
+    // 1. Every geometry, enlarged by its margin, is registered in each bin its box touches (spheres
+    // by their centres where args.centreReach says so).
     m_spheres.build(grid, searched, nSearched, [&](size_t i) { return sphereBinBox(s, args, i); });
     m_triLo.resize(nT);
     m_triHi.resize(nT);

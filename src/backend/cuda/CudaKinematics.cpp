@@ -198,9 +198,14 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     const bodyID_t* ids = useDormant ? dormant.moving() : nullptr;  // null: every sphere
     const unsigned int nSearched = useDormant ? dormant.numMoving() : nS;
     const DormantBinsView dormantBins = useDormant ? dormant.view() : DormantBinsView{nullptr, nullptr, 0.0};
+    // Spheres by centre where none reaches far beyond a bin (kinematics/DetectionRules.h): then a
+    // sphere is one bin entry, registered by one thread.
+    args.centreReach = centreReachFor(args.grid, maxRadius + o.detectionMargin() + maxExtraMargin);
     // Threads an item in registration and a sphere in the pair search (DetectionLanes.h); triangles
     // keep one each.
-    const unsigned int lanes = binningLanes(nSearched, useDormant, grid, maxRadius + o.detectionMargin() + maxExtraMargin);
+    const unsigned int lanes = args.centreReach > 0.0 ? 1u
+                                                      : binningLanes(nSearched, useDormant, grid,
+                                                                     maxRadius + o.detectionMargin() + maxExtraMargin);
     const unsigned int sLanes = searchLanes(nSearched, useDormant, grid, minRadius + o.detectionMargin());
     const unsigned long long laneThreads = (unsigned long long)nSearched * sLanes;
     // Wide spheres, searched by several threads each (none with the dormant registry, whose searches
