@@ -77,8 +77,20 @@ if(DEME_CUDA_ENABLED)
     CUDA_STANDARD_REQUIRED ON
     # cudart_static is linked below, explicitly, so that consumers of the installed package get it too.
     CUDA_RUNTIME_LIBRARY None)
-  # The static runtime dlopens libcuda.so.1 itself; NVRTC needs no driver at all.
-  target_link_libraries(deme PRIVATE CUDA::cudart_static CUDA::nvrtc)
+  # The static runtime dlopens libcuda.so.1 itself; NVRTC needs no driver at all. NVRTC is loaded
+  # when the backend first compiles (backend/cuda/NvrtcLibrary.cpp), not linked: linked, its library
+  # took 28 MB of resident memory in every process, CPU runs included. Its headers only here.
+  get_target_property(deme_nvrtc_includes CUDA::nvrtc INTERFACE_INCLUDE_DIRECTORIES)
+  if(deme_nvrtc_includes)
+    target_include_directories(deme PRIVATE ${deme_nvrtc_includes})
+  endif()
+  target_link_libraries(deme PRIVATE CUDA::cudart_static ${CMAKE_DL_LIBS})
+  set(deme_nvrtc_defs DEME_NVRTC_SONAME="libnvrtc.so.${CUDAToolkit_VERSION_MAJOR}")
+  if(CUDA_nvrtc_LIBRARY)
+    file(REAL_PATH "${CUDA_nvrtc_LIBRARY}" deme_nvrtc_path)
+    list(APPEND deme_nvrtc_defs DEME_NVRTC_LIBRARY="${deme_nvrtc_path}")
+  endif()
+  set_source_files_properties(${deme_cuda_dir}/NvrtcLibrary.cpp PROPERTIES COMPILE_DEFINITIONS "${deme_nvrtc_defs}")
 else()
   if(deme_cuda_mode STREQUAL "AUTO")
     message(STATUS "DEME: CUDA backend off (no CUDA toolkit >= 12.0 with nvcc and NVRTC found)")

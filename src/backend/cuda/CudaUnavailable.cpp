@@ -45,6 +45,7 @@ void launchKernel(const CudaKernel&, Dim3, Dim3, size_t, Stream, void**, bool) {
 
 // ---- NvrtcCompiler.h
 std::string nvrtcVersionString() { return "none"; }
+bool nvrtcIsLoaded() { return false; }
 CudaCompileResult compileCudaSource(const std::string& call, const std::string&, const std::string&,
                                     const CudaCompileOptions&, jit::KernelCache&) {
     notBuilt(call);

@@ -5,7 +5,6 @@
 #include <deme/Error.h>
 
 #include <cuda_runtime_api.h>
-#include <nvrtc.h>
 
 #include <algorithm>
 #include <chrono>
@@ -17,6 +16,7 @@
 
 #include "backend/cuda/Device.h"
 #include "backend/cuda/NvrtcHeaders.h"
+#include "backend/cuda/NvrtcLibrary.h"
 #include "jit/EmbeddedSources.h"
 
 namespace deme::cuda {
@@ -32,22 +32,24 @@ std::string joined(const std::vector<std::string>& words) {
 }
 
 void checkNvrtc(nvrtcResult result, const std::string& call, const char* what) {
-    if (result != NVRTC_SUCCESS) throwError(call, std::string(what) + " failed: " + nvrtcGetErrorString(result));
+    if (result != NVRTC_SUCCESS) throwError(call, std::string(what) + " failed: " + nvrtc(call).getErrorString(result));
 }
 
 // Destroys the program however the scope ends.
 struct ProgramHandle {
+    const NvrtcApi& api;
     nvrtcProgram program = nullptr;
     ~ProgramHandle() {
-        if (program) nvrtcDestroyProgram(&program);
+        if (program) api.destroyProgram(&program);
     }
 };
 
-std::vector<int> supportedArchitectures() {
+std::vector<int> supportedArchitectures(const std::string& call) {
+    const NvrtcApi& api = nvrtc(call);
     int n = 0;
-    if (nvrtcGetNumSupportedArchs(&n) != NVRTC_SUCCESS || n <= 0) return {};
+    if (api.getNumSupportedArchs(&n) != NVRTC_SUCCESS || n <= 0) return {};
     std::vector<int> archs(n);
-    if (nvrtcGetSupportedArchs(archs.data()) != NVRTC_SUCCESS) return {};
+    if (api.getSupportedArchs(archs.data()) != NVRTC_SUCCESS) return {};
     std::sort(archs.begin(), archs.end());
     return archs;
 }
@@ -67,7 +69,7 @@ std::string currentDeviceArchitecture(const std::string& call) {
     for (const DeviceInfo& d : q.usable)
         if (d.id == id) device = &d;
     const int cc = device->major * 10 + device->minor;
-    const std::vector<int> archs = supportedArchitectures();
+    const std::vector<int> archs = supportedArchitectures(call);
     if (archs.empty() || std::find(archs.begin(), archs.end(), cc) != archs.end()) return device->architecture();
     if (cc > archs.back()) return "compute_" + std::to_string(archs.back());
     throwError(call, "GPU " + std::to_string(device->id) + " (" + device->name + ", " + device->architecture() +
@@ -94,36 +96,37 @@ void runNvrtc(const std::string& call, const std::string& programName, const std
     const std::string text = resolveEmbeddedIncludes(source, programName);
 
     const auto start = std::chrono::steady_clock::now();
-    ProgramHandle prog;
-    checkNvrtc(nvrtcCreateProgram(&prog.program, text.c_str(), programName.c_str(), (int)names.size(), contents.data(),
-                                  names.data()),
+    const NvrtcApi& api = nvrtc(call);
+    ProgramHandle prog{api};
+    checkNvrtc(api.createProgram(&prog.program, text.c_str(), programName.c_str(), (int)names.size(), contents.data(),
+                                 names.data()),
                call, "nvrtcCreateProgram");
     std::vector<const char*> argv;
     for (const std::string& o : options) argv.push_back(o.c_str());
-    const nvrtcResult compiled = nvrtcCompileProgram(prog.program, (int)argv.size(), argv.data());
+    const nvrtcResult compiled = api.compileProgram(prog.program, (int)argv.size(), argv.data());
 
     size_t logSize = 0;
-    nvrtcGetProgramLogSize(prog.program, &logSize);
+    api.getProgramLogSize(prog.program, &logSize);
     std::string log(logSize, '\0');
-    if (logSize > 0) nvrtcGetProgramLog(prog.program, log.data());
+    if (logSize > 0) api.getProgramLog(prog.program, log.data());
     while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
     log = jit::gccStyleLocations(log);
     if (compiled != NVRTC_SUCCESS)
         throwError(call, "compiling CUDA program '" + programName + "' for " + result.architecture + " failed (NVRTC " +
-                             nvrtcVersionString() + ", " + nvrtcGetErrorString(compiled) + "):\n" +
+                             nvrtcVersionString() + ", " + api.getErrorString(compiled) + "):\n" +
                              jit::firstLines(log, kMaxLogLines));
 
     size_t size = 0;
     if (result.kind == GpuImageKind::Ptx) {
-        checkNvrtc(nvrtcGetPTXSize(prog.program, &size), call, "nvrtcGetPTXSize");
+        checkNvrtc(api.getPTXSize(prog.program, &size), call, "nvrtcGetPTXSize");
         result.image.assign(size, '\0');
-        checkNvrtc(nvrtcGetPTX(prog.program, result.image.data()), call, "nvrtcGetPTX");
+        checkNvrtc(api.getPTX(prog.program, result.image.data()), call, "nvrtcGetPTX");
         // The size counts the terminating NUL, which std::string keeps anyway.
         while (!result.image.empty() && result.image.back() == '\0') result.image.pop_back();
     } else {
-        checkNvrtc(nvrtcGetCUBINSize(prog.program, &size), call, "nvrtcGetCUBINSize");
+        checkNvrtc(api.getCUBINSize(prog.program, &size), call, "nvrtcGetCUBINSize");
         result.image.assign(size, '\0');
-        checkNvrtc(nvrtcGetCUBIN(prog.program, result.image.data()), call, "nvrtcGetCUBIN");
+        checkNvrtc(api.getCUBIN(prog.program, result.image.data()), call, "nvrtcGetCUBIN");
     }
     result.log = log;
     result.compileSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -133,7 +136,8 @@ void runNvrtc(const std::string& call, const std::string& programName, const std
 
 std::string nvrtcVersionString() {
     int major = 0, minor = 0;
-    if (nvrtcVersion(&major, &minor) != NVRTC_SUCCESS) return "unknown";
+    // (Loads the library: a compile's cache key names its version, so a cached image needs it too.)
+    if (nvrtc("compiling a CUDA kernel").version(&major, &minor) != NVRTC_SUCCESS) return "unknown";
     return std::to_string(major) + "." + std::to_string(minor);
 }
 

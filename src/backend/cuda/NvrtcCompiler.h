@@ -36,8 +36,12 @@ struct CudaCompileResult {
     std::string log;            // NVRTC's warnings, if any (empty on a cache hit)
 };
 
-// NVRTC's version, e.g. "13.0".
+// NVRTC's version, e.g. "13.0" (loads the library: backend/cuda/NvrtcLibrary.h).
 std::string nvrtcVersionString();
+
+// Whether this process has NVRTC loaded: only once the CUDA backend has compiled, or asked for its
+// version (tests: a CPU run must not load it).
+bool nvrtcIsLoaded();
 
 // The options every compilation gets, before the caller's: -default-device makes functions without
 // __device__ device functions; DEME_DEVICE_CODE tells shared headers they are compiled for the GPU.
