@@ -154,7 +154,8 @@ namespace {
 
 // Spheres on a lattice 0.1 % wider than their diameter, at rest, with a margin of 50 um: every
 // neighbour within the margin (six per sphere), none touching: the early mixer's contact set.
-size_t latticeContactsBytes(const char* form, float gap, int steps, bool aPerPair = false) {
+size_t latticeContactsBytes(const char* form, float gap, int steps, bool aPerPair = false, bool markPersistent = false,
+                            size_t* persistentPairs = nullptr) {
     const ScopedEnvironmentVariable chosen("DEME_CONTACT_HISTORY", form);
     const ScopedEnvironmentVariable perPair("DEME_CONTACT_A_PER_PAIR", aPerPair ? "1" : "0");
     DEMSolver sim;
@@ -170,8 +171,15 @@ size_t latticeContactsBytes(const char* form, float gap, int steps, bool aPerPai
     sim.SetCDUpdateFreq(10);
     sim.DisableAdaptiveUpdateFreq();
     sim.Initialize();
+    if (markPersistent) {
+        sim.DoDynamics(DT);  // a set to mark
+        sim.MarkPersistentContact();
+        steps--;
+    }
     sim.DoDynamics(steps * DT);
-    return sim.GetMemoryStats().host(MemoryGroup::CONTACTS);
+    const size_t bytes = sim.GetMemoryStats().host(MemoryGroup::CONTACTS);
+    if (persistentPairs) *persistentPairs = sim.GetNumPersistentContacts();
+    return bytes;
 }
 
 }  // namespace
@@ -213,6 +221,23 @@ TEST(ContactARuns, FourBytesAPairLessWhereSpheresAreTheirOwners) {
     ASSERT_GT(n, 1000u);
     const size_t perPair = latticeContactsBytes("pooled", 0.002f * R, 5, true);
     EXPECT_EQ(perPair - pooled, 4 * n);
+}
+
+// The CPU's steps keep no persistent flags where no pair has one and the model sets none
+// (keepPersistentFlagsWhereUsed): exactly a byte a pair less than where every pair is marked
+// persistent (the lattice's pairs are found by every detection, so the set is the same), and a
+// host reader (the count) sees the flags.
+TEST(ContactPersistentFlags, OneByteAPairLessWhereNoPairIsPersistent) {
+    const size_t dense = latticeContactsBytes("dense", 0.002f * R, 5);
+    const size_t pooled = latticeContactsBytes("pooled", 0.002f * R, 5);
+    const size_t n = (size_t)std::llround((double)(dense - pooled) / (16.0 - 12.0 / 64.0));
+    ASSERT_GT(n, 1000u);
+    size_t none = 1, all = 0;
+    const size_t unmarked = latticeContactsBytes("pooled", 0.002f * R, 25, false, false, &none);
+    const size_t marked = latticeContactsBytes("pooled", 0.002f * R, 25, false, true, &all);
+    EXPECT_EQ(none, 0u);
+    EXPECT_EQ(all, n);
+    EXPECT_EQ(marked - unmarked, n);
 }
 
 // The runs give every pair's A (ContactArrays::pairA), and A comes back before the runs go

@@ -79,7 +79,7 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         DetectedContacts detected;
         detected.geomA = fresh.a;
         detected.geomB = fresh.b;
-        installDetectedContacts(s, detected);
+        installDetectedContacts(s, detected, true);  // (the flags kept, to compare)
 
         // The GPU's steps, as DeviceHistoryMapping runs them.
         const ContactKeys freshKeys{fresh.a.data(), fresh.b.data(), (unsigned int)nFresh};

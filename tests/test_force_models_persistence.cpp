@@ -61,7 +61,7 @@ TEST(PersistentHistoryMapping, KeepsPersistentPairsSorted) {
         s.wildcards.contactInit.push_back({0, 1, 0, 7.f});  // contacts between families 0 and 1 start at 7
         setContacts(s, {{0, 1}, {0, 3}, {1, 2}, {2, 3}}, {1.f, 2.f, 3.f, 4.f}, {1, 1, 0, 1});
         DetectedContacts fresh = detected({{0, 2}, {1, 2}, {1, 3}});
-        installDetectedContacts(s, fresh);
+        installDetectedContacts(s, fresh, true);
         const ContactArrays& c = s.contacts;
         EXPECT_EQ(c.historyPooled(1), std::string(form) == "pooled");
         const std::vector<bodyID_t> A = {0, 0, 0, 1, 1, 2}, B = {1, 2, 3, 2, 3, 3};
@@ -83,7 +83,7 @@ TEST(PersistentHistoryMapping, KeepsPersistentPairsSorted) {
         // from the pool where it is pooled).
         s.contacts.persistent = {0, 0, 1, 0, 0, 0};
         DetectedContacts none;
-        installDetectedContacts(s, none);
+        installDetectedContacts(s, none, true);
         EXPECT_EQ(s.contacts.geomA, (std::vector<bodyID_t>{0}));
         EXPECT_EQ(s.contacts.geomB, (std::vector<bodyID_t>{3}));
         densifyHistory(s);

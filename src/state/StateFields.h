@@ -101,7 +101,8 @@ constexpr Slot inBlockSlotFlag() {
     X(geomB, bodyID_t, EVOLVES)                                                                         \
     X(wildcards, float, EVOLVES) /* numWildcards values per contact, contact-major */                   \
     /* 1: the pair stays in the set when detection no longer finds it, until the force model      */    \
-    /* clears the flag or the user removes it (DEMSolver::MarkPersistentContact).                 */    \
+    /* clears the flag or the user removes it (DEMSolver::MarkPersistentContact). The CPU's steps */    \
+    /* keep none where no pair has it and the model sets none (every pair's is then 0).           */    \
     X(persistent, uint8_t, EVOLVES)                                                                     \
     /* Sphere-triangle contacts: bit 0 set if it counted this step, bit 1 if in the previous one. */    \
     X(meshState, uint8_t, EVOLVES)                                                                      \

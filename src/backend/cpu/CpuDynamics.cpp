@@ -39,6 +39,7 @@ StepBatchResult CpuDynamics::steps(const StepBatchRequest& batch, const Settings
     // set, indexed again first (the step below does so where the index is empty).
     if (m_chooseHistoryForm) {
         chooseHistoryForm(m_s);
+        keepPersistentFlagsWhereUsed(m_s.contacts, modelWritesPersistent());
         if (m_s.contacts.size() && contactAAsRunsAllowed(m_s) && !keepContactAAsRuns(m_s, false))
             m_s.contacts.resetIndex();
     }
@@ -104,6 +105,10 @@ void CpuDynamics::downloadContacts(SimState& s) {
     // before the next step).
     if (s.contacts.aAsRuns) m_chooseHistoryForm = true;
     s.contacts.restoreA();
+    if (s.contacts.persistent.size() != s.contacts.size()) {  // (none is set: ContactArrays::persistent)
+        s.contacts.persistent.assign(s.contacts.size(), 0);
+        m_chooseHistoryForm = true;
+    }
     if (densifyHistory(s)) m_chooseHistoryForm = true;
 }
 
@@ -139,7 +144,7 @@ double CpuDynamics::maxTravelSinceOrder() {
 
 void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
     PhaseTimer t(timing, Phase::HISTORY_MAPPING);
-    installDetectedContacts(m_s, m_kinematics.takenPairs());
+    installDetectedContacts(m_s, m_kinematics.takenPairs(), modelWritesPersistent());
     if (m_orderAtInstall) {
         m_baseline = m_s.owners.travel;  // (into its own storage: no array more)
     } else {

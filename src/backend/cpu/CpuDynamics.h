@@ -48,6 +48,8 @@ class CpuDynamics : public DynamicsBackend {
     const CpuForceModel& model() const { return m_model; }
 
   private:
+    // Whether the force model may set a contact's persistent flag (a custom one may).
+    bool modelWritesPersistent() const { return !m_model.layout.builtIn(); }
     // One step from `time` (per-contact forces are stored in every step).
     StepOutcome step(double time, const Settings& settings, const FamilyRules& families, TimingStats& timing,
                      ForceStore store);

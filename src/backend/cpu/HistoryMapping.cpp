@@ -69,8 +69,11 @@ void mapDenseHistory(const SimState& s, const DetectedContacts& fresh, const Old
     const ContactKeys freshKeys = keysOf(fresh.geomA, fresh.geomB);
     wildcards.resize(nNew * W);
 #pragma omp parallel for schedule(static) if (nNew > PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < nNew; i++)
-        carryPairHistory(s, freshKeys, old, (unsigned int)i, wildcards.data() + i * W, meshState[i], persistent[i]);
+    for (size_t i = 0; i < nNew; i++) {
+        uint8_t unkept;  // (no pair is persistent where the set keeps no flags)
+        carryPairHistory(s, freshKeys, old, (unsigned int)i, wildcards.data() + i * W, meshState[i],
+                         persistent.empty() ? unkept : persistent[i]);
+    }
 }
 
 // The same where the set in use is pooled, or there is none: first whether each pair has a history,
@@ -101,7 +104,9 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
             pairsOf(w, b, e);
             uint64_t word = 0;
             for (size_t i = b; i < e; i++) {
-                carryPairHistory(s, freshKeys, old, (unsigned int)i, h.data(), meshState[i], persistent[i]);
+                uint8_t unkept;  // (as in mapDenseHistory)
+                carryPairHistory(s, freshKeys, old, (unsigned int)i, h.data(), meshState[i],
+                                 persistent.empty() ? unkept : persistent[i]);
                 if (pairNeedsHistorySlot(contactTypeOf(s, fresh.geomB[i]), h.data(), W)) {
                     word |= 1ull << (i & 63);
                     k++;
@@ -138,7 +143,7 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
 
 }  // namespace
 
-void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
+void installDetectedContacts(SimState& s, DetectedContacts& fresh, bool modelWritesPersistent) {
     ContactArrays& c = s.contacts;
     const unsigned int W = s.numWildcards;
     // The old set's reduction index and stored forces are rebuilt for the new set below: emptied,
@@ -162,7 +167,9 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
                                 oldPooled ? c.pooled.view() : RankedSlotsView{}};
     std::vector<float> wildcards;
     PooledHistory pool;
-    std::vector<uint8_t> meshState(nNew), persistent(nNew);
+    // The persistent flags where a pair of the old set has one or the model may set one; else none
+    // (every pair's is 0: ContactArrays::persistent).
+    std::vector<uint8_t> meshState(nNew), persistent(anyPersistent || modelWritesPersistent ? nNew : 0);
     // The history's form (backend/cpu/HistoryForm.h): a dense set is mapped dense and pooled after
     // where few of its pairs have a history; otherwise the form is chosen before the history is made.
     const bool mapDense = W == 0 || (!oldPooled && c.size() > 0);
@@ -189,6 +196,14 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh) {
     releaseVector(persistent);
     if (mapDense) chooseHistoryForm(s);
     indexContactSet(s);
+}
+
+void keepPersistentFlagsWhereUsed(ContactArrays& c, bool modelWritesPersistent) {
+    if (modelWritesPersistent) {
+        if (c.persistent.size() != c.size()) c.persistent.assign(c.size(), 0);
+        return;
+    }
+    if (std::find(c.persistent.begin(), c.persistent.end(), 1) == c.persistent.end()) releaseVector(c.persistent);
 }
 
 void indexContactSet(SimState& s) {

@@ -17,7 +17,7 @@ void detectAndInstallContacts(SimState& s, double margin) {
     DetectedContacts pairs;
     double binning = 0.0, search = 0.0;
     detector.detect(s, grid, margin, families.contactMask(), extra, pairs, binning, search);
-    installDetectedContacts(s, pairs);
+    installDetectedContacts(s, pairs, true);  // (every flag kept: the caller reads the set as a host reader)
 }
 
 }  // namespace deme
