@@ -107,18 +107,19 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
     }
 
     // 3. Concatenate in thread order: the result is sorted by (A, B), or is sorted so below. One
-    // field at a time, each thread's list of it let go once made, so that the pairs are held twice
-    // over one field's bytes at most (4 B per pair, not 9).
+    // field at a time, each thread's list of it let go once made, and A made only once B is, so
+    // that the pairs are held twice over one field's bytes at most (8 B per pair, not 12: made
+    // together, the two fields and the threads' B were a later detection's peak, docs/memory.md).
     size_t total = 0;
     for (const ThreadPairs& t : m_threadOut) total += t.size();
     out.geomB.resize(total);
-    out.geomA.resize(total);
     size_t at = 0;
     for (ThreadPairs& t : m_threadOut) {
         std::copy(t.geomB.begin(), t.geomB.end(), out.geomB.begin() + at);
         at += t.size();
         releaseVector(t.geomB);
     }
+    out.geomA.resize(total);
     at = 0;
     for (ThreadPairs& t : m_threadOut) {
         if (!runs) {
