@@ -161,7 +161,9 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     v.numTriangles = (uint32_t)s.triangles.size();
     const unsigned int nS = v.numSpheres, nT = v.numTriangles;
     DetectionArgs args{grid, margin, extra, mask, {}, {}, nullptr, nullptr, sharedExtraMarginOf(extra)};
-    // Spheres by centre where CudaKinematics::detect would (its largest radius is every sphere's).
+    // Spheres by centre wherever the rule allows, whatever the scene's size (CudaKinematics::detect
+    // does so from DETECTION_LANES_BELOW spheres, centreBinning): the kernels are checked in both
+    // registrations, each test's bin sizes deciding between them.
     const float largest = nS ? *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end()) : 0.f;
     args.centreReach = centreReachFor(grid, margin, extra, (double)largest);
 
@@ -457,13 +459,17 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorWithABallAmongSmallGrains) {
 
 // Threads an item in registration: one per row of bins of the largest box, up to 16, below 2^18
 // searched spheres; one above, and with the active box's dormant registry. Threads a sphere in the
-// search: the same from the smallest box. Wide spheres from twice the smallest bin edge. The diagnostic switches' numbers where they are set, and an error naming
-// the variable for anything else.
+// search: the same from the smallest box. Wide spheres from twice the smallest bin edge. Spheres
+// binned by their centres from 2^18 searched spheres. The diagnostic switches' numbers where they
+// are set, and an error naming the variable for anything else.
 TEST(CudaDetectionKernels, SpreadFollowsTheLargestBoxAndTheSceneSize) {
     BinGrid g{make_double3(0, 0, 0), 1.0, make_double3(1, 1, 1), 100, 100, 100, 0u};
     ScopedEnvironmentVariable unsetLanes("DEME_CUDA_BINNING_LANES", "");
     ScopedEnvironmentVariable unsetWide("DEME_CUDA_WIDE_SPHERES", "");
     ScopedEnvironmentVariable unsetSearch("DEME_CUDA_SEARCH_LANES", "");
+    ScopedEnvironmentVariable unsetCentre("DEME_CUDA_CENTRE_BINNING", "");
+    EXPECT_FALSE(cuda::centreBinning(cuda::DETECTION_LANES_BELOW - 1));
+    EXPECT_TRUE(cuda::centreBinning(cuda::DETECTION_LANES_BELOW));
     EXPECT_EQ(cuda::maxBinRows(g, 0.4), 4u);   // a box 0.8 wide spans at most 2 bins an axis
     EXPECT_EQ(cuda::maxBinRows(g, 1.0), 16u);  // 2.0 wide: at most 4
     EXPECT_EQ(cuda::binningLanes(1000, false, g, 0.4), 4u);
@@ -483,6 +489,8 @@ TEST(CudaDetectionKernels, SpreadFollowsTheLargestBoxAndTheSceneSize) {
         ScopedEnvironmentVariable lanes("DEME_CUDA_BINNING_LANES", "32");
         ScopedEnvironmentVariable wide("DEME_CUDA_WIDE_SPHERES", "0");
         ScopedEnvironmentVariable search("DEME_CUDA_SEARCH_LANES", "5");
+        ScopedEnvironmentVariable centre("DEME_CUDA_CENTRE_BINNING", "1");
+        EXPECT_TRUE(cuda::centreBinning(1000));
         EXPECT_EQ(cuda::searchLanes(1u << 20, false, g, 0.4), 5u);
         EXPECT_EQ(cuda::searchLanes(1000, true, g, 0.4), 1u);
         EXPECT_EQ(cuda::binningLanes(1u << 20, false, g, 0.4), 32u);
@@ -505,6 +513,12 @@ TEST(CudaDetectionKernels, SpreadFollowsTheLargestBoxAndTheSceneSize) {
         expectError("DEME_CUDA_SEARCH_LANES", bad, [&] { cuda::searchLanes(1000, false, g, 1.0); });
     for (const char* bad : {"2", "yes", "-0"})
         expectError("DEME_CUDA_WIDE_SPHERES", bad, [&] { cuda::wideSphereRadius(g); });
+    {
+        ScopedEnvironmentVariable never("DEME_CUDA_CENTRE_BINNING", "0");
+        EXPECT_FALSE(cuda::centreBinning(1u << 20));
+    }
+    for (const char* bad : {"2", "on"})
+        expectError("DEME_CUDA_CENTRE_BINNING", bad, [&] { cuda::centreBinning(1000); });
 }
 
 // The active box: with a dormant family (fixed, no contacts among fixed families) the kernels build

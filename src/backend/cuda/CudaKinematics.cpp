@@ -199,8 +199,11 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     const unsigned int nSearched = useDormant ? dormant.numMoving() : nS;
     const DormantBinsView dormantBins = useDormant ? dormant.view() : DormantBinsView{nullptr, nullptr, 0.0};
     // Spheres by centre where none reaches far beyond a bin (kinematics/DetectionRules.h): then a
-    // sphere is one bin entry, registered by one thread.
-    args.centreReach = centreReachFor(args.grid, maxRadius + o.detectionMargin() + maxExtraMargin);
+    // sphere is one bin entry, registered by one thread. At lab scale (DetectionLanes.h) by their
+    // boxes still: there a detection is latency bound and its bytes do not matter, and a grain's
+    // search box grown by the largest reach holds more rows than the lanes split (centreBinning).
+    args.centreReach =
+        centreBinning(nSearched) ? centreReachFor(args.grid, maxRadius + o.detectionMargin() + maxExtraMargin) : 0.0;
     // Threads an item in registration and a sphere in the pair search (DetectionLanes.h); triangles
     // keep one each.
     const unsigned int lanes = args.centreReach > 0.0 ? 1u

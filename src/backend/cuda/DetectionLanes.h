@@ -80,6 +80,17 @@ inline unsigned int searchLanes(unsigned int searched, bool dormantRegistry, con
                             "DEME_CUDA_SEARCH_LANES");
 }
 
+// Whether the spheres may be binned by their centres (kinematics/DetectionRules.h, where none
+// reaches far beyond a bin): from DETECTION_LANES_BELOW searched spheres, where a thread searches a
+// sphere and the bins' bytes count (45.8 M spheres: 30 device bytes a sphere less and the search
+// twice as fast, BENCHMARKS.md, MEMORY). Below, by their boxes, whose rows the lanes split as
+// measured (a centre's search box, grown by the largest reach, has more rows than a grain's own
+// box, which sets the lanes). DEME_CUDA_CENTRE_BINNING=1 allows it at any size, 0 never (diagnostic
+// switches).
+inline bool centreBinning(unsigned int searched) {
+    return detail::envCount("DEME_CUDA_CENTRE_BINNING", 0, 1, searched >= DETECTION_LANES_BELOW ? 1u : 0u) == 1u;
+}
+
 // The radius from which a sphere is wide: twice the grid's smallest bin edge, so that its box spans
 // at least 4 bins an axis (64 bins); the grains of a scene sized by the sizing rule span 2-3.
 // Infinite (none is wide) with DEME_CUDA_WIDE_SPHERES=0 (a diagnostic switch).
