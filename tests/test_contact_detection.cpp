@@ -6,6 +6,7 @@
 #include <random>
 #include <set>
 
+#include "BackendFixture.h"
 #include "DetectionScenes.h"
 #include "TestHelpers.h"
 #include "api/Scene.h"
@@ -89,13 +90,12 @@ TEST(ContactDetection, SpheresByCentreFindTheSamePairsWithOneEntryEach) {
     const auto expected = bruteForce(s, margin, dr.rules.contactMask(), dr.extra);
     ASSERT_GT(expected.size(), 500u);
     auto detectWith = [&](const char* byBoxes, size_t& bytes) {
-        ::setenv("DEME_BIN_BY_BOXES", byBoxes, 1);
+        const ScopedEnvironmentVariable registration("DEME_BIN_BY_BOXES", byBoxes);
         ContactDetector det;
         DetectedContacts found;
         double binning = 0.0, search = 0.0;
         det.detect(s, coarse, margin, dr.rules.contactMask(), dr.extra, found, binning, search);
         bytes = det.bytes();
-        ::unsetenv("DEME_BIN_BY_BOXES");
         std::set<std::pair<bodyID_t, bodyID_t>> got;
         for (size_t i = 0; i < found.size(); i++) got.insert({found.geomA[i], found.geomB[i]});
         EXPECT_EQ(got.size(), found.size()) << "a pair reported twice";

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <set>
 
+#include "BackendFixture.h"
 #include "DetectionScenes.h"
 #include "backend/cpu/ContactDetector.h"
 #include "kinematics/BinGridSizing.h"
@@ -75,12 +76,11 @@ TEST(PeriodicDetection, SpheresByCentreInACellOfFewBins) {
             ASSERT_GT(centreReachFor(grid, margin, dr.extra, largest), 0.0) << "bin " << binSize;
             const auto expected = bruteForce(s, margin, dr.rules.contactMask(), dr.extra);
             for (const char* byBoxes : {"0", "1"}) {
-                ::setenv("DEME_BIN_BY_BOXES", byBoxes, 1);
+                const ScopedEnvironmentVariable registration("DEME_BIN_BY_BOXES", byBoxes);
                 ContactDetector det;
                 DetectedContacts found;
                 double binning = 0.0, search = 0.0;
                 det.detect(s, grid, margin, dr.rules.contactMask(), dr.extra, found, binning, search);
-                ::unsetenv("DEME_BIN_BY_BOXES");
                 EXPECT_EQ(pairsOf(found), expected)
                     << "axes " << axes << ", bin " << binSize << ", by boxes " << byBoxes;
                 EXPECT_EQ(pairsOf(found).size(), found.size())

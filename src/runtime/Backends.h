@@ -122,6 +122,9 @@ class KinematicsBackend {
     virtual void detectNow(const DetectionOrder& order, DetectionReport& report) = 0;
     // Whether detection takes its time from the dynamics side's device (n_max then weighs its cost).
     virtual bool sharesDynamicsDevice() const = 0;
+    // Whether a detection of `spheres` spheres may bin them by their centres where the rule allows
+    // (kinematics/DetectionRules.h, centreReachFor): the memory estimate counts its bins so.
+    virtual bool mayBinSpheresByCentre(size_t /*spheres*/) const { return true; }
     // Adds the host memory this backend holds of its own (MemoryStats::hostBytes).
     virtual void countHostMemory(MemoryStats& /*m*/) const {}
 };

@@ -82,7 +82,8 @@ std::string gib(size_t bytes) {
 
 }  // namespace
 
-MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, size_t pairs) {
+MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre,
+                                 size_t pairs) {
     MemoryEstimate e;
     const size_t nO = s.owners.size(), nS = s.spheres.size();
     e.pairs = pairs ? pairs : (size_t)(ESTIMATED_PAIRS_PER_SPHERE * (double)nS);
@@ -115,10 +116,11 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     const size_t bins = (size_t)grid.numBins() + 1;
     size_t& contacts = b[(int)MemoryGroup::CONTACTS];
     size_t& detection = b[(int)MemoryGroup::DETECTION];
-    // Spheres binned by their centres (kinematics/DetectionRules.h) are one entry each; the margin,
-    // not known here, is taken as nothing.
+    // Spheres binned by their centres (kinematics/DetectionRules.h), where the backend does at this
+    // size (KinematicsBackend::mayBinSpheresByCentre), are one entry each; the margin, not known
+    // here, is taken as nothing.
     const float largest = nS ? *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end()) : 0.f;
-    const bool byCentre = centreReachFor(grid, (double)largest) > 0.0;
+    const bool byCentre = mayBinByCentre && centreReachFor(grid, (double)largest) > 0.0;
     if (onGpu) {
         contacts = contactSetBytes(s, true, e.pairs);
         // kT's snapshot (sphere centres, owner families), pair offsets; the bins' entries (an item

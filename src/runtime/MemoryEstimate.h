@@ -39,7 +39,8 @@ struct MemoryEstimate {
 // onGpu: the CUDA backend's device buffers (two contact sets, history mapping's scratch, detection's
 // sorted bin entries); otherwise the CPU backend's host arrays. pairs: the contact set's size, or
 // ESTIMATED_PAIRS_PER_SPHERE per sphere where 0.
-MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, size_t pairs = 0);
+MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre,
+                                 size_t pairs = 0);
 
 // Throws a deme::Error from `call` when the estimate exceeds `available` bytes (0: not known, no
 // check) of `where` ("GPU 0 (NVIDIA H200)", "host memory"), naming both and the groups. `available`

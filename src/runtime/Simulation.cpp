@@ -55,7 +55,8 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     m_backends = makeBackends(m_state, m_model, settings, [this](Verbosity v, const std::string& msg) { log(v, msg); });
     // A scene too large for the memory its steps use fails here, not in its first detection.
     const DynamicsBackend& dynamics = *m_backends.dynamics;
-    m_memoryEstimate = estimateRunMemory(m_state, m_grid, dynamics.onGpu());
+    m_memoryEstimate = estimateRunMemory(m_state, m_grid, dynamics.onGpu(),
+                                         m_backends.kinematics->mayBinSpheresByCentre(m_state.spheres.size()));
     requireMemoryFor(m_memoryEstimate, dynamics.memoryAvailable(), memoryPlace(dynamics), "Initialize");
     m_contacts.start(settings, *m_backends.dynamics, *m_backends.kinematics);
     m_contacts.period = &m_state.frame.periodic;

@@ -355,6 +355,11 @@ CudaKinematics::~CudaKinematics() {
     if (m_submitted && cudaEventDestroy(static_cast<cudaEvent_t>(m_submitted)) != cudaSuccess) cudaGetLastError();
 }
 
+bool CudaKinematics::mayBinSpheresByCentre(size_t spheres) const {
+    const size_t most = std::numeric_limits<unsigned int>::max();
+    return centreBinning((unsigned int)std::min(spheres, most));
+}
+
 void CudaKinematics::setGeometry(const SimState& s, const BinGrid& g, const FamilyRules& families,
                                  const Settings& settings) {
     if (!m_mailbox.idle()) throwError(CALL, "internal: the kinematics geometry changed while an order was in flight");

@@ -68,6 +68,7 @@ class CudaKinematics : public KinematicsBackend {
     void waitAndTake(DetectionReport& report) override;
     void detectNow(const DetectionOrder& order, DetectionReport& report) override;
     bool sharesDynamicsDevice() const override { return m_kTDevice == m_dTDevice; }
+    bool mayBinSpheresByCentre(size_t spheres) const override;
 
     // The outbox, for dT after it took a result and before it submits the next order.
     KinematicsOutbox& outbox() { return m_outbox; }
