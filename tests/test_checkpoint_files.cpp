@@ -110,7 +110,10 @@ TEST_F(CheckpointFiles, WrongVersionIsAnErrorAndChangesNothing) {
     const std::string p = (dir / "bad.ckpt").string();
     writeBytes(p, withVersion(bytesOf(t.good), 99));
     const std::string msg = t.errorReading(p);
-    EXPECT_TRUE(has(msg, "version 99") && has(msg, "reads version " + std::to_string(CHECKPOINT_FORMAT_VERSION))) << msg;
+    EXPECT_TRUE(has(msg, "version 99") &&
+                has(msg, "reads versions " + std::to_string(OLDEST_CHECKPOINT_FORMAT_VERSION) + " to " +
+                             std::to_string(CHECKPOINT_FORMAT_VERSION)))
+        << msg;
 }
 
 TEST_F(CheckpointFiles, OtherSceneIsAnErrorAndChangesNothing) {

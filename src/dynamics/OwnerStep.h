@@ -64,7 +64,7 @@ struct StepConstants {
 };
 
 struct OwnerStepResult {
-    double travelSinceDetection;  // negative: not counted (fixed or analytical owners)
+    float travelSinceDetection;  // negative: not counted (fixed or analytical owners)
     float speed;
     uint8_t flags;
 };
@@ -92,14 +92,14 @@ struct OwnerStepInputs {
     subVoxelPos_t subX, subY, subZ;
     uint8_t type;
     float extent;
-    double travel0, travelBaseline;
+    float travel0;  // since the set in use's snapshot
     float3 moi;
     float mass;
 };
 
 template <class S>
 DEME_HD_INLINE OwnerStepInputs loadOwnerStepInputs(const S& s, size_t o, const FamilyStepMotion& m,
-                                                   const StepConstants& c, double travelBaseline) {
+                                                   const StepConstants& c) {
     const auto& ow = s.owners;
     OwnerStepInputs in;
     in.m = m;
@@ -120,7 +120,6 @@ DEME_HD_INLINE OwnerStepInputs loadOwnerStepInputs(const S& s, size_t o, const F
     in.type = ow.type[o];
     in.extent = s.massProps.extent[inertia];
     in.travel0 = ow.travel[o];
-    in.travelBaseline = travelBaseline;
     in.moi = s.massProps.moi[inertia];
     in.mass = s.massProps.mass[inertia];
     return in;
@@ -151,7 +150,7 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const OwnerStepInputs& 
     subVoxelPos_t subX = in.subX, subY = in.subY, subZ = in.subZ;
     const bool clump = in.type == OWNER_CLUMP, analytical = in.type == OWNER_ANALYTICAL;
     const float extent = in.extent;
-    const double travel0 = in.travel0, travelBaseline = in.travelBaseline;
+    const float travel0 = in.travel0;
     const float3 moi = in.moi;
     const float mass = in.mass;
 
@@ -198,8 +197,8 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const OwnerStepInputs& 
     const bool travels = !fixed && !analytical;
     const float speed = lengthOrZero(v) + lengthOrZero(w) * extent;
     r.speed = travels ? speed : 0.f;
-    const double travel = travel0 + (double)(r.speed * c.h);
-    r.travelSinceDetection = travels ? travel - travelBaseline : -1.0;
+    const float travel = travel0 + r.speed * c.h;
+    r.travelSinceDetection = travels ? travel : -1.f;
 
     // The owner's new state.
     ow.angVel[o] = w;
@@ -222,9 +221,8 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const OwnerStepInputs& 
 // Owner o's step as one call: its inputs, then its loads (the CPU's sweep; a GPU kernel whose force
 // pass may still run loads the inputs first, then waits, then reads the loads).
 template <class S>
-DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion& m, const StepConstants& c,
-                                         double travelBaseline) {
-    const OwnerStepInputs in = loadOwnerStepInputs(s, o, m, c, travelBaseline);
+DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion& m, const StepConstants& c) {
+    const OwnerStepInputs in = loadOwnerStepInputs(s, o, m, c);
     const float3 force = s.owners.contactForce[o], torque = s.owners.contactTorque[o];
     return stepOwner(s, o, in, force, torque, c);
 }

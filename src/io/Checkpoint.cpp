@@ -1,5 +1,7 @@
 #include "io/Checkpoint.h"
 
+#include <algorithm>
+
 #include <deme/Error.h>
 
 #include "codegen/Expression.h"
@@ -19,11 +21,15 @@ namespace {
 // of the two tables at the end of this file.
 
 struct Staging {
+    uint32_t version = CHECKPOINT_FORMAT_VERSION;  // the file's
     SceneFingerprint fingerprint;
     Simulation::Resumable clock;
     Settings settings;
     FamilyRules families;
     SimState state;
+    // A version-1 file's travel: since the start, and at the contact set's snapshot (empty where the
+    // set could not go on serving); made the travel since the snapshot once both are read.
+    std::vector<double> travelSinceStart, travelAtSnapshot;
 };
 
 void writeFingerprint(const Simulation& sim, ByteWriter& out) {
@@ -49,7 +55,7 @@ void writeClock(const Simulation& sim, ByteWriter& out) {
     out.value(r.contactSet.margin);
     out.value((uint8_t)r.contactSet.expired);
     out.value((uint8_t)r.contactSet.needDetection);
-    out.array(r.travelAtSnapshot);
+    out.value((uint8_t)r.contactSetResumable);
 }
 void readClock(ByteReader& in, Staging& st) {
     Simulation::Resumable& r = st.clock;
@@ -66,7 +72,20 @@ void readClock(ByteReader& in, Staging& st) {
     r.contactSet.margin = in.value<double>("the contact set's margin");
     r.contactSet.expired = in.value<uint8_t>("the contact set's state") != 0;
     r.contactSet.needDetection = in.value<uint8_t>("the contact set's state") != 0;
-    in.array(r.travelAtSnapshot, "the travel at the contact set's snapshot");
+    if (st.version >= 2)
+        r.contactSetResumable = in.value<uint8_t>("the contact set's state") != 0;
+    else
+        in.array(st.travelAtSnapshot, "the travel at the contact set's snapshot");
+}
+
+// A version-1 file held every owner's travel since the start and at the contact set's snapshot;
+// the state now holds their difference (the set goes on serving only where the file had both).
+void travelSinceSnapshotOfVersion1(Staging& st) {
+    std::vector<float>& travel = st.state.owners.travel;
+    const bool resumable = st.travelAtSnapshot.size() == travel.size() && st.travelSinceStart.size() == travel.size();
+    for (size_t o = 0; o < travel.size(); o++)
+        travel[o] = resumable ? (float)std::max(st.travelSinceStart[o] - st.travelAtSnapshot[o], 0.0) : 0.f;
+    st.clock.contactSetResumable = resumable;
 }
 
 // The settings a script may change between DoDynamics calls and that change the steps. How the run
@@ -174,7 +193,7 @@ void readSection(const std::string& name, ByteReader& in, Staging& st, const Sim
     else if (name == "families")
         readFamilies(in, st, call);
     else if (name == "state")
-        readStateSection(in, st.state, call, path);
+        readStateSection(in, st.state, call, path, st.version, st.travelSinceStart);
     if (name != "state" && !in.atEnd()) in.malformed("section \"" + name + "\" has bytes after its end");
 }
 
@@ -193,6 +212,7 @@ void writeCheckpoint(const Simulation& sim, const std::string& path, const std::
 void readCheckpoint(Simulation& sim, const std::string& path, const std::string& call) {
     const CheckpointSections sections = readCheckpointFile(path, call);
     Staging st;
+    st.version = sections.version;
     st.settings = sim.settings;
     st.families = sim.families;
     bool seen[sizeof(SECTIONS) / sizeof(SECTIONS[0])] = {};
@@ -212,6 +232,8 @@ void readCheckpoint(Simulation& sim, const std::string& path, const std::string&
     }
     for (size_t k = 0; k < std::size(SECTIONS); k++)
         if (!seen[k]) throwError(call, "\"" + path + "\" is corrupted: it has no section \"" + SECTIONS[k].name + "\"");
+
+    if (st.version == 1) travelSinceSnapshotOfVersion1(st);
 
     // Everything read and checked: only now does the simulation change.
     sim.settings = st.settings;

@@ -61,7 +61,7 @@ void writeCheckpointFile(const std::string& path, const CheckpointSections& sect
     const std::string& p = payload.buffer();
     ByteWriter header;
     header.bytes(MAGIC, sizeof(MAGIC));
-    header.value(CHECKPOINT_FORMAT_VERSION);
+    header.value(sections.version);
     header.value(BYTE_ORDER_MARK);
     header.value((uint64_t)p.size());
     header.value(checksum(p.data(), p.size()));
@@ -98,9 +98,10 @@ CheckpointSections readCheckpointFile(const std::string& path, const std::string
     const uint32_t headerCrc = h.value<uint32_t>("header checksum");
     if (checksum(data.data(), HEADER_BYTES - 4) != headerCrc)
         throwError(call, file + " is corrupted: the header's checksum does not match");
-    if (version != CHECKPOINT_FORMAT_VERSION)
-        throwError(call, file + " has checkpoint format version " + std::to_string(version) + "; this build reads version " +
-                             std::to_string(CHECKPOINT_FORMAT_VERSION) + " (docs/checkpoint.md)");
+    if (version < OLDEST_CHECKPOINT_FORMAT_VERSION || version > CHECKPOINT_FORMAT_VERSION)
+        throwError(call, file + " has checkpoint format version " + std::to_string(version) +
+                             "; this build reads versions " + std::to_string(OLDEST_CHECKPOINT_FORMAT_VERSION) +
+                             " to " + std::to_string(CHECKPOINT_FORMAT_VERSION) + " (docs/checkpoint.md)");
     if (order != BYTE_ORDER_MARK)
         throwError(call, file + " was written on a machine of the other byte order");
     const uint64_t have = data.size() - HEADER_BYTES;
@@ -113,6 +114,7 @@ CheckpointSections readCheckpointFile(const std::string& path, const std::string
         throwError(call, file + " is corrupted: the checksum (CRC-32) of its contents does not match");
 
     CheckpointSections out;
+    out.version = version;
     ByteReader r(data.data() + HEADER_BYTES, (size_t)length, call, path);
     while (!r.atEnd()) {
         std::string name = r.text("a section name");

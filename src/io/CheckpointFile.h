@@ -18,9 +18,14 @@
 
 namespace deme {
 
-// Version 1: the first. Raise it when the meaning of a section's bytes changes; a field added to the
-// state lists (state/StateFields.h) needs no new version, since fields are stored by name.
-constexpr uint32_t CHECKPOINT_FORMAT_VERSION = 1;
+// Version 1: the first. Version 2: the owners' travel counts from the contact set's snapshot (a
+// float per owner in the state section), and the clock holds whether the set can go on serving
+// instead of every owner's travel at its snapshot. Raise it when the meaning of a section's bytes
+// changes; a field added to the state lists (state/StateFields.h) needs no new version, since
+// fields are stored by name. A build reads its own version and the ones before
+// (OLDEST_CHECKPOINT_FORMAT_VERSION).
+constexpr uint32_t CHECKPOINT_FORMAT_VERSION = 2;
+constexpr uint32_t OLDEST_CHECKPOINT_FORMAT_VERSION = 1;
 
 // Appends plain values, strings and arrays to a byte buffer.
 class ByteWriter {
@@ -85,6 +90,7 @@ class ByteReader {
 
 // A checkpoint's sections by name, as written (each name at most once).
 struct CheckpointSections {
+    uint32_t version = CHECKPOINT_FORMAT_VERSION;           // the file's format (written as it is)
     std::vector<std::pair<std::string, std::string>> list;  // (name, bytes) in file order
     void add(const std::string& name, std::string bytes) { list.emplace_back(name, std::move(bytes)); }
 };

@@ -113,7 +113,8 @@ void writeStateSection(const SimState& s, ByteWriter& out) {
     }
 }
 
-void readStateSection(ByteReader& in, SimState& s, const std::string& call, const std::string& path) {
+void readStateSection(ByteReader& in, SimState& s, const std::string& call, const std::string& path, uint32_t version,
+                      std::vector<double>& travelSinceStart) {
     const std::string file = "\"" + path + "\"";
     auto layout = [&](const std::string& what) {
         throwError(call, file + " holds a state of another layout than this build's: " + what +
@@ -143,6 +144,14 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
         using T = typename std::decay_t<decltype(v)>::value_type;
         const auto it = records.find(name);
         if (it == records.end()) layout("it lacks field " + name);
+        if (version == 1 && name == "owners.travel" && it->second.elemSize == sizeof(double)) {
+            travelSinceStart.resize((size_t)it->second.count);
+            if (!travelSinceStart.empty())
+                std::memcpy(travelSinceStart.data(), it->second.bytes, travelSinceStart.size() * sizeof(double));
+            v.assign(travelSinceStart.size(), T());
+            records.erase(it);
+            return;
+        }
         if (it->second.elemSize != sizeof(T))
             layout("field " + name + " has elements of " + std::to_string(it->second.elemSize) + " bytes, this build's " +
                    std::to_string(sizeof(T)));

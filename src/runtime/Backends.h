@@ -160,15 +160,16 @@ class DynamicsBackend {
     // families.
     virtual size_t applyFamilyConditions(double time, const FamilyRules& families) = 0;
 
-    // Contact sets. markOrderBaseline(): the owners' travel now is the snapshot of an order sent now.
+    // Contact sets. The owners' travel (OwnerArrays::travel) counts from the snapshot of the set in
+    // use. markOrderBaseline(): the owners' travel now is the snapshot of an order sent now.
     // `installedBeforeNextStep` (a synchronous detection's order): its snapshot is then the travel at
     // its installation, and a backend need keep no copy of it meanwhile (the CPU keeps none).
     virtual void markOrderBaseline(bool installedBeforeNextStep) = 0;
     // The largest travel of any owner since the last markOrderBaseline().
     virtual double maxTravelSinceOrder() = 0;
     // The result of the last order taken from the kinematics side becomes the set in use, with the
-    // history of the set it replaces (wildcards, mesh state, persistent pairs); travel is measured
-    // from the order's snapshot from now on.
+    // history of the set it replaces (wildcards, mesh state, persistent pairs); the owners' travel
+    // counts from the order's snapshot from now on (what they travelled since it).
     virtual void install(const DetectionReport& report, TimingStats& timing) = 0;
     // A detection whose set is installed before the next step (synchronous) is about to run: what
     // only the steps read of the set in use may go now (the CPU's reduction index, rebuilt by the
@@ -178,12 +179,13 @@ class DynamicsBackend {
     // its next step, and a checkpoint holds no set to go on with.
     virtual bool beforeDetectNow() { return false; }
     virtual size_t numContacts() const = 0;
-    // Checkpoint and restart. travelAtSnapshot: every owner's travel at the snapshot of the set in
-    // use. resumeContactSet: after upload(s), the set in use is s.contacts as it is (history and
-    // all, no detection), with `travel` as that snapshot. A backend that cannot answers false, and
-    // the restart detects afresh (the trajectory does not depend on when detection runs).
-    virtual bool travelAtSnapshot(std::vector<double>& /*travel*/) const { return false; }
-    virtual bool resumeContactSet(const SimState& /*s*/, const std::vector<double>& /*travel*/) { return false; }
+    // Checkpoint and restart. contactSetResumable: whether the set in use could serve a restart (a
+    // checkpoint then holds it, with the owners' travel since its snapshot in the state).
+    // resumeContactSet: after upload(s), the set in use is s.contacts as it is (history and all, no
+    // detection), its snapshot where s.owners.travel counts from. A backend that cannot answers
+    // false, and the restart detects afresh (the trajectory does not depend on when detection runs).
+    virtual bool contactSetResumable() const { return false; }
+    virtual bool resumeContactSet(const SimState& /*s*/) { return false; }
 
     // The margin-free facts the messages and reports need.
     virtual std::string description() const = 0;  // "CPU, 2 threads", "GPU 0 (NVIDIA H200)"

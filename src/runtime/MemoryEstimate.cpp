@@ -98,7 +98,7 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     forEachScratchField(s.integrationScratch, s.integrationScratch, [&](const auto& v, const auto&, FieldRole) {
         owner += nO * elementBytes(v);
     });
-    owner += 2 * sizeof(double) * nO;  // each owner's travel at the set's and the order's snapshots
+    owner += sizeof(float) * nO;  // each owner's travel at an order's snapshot (the CPU's while one is in flight)
     forEachSphereField(s.spheres, s.spheres, geometrySum);
     forEachAnalyticalField(s.analytical, s.analytical, geometrySum);
     forEachTriangleField(s.triangles, s.triangles, geometrySum);

@@ -153,7 +153,7 @@ void Simulation::uploadIfEdited() {
     m_backends.kinematics->setGeometry(m_state, m_grid, families, settings);
     m_contacts.invalidate();
     // After a restart: go on with the restored set where the backend can (Simulation::restore).
-    if (m_resume && m_backends.dynamics->resumeContactSet(m_state, m_resume->travelAtSnapshot))
+    if (m_resume && m_resume->contactSetResumable && m_backends.dynamics->resumeContactSet(m_state))
         m_contacts.resume(m_resume->contactSet);
     m_resume.reset();
     m_backendStale = false;
@@ -286,10 +286,16 @@ void Simulation::setOwnerPos(size_t owner, const double3& p, const char* call) {
 
 Simulation::Resumable Simulation::resumable() const {
     stateWithContacts();  // the backend's contact set is the host's record now
-    Resumable r{m_time, m_step, m_lastMaxSpeed, m_realContacts, m_realSphereSphere, m_contacts.frequency().learned(),
-                m_contacts.progress(), {}};
+    Resumable r{m_time,
+                m_step,
+                m_lastMaxSpeed,
+                m_realContacts,
+                m_realSphereSphere,
+                m_contacts.frequency().learned(),
+                m_contacts.progress(),
+                false};
     // Before the first step, or right after an edit, there is no set in use to go on with.
-    if (m_backendStale || !m_backends.dynamics->travelAtSnapshot(r.travelAtSnapshot)) r.travelAtSnapshot.clear();
+    r.contactSetResumable = !m_backendStale && m_backends.dynamics->contactSetResumable();
     if (m_resume) r = *m_resume;  // read and not yet stepped: what was read
     return r;
 }

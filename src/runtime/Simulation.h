@@ -103,7 +103,8 @@ class Simulation {
 
     // Checkpoint and restart (io/Checkpoint.h). What the run carries besides its state: the clock,
     // the step counter, what sizes the next margin, what n_max has adapted to, and where the contact
-    // set in use stands (its snapshot step, margin, and every owner's travel at that snapshot).
+    // set in use stands (its snapshot step, margin, and whether it can go on serving: the owners'
+    // travel since its snapshot is in the state).
     struct Resumable {
         double time = 0.0;
         unsigned long long step = 0;
@@ -111,7 +112,7 @@ class Simulation {
         uint64_t realContacts = 0, realSphereSphere = 0;
         UpdateFrequency::Learned frequency;
         DetectionSchedule::Progress contactSet;
-        std::vector<double> travelAtSnapshot;  // empty where the backend cannot say (the GPU's)
+        bool contactSetResumable = false;  // false: the restart detects afresh
     };
     Resumable resumable() const;
     // The scene as Initialize assembled it (a checkpoint is read only into the same scene).

@@ -43,9 +43,10 @@ constexpr Slot inBlockSlotFlag() {
     X(inertia, inertiaID_t, INPUT)    /* index into the mass properties (extent, dynamic) */         \
     X(contactForce, float3, EVOLVES)  /* contact force of the last step (global), for trackers */    \
     X(contactTorque, float3, EVOLVES) /* contact torque of the last step (global) */                 \
-    /* Path length travelled since the start (bounds every point of its geometry); the travel     */ \
-    /* since a contact detection is the difference to a snapshot taken then.                      */ \
-    X(travel, double, EVOLVES)
+    /* Path length travelled since the snapshot of the contact set in use (the poses its          */ \
+    /* detection saw): bounds how far every point of its geometry moved since. Set back at each   */ \
+    /* installation, so it stays within about a margin and a float holds it to 1e-7 of that.     */  \
+    X(travel, float, EVOLVES)
 
 // Tracker loads (DEMTracker::AddAcc, AddAngAcc) for the coming DoDynamics call, per owner. They
 // exist only from the first load to the end of the call that applies it, and are empty otherwise:

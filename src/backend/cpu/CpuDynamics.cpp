@@ -10,6 +10,7 @@
 #include "backend/cpu/HistoryMapping.h"
 #include "backend/cpu/Integration.h"
 #include "backend/cpu/MeshContacts.h"
+#include "dynamics/TravelSinceSnapshot.h"
 #include "parallel/Parallel.h"
 #include "runtime/AllocatorPolicy.h"
 #include "runtime/MemoryAccounting.h"
@@ -20,11 +21,12 @@ namespace deme {
 CpuDynamics::CpuDynamics(SimState& s, CpuForceModel model, CpuKinematics& kinematics)
     : m_s(s), m_model(std::move(model)), m_kinematics(kinematics) {}
 
-void CpuDynamics::upload(const SimState& s, bool withContacts) {
+void CpuDynamics::upload(const SimState& /*s: the host state the steps run on*/, bool withContacts) {
     if (withContacts) m_chooseHistoryForm = true;
     if (withContacts) m_setTrimmed = false;
-    // The steps run on the host state itself (its contacts too); travel is measured from now until the next set.
-    m_baseline = s.owners.travel;
+    // The steps run on the host state itself (its contacts too). (Its travel counts from the set in
+    // use's snapshot: an upload is followed by a detection, which sets it back, or by a restart's
+    // resumeContactSet, which keeps the checkpoint's.)
     releaseOrderBaseline();
     m_subsetStale = true;
 }
@@ -87,8 +89,8 @@ StepOutcome CpuDynamics::step(double time, const Settings& settings, const Famil
         reduceContactForces(m_s, m_subset);
     }
     PhaseTimer t(timing, Phase::INTEGRATION);
-    const IntegrationResult ir = integrateOwners(m_s, m_stepMotion, settings.gravity, settings.dt,
-                                                 settings.errorOutVelocity, m_baseline, m_subset);
+    const IntegrationResult ir =
+        integrateOwners(m_s, m_stepMotion, settings.gravity, settings.dt, settings.errorOutVelocity, m_subset);
     m_s.frame.periodic.shearTime = time + settings.dt;
     out.maxSpeed = ir.maxSurfaceSpeed;
     out.maxTravel = ir.maxTravel;
@@ -114,7 +116,7 @@ void CpuDynamics::downloadContacts(SimState& s) {
 
 void CpuDynamics::markOrderBaseline(bool installedBeforeNextStep) {
     // A synchronous detection's order is installed before any step: its snapshot is the travel
-    // then, and no copy of 8 B per owner is held through the detection.
+    // then, and no copy of 4 B per owner is held through the detection.
     m_orderAtInstall = installedBeforeNextStep;
     if (m_orderAtInstall)
         releaseOrderBaseline();
@@ -123,7 +125,7 @@ void CpuDynamics::markOrderBaseline(bool installedBeforeNextStep) {
 }
 
 // The order's snapshot lives from the order to its installation (a synchronous detection's: within
-// one call): let go between (8 B per owner) where it is a block of its own that goes back to the
+// one call): let go between (4 B per owner) where it is a block of its own that goes back to the
 // system (runtime/AllocatorPolicy.h); a smaller one stays in the heap either way. Made again at each
 // order, it is a copy of the travel that writes all its pages anyway.
 void CpuDynamics::releaseOrderBaseline() {
@@ -134,23 +136,32 @@ void CpuDynamics::releaseOrderBaseline() {
 }
 
 double CpuDynamics::maxTravelSinceOrder() {
-    const std::vector<double>& travel = m_s.owners.travel;
+    const std::vector<float>& travel = m_s.owners.travel;
     if (m_orderBaseline.size() != travel.size())
         throwError("DoDynamics", "internal: an order's travel is asked for with no order in flight");
-    double m = 0.0;
-    for (size_t o = 0; o < travel.size(); o++) m = std::max(m, travel[o] - m_orderBaseline[o]);
+    const float* atOrder = m_orderBaseline.data();
+    const size_t n = travel.size();
+    float m = 0.f;
+#pragma omp parallel for simd reduction(max : m) if (n > PARALLEL_MIN_ITEMS)
+    for (size_t o = 0; o < n; o++) m = std::max(m, travelSinceOrderSnapshot(travel[o], atOrder[o]));
     return m;
 }
 
 void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
     PhaseTimer t(timing, Phase::HISTORY_MAPPING);
     installDetectedContacts(m_s, m_kinematics.takenPairs(), modelWritesPersistent());
+    // Travel counts from the new set's snapshot: the order's.
+    std::vector<float>& travel = m_s.owners.travel;
     if (m_orderAtInstall) {
-        m_baseline = m_s.owners.travel;  // (into its own storage: no array more)
+        std::fill(travel.begin(), travel.end(), 0.f);
     } else {
-        if (m_orderBaseline.size() != m_s.owners.size())
+        if (m_orderBaseline.size() != travel.size())
             throwError("DoDynamics", "internal: a contact set is installed with no order's travel");
-        m_baseline.swap(m_orderBaseline);
+        const float* atOrder = m_orderBaseline.data();
+        float* t = travel.data();
+        const size_t n = travel.size();
+#pragma omp parallel for simd if (n > PARALLEL_MIN_ITEMS)
+        for (size_t o = 0; o < n; o++) t[o] = travelSinceOrderSnapshot(t[o], atOrder[o]);
     }
     m_orderAtInstall = false;
     releaseOrderBaseline();
@@ -164,20 +175,13 @@ bool CpuDynamics::beforeDetectNow() {
     return m_setTrimmed;
 }
 
-bool CpuDynamics::travelAtSnapshot(std::vector<double>& travel) const {
-    if (m_setTrimmed) return false;
-    travel = m_baseline;
-    return true;
-}
-
-bool CpuDynamics::resumeContactSet(const SimState& s, const std::vector<double>& travel) {
-    if (travel.size() != s.owners.size()) return false;
+bool CpuDynamics::resumeContactSet(const SimState& s) {
+    if (s.owners.travel.size() != s.owners.size()) return false;
     // The steps run on the host state, whose contact set is the restored one: only the bookkeeping
     // that an installation builds is missing.
     indexContactSet(m_s);
     m_chooseHistoryForm = true;
     m_setTrimmed = false;
-    m_baseline = travel;
     releaseOrderBaseline();
     return true;
 }
@@ -185,7 +189,7 @@ bool CpuDynamics::resumeContactSet(const SimState& s, const std::vector<double>&
 std::string CpuDynamics::description() const { return "CPU, " + std::to_string(cpuThreadCount()) + " threads"; }
 
 void CpuDynamics::countHostMemory(MemoryStats& m) const {
-    addHost(m, MemoryGroup::OWNER_STATE, vectorBytes(m_baseline) + vectorBytes(m_orderBaseline));
+    addHost(m, MemoryGroup::OWNER_STATE, vectorBytes(m_orderBaseline));
     addHost(m, MemoryGroup::STEP_SCRATCH,
             vectorBytes(m_subset.owners) + vectorBytes(m_subset.spheres) + vectorBytes(m_subset.reduced));
 }

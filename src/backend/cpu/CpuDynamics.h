@@ -36,8 +36,8 @@ class CpuDynamics : public DynamicsBackend {
     void install(const DetectionReport& report, TimingStats& timing) override;
     bool beforeDetectNow() override;
     size_t numContacts() const override { return m_s.contacts.size(); }
-    bool travelAtSnapshot(std::vector<double>& travel) const override;
-    bool resumeContactSet(const SimState& s, const std::vector<double>& travel) override;
+    bool contactSetResumable() const override { return !m_setTrimmed; }
+    bool resumeContactSet(const SimState& s) override;
     std::string description() const override;
     bool onGpu() const override { return false; }
     void countHostMemory(MemoryStats& m) const override;
@@ -69,10 +69,10 @@ class CpuDynamics : public DynamicsBackend {
     // Whether the set holds only the pairs it hands to the next one (beforeDetectNow), until an
     // installation or an upload replaces it: then it serves no step and no restart.
     bool m_setTrimmed = false;
-    // Owners' travel at the snapshot of the set in use (baseline) and of the order in flight (empty
+    // Owners' travel (since the set in use's snapshot) at the snapshot of the order in flight: empty
     // while there is none, and for a synchronous detection's order, whose snapshot is the travel at
-    // its installation: m_orderAtInstall).
-    std::vector<double> m_baseline, m_orderBaseline;
+    // its installation (m_orderAtInstall).
+    std::vector<float> m_orderBaseline;
     bool m_orderAtInstall = false;
     void releaseOrderBaseline();
 };

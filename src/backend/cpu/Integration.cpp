@@ -45,7 +45,7 @@ void reduceContactForces(SimState& s, const IntegrationSubset& subset) {
 // afterwards.
 IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,
                                   const float3& gravity, double dt, float errorOutVelocity,
-                                  const std::vector<double>& travelBaseline, const IntegrationSubset& subset) {
+                                  const IntegrationSubset& subset) {
     OwnerArrays& ow = s.owners;
     const size_t n = ow.size();
     const bodyID_t* ownerIds = subset.all ? nullptr : subset.owners.data();
@@ -67,9 +67,8 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
     IntegrationScratch& scratch = s.integrationScratch;
     scratch.flags.resize(n);
     uint8_t* flags = scratch.flags.data();
-    const double* baseline = travelBaseline.data();
     const FamilyStepMotion* familyMotion = motion.data();
-    double maxTravel = 0.0;
+    float maxTravel = 0.f;
     float maxSpeed = 0.f;
     size_t firstFault = n;
     int anyLarge = 0;
@@ -79,7 +78,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
 #pragma omp for simd schedule(static) reduction(max : maxTravel, maxSpeed, anyLarge) reduction(min : firstFault)
         for (size_t k = 0; k < nStepped; k++) {
             const size_t o = ownerIds ? (size_t)ownerIds[k] : k;
-            const OwnerStepResult r = stepOwner(s, o, familyMotion[ow.family[o]], consts, baseline[o]);
+            const OwnerStepResult r = stepOwner(s, o, familyMotion[ow.family[o]], consts);
             flags[o] = r.flags;
             maxTravel = r.travelSinceDetection > maxTravel ? r.travelSinceDetection : maxTravel;
             maxSpeed = r.speed > maxSpeed ? r.speed : maxSpeed;
@@ -114,8 +113,8 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
         float rate = 0.f;
         for (size_t k = 0; k < s.analytical.size(); k++)
             if (s.analytical.owner[k] == o) rate = std::max(rate, placeAnalytical(s, k, diag));
-        ow.travel[o] += (double)(rate * h);
-        maxTravel = std::max(maxTravel, ow.travel[o] - travelBaseline[o]);
+        ow.travel[o] += rate * h;
+        maxTravel = std::max(maxTravel, ow.travel[o]);
         maxSpeed = std::max(maxSpeed, rate);
     }
     res.maxTravel = maxTravel;

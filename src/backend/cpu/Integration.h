@@ -37,10 +37,10 @@ struct IntegrationSubset {
     void update(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion);
 };
 
-// Advances every owner of `subset` by dt. `travelBaseline` holds each owner's travel when the contact
-// set in use was detected; the result reports the largest travel since then.
+// Advances every owner of `subset` by dt, their travel since the contact set in use's snapshot
+// (OwnerArrays::travel) too; the result reports the largest such travel.
 IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,
                                   const float3& gravity, double dt, float errorOutVelocity,
-                                  const std::vector<double>& travelBaseline, const IntegrationSubset& subset);
+                                  const IntegrationSubset& subset);
 
 }  // namespace deme

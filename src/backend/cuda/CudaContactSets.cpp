@@ -22,15 +22,14 @@ void CudaDynamics::markOrderBaseline(bool /*installedBeforeNextStep: the copy is
     select();
     // The owners' travel now: the set an order sent now yields serves while nobody travels its margin
     // beyond it.
-    launch(kCopyDoubles, blocksFor(m_view.numOwners, THREADS), THREADS, 0, m_stream, m_orderBaseline.data(),
-           (const double*)m_state.owners.travel.data(), m_view.numOwners);
+    if (m_view.numOwners) m_orderBaseline.copyFromAsync(m_state.owners.travel, m_view.numOwners, m_stream);
 }
 
 double CudaDynamics::maxTravelSinceOrder() {
     select();
     m_maxTravelBits.zeroAsync(m_stream);
     launch(kMaxTravelSince, blocksFor(m_view.numOwners, THREADS), THREADS, 0, m_stream,
-           (const double*)m_state.owners.travel.data(), (const double*)m_orderBaseline.data(), m_view.numOwners,
+           (const float*)m_state.owners.travel.data(), (const float*)m_orderBaseline.data(), m_view.numOwners,
            m_maxTravelBits.data());
     unsigned long long bits = 0;
     m_maxTravelBits.downloadAsync(&bits, 1, m_stream);
@@ -85,8 +84,9 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     m_current = 1 - m_current;
     m_numContacts = total;
     refreshView();
-    // The set's snapshot is the order's: travel is measured from there.
-    std::swap(m_baseline, m_orderBaseline);
+    // The set's snapshot is the order's: travel counts from there.
+    launch(kTravelSinceOrder, blocksFor(m_view.numOwners, THREADS), THREADS, 0, m_stream,
+           (float*)m_state.owners.travel.data(), (const float*)m_orderBaseline.data(), m_view.numOwners);
     // The owners whose loads a step clears follow the set's contacts. Which owners are stepped does
     // not change with a set (only uploads and family changes, which flag m_subsetStale themselves).
     m_loadOwnersStale = true;

@@ -19,8 +19,6 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
     select();
     const Stream st = m_stream;
     m_state.upload(s, st);
-    m_baseline.resizeDiscarding(s.owners.size());
-    if (!s.owners.travel.empty()) m_baseline.uploadAsync(s.owners.travel.data(), s.owners.size(), st);
     m_orderBaseline.resizeDiscarding(s.owners.size());
     if (withContacts) {
         // The contact set the host has (history included).

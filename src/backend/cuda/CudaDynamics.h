@@ -55,8 +55,8 @@ class CudaDynamics : public DynamicsBackend {
     void install(const DetectionReport& report, TimingStats& timing) override;
     size_t numContacts() const override { return m_numContacts; }
     // Checkpoint and restart (CudaCheckpoint.cpp).
-    bool travelAtSnapshot(std::vector<double>& travel) const override;
-    bool resumeContactSet(const SimState& s, const std::vector<double>& travel) override;
+    bool contactSetResumable() const override;
+    bool resumeContactSet(const SimState& s) override;
     std::string description() const override;
     std::string launchReport() const override;
     bool onGpu() const override { return true; }
@@ -96,8 +96,8 @@ class CudaDynamics : public DynamicsBackend {
     std::string m_name;
     Stream m_stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
     CudaModule m_dynamicsModule, m_exchangeModule;
-    CudaKernel kBeginBatch, kClearLoads, kCopyDoubles, kResolveMesh, kIntegrate, kPlaceAndFinish, kIntegrateAndPlace,
-        kMaxTravelSince, kSteppedFlags, kSteppedScatter, kMarkContactOwners, kScatterFlagged, kFlagListed;
+    CudaKernel kBeginBatch, kClearLoads, kResolveMesh, kIntegrate, kPlaceAndFinish, kIntegrateAndPlace, kMaxTravelSince,
+        kTravelSinceOrder, kSteppedFlags, kSteppedScatter, kMarkContactOwners, kScatterFlagged, kFlagListed;
     // The batch's control block (dynamics/StepBatch.h) on the device, and its pinned host copy.
     DeviceBuffer<StepBatchControl> m_control;
     StepBatchControl* m_controlHost = nullptr;
@@ -140,8 +140,9 @@ class CudaDynamics : public DynamicsBackend {
     int m_current = 0;
     uint32_t m_numContacts = 0;
     bool m_forcesInIdleMemory = false;  // the set in use's forces hold the idle set's wildcards' memory
-    // Owners' travel at the snapshot of the set in use (baseline) and of the order in flight.
-    DeviceBuffer<double> m_baseline, m_orderBaseline;
+    // Owners' travel (since the set in use's snapshot: the state's) at the snapshot of the order in
+    // flight.
+    DeviceBuffer<float> m_orderBaseline;
     DeviceBuffer<FamilyStepMotion> m_motion;
     DeviceBuffer<StepReduction> m_reduction;
     DeviceBuffer<unsigned long long> m_maxTravelBits;

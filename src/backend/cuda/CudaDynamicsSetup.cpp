@@ -25,7 +25,6 @@ CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(devi
     // Both contact sets' fields, their per-contact wildcards (the history) included.
     for (DeviceContacts& set : m_contacts)
         forEachContactField(set, set, [](auto& field, auto&, FieldRole) { field.setGroup(MemoryGroup::CONTACTS); });
-    m_baseline.setGroup(MemoryGroup::OWNER_STATE);
     m_ownerSphereStart.setGroup(MemoryGroup::GEOMETRY);
     m_orderBaseline.setGroup(MemoryGroup::OWNER_STATE);
 }
@@ -51,7 +50,6 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     m_exchangeModule = CudaModule("Initialize", x.image);
     kBeginBatch = m_dynamicsModule.kernel("deme_begin_batch");
     kClearLoads = m_dynamicsModule.kernel("deme_clear_loads");
-    kCopyDoubles = m_dynamicsModule.kernel("deme_copy_doubles");
     kResolveMesh = m_dynamicsModule.kernel("deme_resolve_mesh_contacts");
     kIntegrate = m_dynamicsModule.kernel("deme_integrate");
     kPlaceAndFinish = m_dynamicsModule.kernel("deme_place_and_finish");
@@ -62,6 +60,7 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     kScatterFlagged = m_dynamicsModule.kernel("deme_scatter_flagged");
     kFlagListed = m_dynamicsModule.kernel("deme_flag_listed");
     kMaxTravelSince = m_exchangeModule.kernel("deme_max_travel_since");
+    kTravelSinceOrder = m_exchangeModule.kernel("deme_travel_since_order");
     m_model.load("Initialize (contact force model)", layout, m_dynamicsModule, opt);
     m_history.load("Initialize", opt);
     m_compileSeconds += m_model.compileSeconds() + m_history.compileSeconds();

@@ -82,22 +82,21 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
         const bool oneBlock = m_subsetAll && m_numAnalyticalOwners > 0 && m_analyticalInBlock &&
                               (m_numClumps + m_numAnalyticalOwners - 1) / tStepped == firstBlock;
         list.kernel(kIntegrateAndPlace, std::max(1u, blocksFor(nStepped, tStepped)), tStepped, 0, m_view,
-                    m_control.data(), (const FamilyStepMotion*)m_motion.data(), consts,
-                    (const double*)m_baseline.data(), ownerIds, nStepped, inputsBeforeWait, clearLoads,
-                    (const uint32_t*)m_ownerSphereStart.data(), m_numClumps, m_numAnalyticalOwners,
-                    oneBlock ? firstBlock : NO_ANALYTICAL_BLOCK, m_domainDiagonal, red, m_componentSpeed.data(),
-                    m_blocksDone.data());
+                    m_control.data(), (const FamilyStepMotion*)m_motion.data(), consts, ownerIds, nStepped,
+                    inputsBeforeWait, clearLoads, (const uint32_t*)m_ownerSphereStart.data(), m_numClumps,
+                    m_numAnalyticalOwners, oneBlock ? firstBlock : NO_ANALYTICAL_BLOCK, m_domainDiagonal, red,
+                    m_componentSpeed.data(), m_blocksDone.data());
         return;
     }
     list.kernel(kIntegrate, blocksFor(nStepped, tStepped), tStepped, 0, m_view, m_control.data(),
-                (const FamilyStepMotion*)m_motion.data(), consts, (const double*)m_baseline.data(), ownerIds, nStepped,
-                inputsBeforeWait, clearLoads, red);
+                (const FamilyStepMotion*)m_motion.data(), consts, ownerIds, nStepped, inputsBeforeWait, clearLoads,
+                red);
     // At least one block: it also ends the step.
     const unsigned int tPlaced = stepThreadsFor((unsigned long long)nPlaced + nT);
     const unsigned int placeBlocks = std::max(1u, blocksFor((unsigned long long)nPlaced + nT, tPlaced));
     list.kernel(kPlaceAndFinish, placeBlocks, tPlaced, 0, m_view, m_control.data(), sphereIds, nPlaced, nT, m_numClumps,
-                m_numAnalyticalOwners, (float)settings.dt, m_domainDiagonal, (const double*)m_baseline.data(), red,
-                m_componentSpeed.data(), m_blocksDone.data());
+                m_numAnalyticalOwners, (float)settings.dt, m_domainDiagonal, red, m_componentSpeed.data(),
+                m_blocksDone.data());
 }
 
 StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules&,

@@ -74,7 +74,7 @@ extern "C" __global__ void deme_clear_loads(StepBatchControl* ctl, float3* conta
 // handful of walls cost as much as the rest of the step.
 __device__ inline void stepAnalyticalOwners(StateView& s, float* componentSpeed, unsigned int firstAnalyticalOwner,
                                             unsigned int numAnalyticalOwners, float h, double domainDiagonal,
-                                            const double* travelBaseline, StepReduction* red) {
+                                            StepReduction* red) {
     for (unsigned int k = threadIdx.x; k < s.numAnalytical; k += blockDim.x)
         componentSpeed[k] = placeAnalytical(s, k, domainDiagonal);
     __syncthreads();  // the block's global writes are visible to the block after it
@@ -83,10 +83,9 @@ __device__ inline void stepAnalyticalOwners(StateView& s, float* componentSpeed,
         float rate = 0.f;
         for (unsigned int k = 0; k < s.numAnalytical; k++)
             if (s.analytical.owner[k] == o) rate = fmaxf(rate, componentSpeed[k]);
-        const double travel = s.owners.travel[o] + (double)(rate * h);
+        const float travel = s.owners.travel[o] + rate * h;
         s.owners.travel[o] = travel;
-        const double since = travel - travelBaseline[o];
-        if (since > 0.0) atomicMax(&red->maxTravelBits, (unsigned long long)__double_as_longlong(since));
+        if (travel > 0.f) atomicMax(&red->maxTravelBits, (unsigned long long)__double_as_longlong((double)travel));
         if (rate > 0.f) atomicMax(&red->maxSpeedBits, __float_as_uint(rate));
     }
 }
@@ -106,11 +105,6 @@ __device__ inline void finishStep(StepBatchControl* ctl, StepReduction* red) {
     clearReduction(red);
     ctl->forcePhaseNs += ctl->forcePhaseEndNs - ctl->forcePhaseStartNs;  // stamped by integration's block 0
     ctl->forcePhaseStartNs = deviceClockNs();  // the next step's force phase starts once this kernel ends
-}
-
-extern "C" __global__ void deme_copy_doubles(double* dst, const double* src, unsigned int n) {
-    const size_t i = globalIndex();
-    if (i < n) dst[i] = src[i];
 }
 
 // One thread per sphere-triangle contact that opens its sphere's run (contacts are sorted by
@@ -169,8 +163,7 @@ struct OwnerStepStart {
 
 __device__ inline OwnerStepStart loadOwnerStepStart(const StateView& s, const StepBatchControl* ctl,
                                                     const FamilyStepMotion* motion, const StepConstants& consts,
-                                                    const double* travelBaseline, const bodyID_t* ids,
-                                                    unsigned int n) {
+                                                    const bodyID_t* ids, unsigned int n) {
     OwnerStepStart st;
     st.owner = -1;
     const size_t k = globalIndex();
@@ -178,7 +171,7 @@ __device__ inline OwnerStepStart loadOwnerStepStart(const StateView& s, const St
     const size_t o = ids ? (size_t)ids[k] : k;
     const FamilyStepMotion* stepMotion = motion + (size_t)ctl->stepsDone * NUM_FAMILIES;
     st.owner = (long long)o;
-    st.in = loadOwnerStepInputs(s, o, stepMotion[s.owners.family[o]], consts, travelBaseline[o]);
+    st.in = loadOwnerStepInputs(s, o, stepMotion[s.owners.family[o]], consts);
     return st;
 }
 
@@ -191,18 +184,17 @@ __device__ inline OwnerStepStart loadOwnerStepStart(const StateView& s, const St
 // force pass where there are no contacts: then the kernel before may be the last step's
 // integration) and they are read after it. Returns false where the batch has stopped.
 __device__ inline bool startOwnerStep(const StateView& s, const StepBatchControl* ctl, const FamilyStepMotion* motion,
-                                      const StepConstants& consts, const double* travelBaseline,
-                                      const bodyID_t* ids, unsigned int n, unsigned int inputsBeforeWait,
-                                      OwnerStepStart& st) {
+                                      const StepConstants& consts, const bodyID_t* ids, unsigned int n,
+                                      unsigned int inputsBeforeWait, OwnerStepStart& st) {
     unsigned int stop = 0u;
     if (inputsBeforeWait) {
-        st = loadOwnerStepStart(s, ctl, motion, consts, travelBaseline, ids, n);
+        st = loadOwnerStepStart(s, ctl, motion, consts, ids, n);
         stop = ctl->stop;
     }
     beginDependentKernel();
     if (inputsBeforeWait) return stop == 0u;
     if (ctl->stop) return false;
-    st = loadOwnerStepStart(s, ctl, motion, consts, travelBaseline, ids, n);
+    st = loadOwnerStepStart(s, ctl, motion, consts, ids, n);
     return true;
 }
 
@@ -275,7 +267,7 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
         const float3 force = s.owners.contactForce[o], torque = s.owners.contactTorque[o];
         const OwnerStepResult r = stepOwner(s, o, st.in, force, torque, consts);
         s.integrationScratch.flags[o] = r.flags;
-        travel = r.travelSinceDetection > 0.0 ? r.travelSinceDetection : 0.0;
+        travel = r.travelSinceDetection > 0.f ? (double)r.travelSinceDetection : 0.0;
         speed = r.speed;
         if (r.flags & STEP_FAULTS) fault = (unsigned int)o;
         large = (r.flags & STEP_LARGE_ROTATION) ? 1u : 0u;
@@ -325,11 +317,10 @@ __device__ inline bool lastBlockToFinishThread0(unsigned int* blocksDone) {
 // Integration of the stepped owners, one thread each (integrateOwner); the spheres are placed by
 // deme_place_and_finish after it.
 extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, const FamilyStepMotion* motion,
-                                          StepConstants consts, const double* travelBaseline, const bodyID_t* ids,
-                                          unsigned int n, unsigned int inputsBeforeWait, unsigned int clearLoads,
-                                          StepReduction* red) {
+                                          StepConstants consts, const bodyID_t* ids, unsigned int n,
+                                          unsigned int inputsBeforeWait, unsigned int clearLoads, StepReduction* red) {
     OwnerStepStart st;
-    if (!startOwnerStep(s, ctl, motion, consts, travelBaseline, ids, n, inputsBeforeWait, st)) return;
+    if (!startOwnerStep(s, ctl, motion, consts, ids, n, inputsBeforeWait, st)) return;
     integrateOwner(s, ctl, st, consts, clearLoads, red);
 }
 
@@ -342,8 +333,8 @@ extern "C" __global__ void deme_integrate(StateView s, StepBatchControl* ctl, co
 extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* ctl, const bodyID_t* ids,
                                                  unsigned int numSpheres, unsigned int numTriangles,
                                                  unsigned int firstAnalyticalOwner, unsigned int numAnalyticalOwners,
-                                                 float h, double domainDiagonal, const double* travelBaseline,
-                                                 StepReduction* red, float* componentSpeed, unsigned int* blocksDone) {
+                                                 float h, double domainDiagonal, StepReduction* red,
+                                                 float* componentSpeed, unsigned int* blocksDone) {
     beginDependentKernel();
     if (ctl->stop) return;
     const size_t k = globalIndex();
@@ -354,8 +345,7 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
         if (t < numTriangles && (s.integrationScratch.flags[s.triangles.owner[t]] & STEP_MOVED)) placeTriangle(s, t);
     }
     if (blockIdx.x == 0)
-        stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, h, domainDiagonal,
-                             travelBaseline, red);
+        stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, h, domainDiagonal, red);
     if (lastBlockToFinishThread0(blocksDone)) finishStep(ctl, red);
 }
 
@@ -367,32 +357,29 @@ extern "C" __global__ void deme_place_and_finish(StateView s, StepBatchControl* 
 // one block's range), right after its owners, or else by the block that finishes last, which ends
 // the step. One kernel boundary fewer than deme_integrate and deme_place_and_finish, the spheres
 // read their owner's new pose where it was just written, and the step's serial tail is the tally.
-extern "C" __global__ void deme_integrate_and_place(StateView s, StepBatchControl* ctl,
-                                                    const FamilyStepMotion* motion, StepConstants consts,
-                                                    const double* travelBaseline, const bodyID_t* ids, unsigned int n,
+extern "C" __global__ void deme_integrate_and_place(StateView s, StepBatchControl* ctl, const FamilyStepMotion* motion,
+                                                    StepConstants consts, const bodyID_t* ids, unsigned int n,
                                                     unsigned int inputsBeforeWait, unsigned int clearLoads,
-                                                    const uint32_t* ownerSphereStart,
-                                                    unsigned int firstAnalyticalOwner,
+                                                    const uint32_t* ownerSphereStart, unsigned int firstAnalyticalOwner,
                                                     unsigned int numAnalyticalOwners, unsigned int analyticalBlock,
                                                     double domainDiagonal, StepReduction* red, float* componentSpeed,
                                                     unsigned int* blocksDone) {
     OwnerStepStart st;
-    if (!startOwnerStep(s, ctl, motion, consts, travelBaseline, ids, n, inputsBeforeWait, st)) return;
+    if (!startOwnerStep(s, ctl, motion, consts, ids, n, inputsBeforeWait, st)) return;
     const long long o = integrateOwner(s, ctl, st, consts, clearLoads, red);
     if (o >= 0 && ownerSphereStart)
         for (uint32_t i = ownerSphereStart[o], end = ownerSphereStart[o + 1]; i < end; i++) placeSphere(s, i);
     if (blockIdx.x == analyticalBlock) {
         __syncthreads();  // the block's owners' poses are in place (a barrier orders the block's global writes)
-        stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h,
-                             domainDiagonal, travelBaseline, red);
+        stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h, domainDiagonal,
+                             red);
     }
     if (analyticalBlock != NO_ANALYTICAL_BLOCK || numAnalyticalOwners == 0) {
         if (lastBlockToFinishThread0(blocksDone)) finishStep(ctl, red);
         return;
     }
     if (!lastBlockToFinish(blocksDone)) return;
-    stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h, domainDiagonal,
-                         travelBaseline, red);
+    stepAnalyticalOwners(s, componentSpeed, firstAnalyticalOwner, numAnalyticalOwners, consts.h, domainDiagonal, red);
     __syncthreads();  // the analytical owners' travel in the reduction before the tally
     if (threadIdx.x == 0) finishStep(ctl, red);
 }
