@@ -261,7 +261,6 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
     finishTriangleTopology(s);
 
     const size_t nOwners = s.owners.size();
-    rangesByOwner(nOwners, s.triangles.owner, s.ownerTriStart);
     rangesByOwner(nOwners, s.spheres.owner, s.ownerSphereStart);
     s.owners.contactForce.assign(nOwners, make_float3(0.f));
     s.owners.contactTorque.assign(nOwners, make_float3(0.f));

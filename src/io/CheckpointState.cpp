@@ -52,7 +52,6 @@ void forEachStoredArray(S& s, F&& f) {
     namedContactFields(s.contacts, group("contacts"));
     namedCacheFields(s.cache, group("cache"));
     f("ownerSphereStart", s.ownerSphereStart);
-    f("ownerTriStart", s.ownerTriStart);
     f("ownerUserToInternal", s.ownerUserToInternal);
     f("ownerInternalToUser", s.ownerInternalToUser);
     f("sphereInternalToUser", s.sphereInternalToUser);
@@ -164,6 +163,8 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
     // Fields that earlier builds wrote and this one derives: a pair's type follows from B
     // (state/ContactTypeOf.h).
     records.erase("contacts.type");
+    // ... and each owner's range of triangles (nothing reads them: a mesh's triangles are one run).
+    records.erase("ownerTriStart");
     // Owner and geometry wildcards: as many as the force model declares (the fingerprint checked it).
     for (size_t i = 0; i < s.wildcards.owner.size(); i++) fill("wildcards.owner." + std::to_string(i), s.wildcards.owner[i]);
     for (size_t i = 0; i < s.wildcards.geometry.size(); i++)
@@ -223,7 +224,7 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
         require(v.size() == want || noForces, std::string("contacts.") + name + " does not fit the contact count");
     });
     require(s.numClumps + s.numAnalyticalOwners <= nO, "more clumps and analytical owners than owners");
-    require(s.ownerSphereStart.size() == nO + 1 && s.ownerTriStart.size() == nO + 1, "the per-owner geometry ranges");
+    require(s.ownerSphereStart.size() == nO + 1, "the per-owner sphere ranges");
     // (User ids are never reused: after removals the user-to-internal maps are the longer ones.)
     require(s.ownerUserToInternal.size() >= nO && s.ownerInternalToUser.size() == nO, "the owner id maps");
     require(s.sphereUserToInternal.size() >= nS && s.sphereInternalToUser.size() == nS, "the sphere id maps");

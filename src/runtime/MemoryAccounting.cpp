@@ -52,9 +52,9 @@ void countStateMemory(const SimState& s, MemoryStats& m) {
     for (const std::vector<float>& w : s.wildcards.owner) addHost(m, MemoryGroup::WILDCARDS, vectorBytes(w));
     for (const std::vector<float>& w : s.wildcards.geometry) addHost(m, MemoryGroup::WILDCARDS, vectorBytes(w));
     addHost(m, MemoryGroup::OWNER_STATE, vectorBytes(s.ownerUserToInternal) + vectorBytes(s.ownerInternalToUser));
-    addHost(m, MemoryGroup::GEOMETRY,
-            vectorBytes(s.ownerSphereStart) + vectorBytes(s.ownerTriStart) + vectorBytes(s.sphereInternalToUser) +
-                vectorBytes(s.sphereUserToInternal));
+    addHost(
+        m, MemoryGroup::GEOMETRY,
+        vectorBytes(s.ownerSphereStart) + vectorBytes(s.sphereInternalToUser) + vectorBytes(s.sphereUserToInternal));
 }
 
 MemoryStats Simulation::hostMemory() const {

@@ -105,8 +105,7 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     forEachCacheField(s.cache, s.cache, geometrySum);
     if (!onGpu) {  // the host's id maps and per-owner ranges
         owner += 4 * (s.ownerUserToInternal.size() + s.ownerInternalToUser.size());
-        geometry += 4 * (s.ownerSphereStart.size() + s.ownerTriStart.size() + s.sphereInternalToUser.size() +
-                         s.sphereUserToInternal.size());
+        geometry += 4 * (s.ownerSphereStart.size() + s.sphereInternalToUser.size() + s.sphereUserToInternal.size());
     }
     for (const std::vector<float>& w : s.wildcards.owner) b[(int)MemoryGroup::WILDCARDS] += 4 * w.size();
     for (const std::vector<float>& w : s.wildcards.geometry) b[(int)MemoryGroup::WILDCARDS] += 4 * w.size();

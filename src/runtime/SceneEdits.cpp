@@ -35,10 +35,9 @@ std::vector<bodyID_t> renumber(const std::vector<uint8_t>& keep) {
     return to;
 }
 
-// Spheres (triangles) of owner o: [start[o], start[o + 1]).
+// Spheres of owner o: [start[o], start[o + 1]).
 void rebuildOwnerRanges(SimState& s) {
     rangesByOwner(s.owners.size(), s.spheres.owner, s.ownerSphereStart);  // (let go where spheres are owners)
-    rangesByOwner(s.owners.size(), s.triangles.owner, s.ownerTriStart);
 }
 
 // The per-step scratch and the CPU's per-owner contact index follow the owner count; the index is

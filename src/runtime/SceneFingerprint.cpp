@@ -1,5 +1,6 @@
 #include "runtime/SceneFingerprint.h"
 
+#include <map>
 #include <set>
 #include <type_traits>
 
@@ -31,6 +32,19 @@ class Hash {
     void text(const std::string& s) {
         value((uint64_t)s.size());
         bytes(s.data(), s.size());
+    }
+    // What array() hashes for the per-owner ranges of items sorted by owner (rangesByOwner's: item
+    // counts summed, n + 1 starts) without making them: the few owners with items are counted.
+    void ownerRanges(size_t n, const std::vector<bodyID_t>& ownerOf) {
+        std::map<bodyID_t, uint32_t> count;
+        for (bodyID_t o : ownerOf) count[o]++;
+        value((uint64_t)(n + 1));
+        uint32_t start = 0;
+        auto next = count.begin();
+        for (size_t o = 0; o <= n; o++) {
+            value(start);
+            if (next != count.end() && next->first == o) start += (next++)->second;
+        }
     }
     uint64_t result() const { return m_h; }
 
@@ -77,7 +91,7 @@ SceneFingerprint sceneFingerprint(const SimState& s, const ModelLayout& model) {
     g.value(hashInputs(anal, s.analytical));
     g.value(hashInputs(tris, s.triangles));
     g.array(s.ownerSphereStart);
-    g.array(s.ownerTriStart);
+    g.ownerRanges(s.owners.size(), s.triangles.owner);  // (as the triangle ranges once kept were hashed)
     fp.geometryInputs = g.result();
 
     Hash m;

@@ -198,8 +198,9 @@ struct SimState {
     // Every clump one sphere at its centre, sphere i owner i's: no sphere offsets, centres or arms
     // are kept (state/SphereLayout.h; runtime/SphereLayoutChoice.h sets it).
     bool spheresAreOwners = false;
-    std::vector<uint32_t> ownerSphereStart;  // spheres of owner o: [start[o], start[o+1]); empty where spheresAreOwners
-    std::vector<uint32_t> ownerTriStart;     // triangles of owner o: [start[o], start[o+1])
+    // Spheres of owner o: [start[o], start[o+1]); empty where spheresAreOwners. (Triangles keep no
+    // such ranges: nothing reads them, and a mesh's triangles are one run of triangles.owner.)
+    std::vector<uint32_t> ownerSphereStart;
     // Owners and spheres are stored in a space-filling-curve order for memory locality; users see
     // ids in the order they added things (clumps batch by batch, then external objects).
     std::vector<bodyID_t> ownerUserToInternal, ownerInternalToUser;

@@ -80,7 +80,7 @@ for step in "${steps[@]}"; do
         # GpuParity.* (whose CPU halves are the slowest tests here) run in the unit step.
         # SUITE_EXCLUDE (a ctest regex) leaves tests out, e.g. the slowest ones when a command is short.
         DEME_BACKEND=cuda ctest --test-dir build-gpu -j"${SUITE_JOBS:-8}" -R '/cuda$|^demo_' ${SUITE_EXCLUDE:+-E "$SUITE_EXCLUDE"} \
-            --timeout 400 >"$OUT/suite.log" 2>&1
+            --timeout 400 --output-on-failure >"$OUT/suite.log" 2>&1
         echo "suite (cuda instances and demos): rc $?"
         grep -E 'tests passed|\(Failed\)|\(Timeout\)|\(SEGFAULT\)|Exception' "$OUT/suite.log" | head -40
         ;;
