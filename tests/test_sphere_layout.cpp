@@ -24,6 +24,7 @@ constexpr float R = 0.01f;
 constexpr size_t TOWERS = 12;
 constexpr size_t SPHERES = 2 * TOWERS;
 constexpr size_t OFFSETS_CENTRES_ARMS = sizeof(float3) + sizeof(double3) + sizeof(float3);  // per sphere
+constexpr size_t SPHERE_OWNER = sizeof(bodyID_t);  // per sphere: sphere i's owner is i
 // The host's sphere id maps, which such a scene shares with its owners' (state/SphereIds.h).
 constexpr size_t SPHERE_ID_MAPS = 2 * sizeof(bodyID_t);
 // The owners' sphere ranges, which it does not keep (the clumps, the plane's owner and the end).
@@ -132,9 +133,9 @@ EditedRun runWithEdits() {
 
 }  // namespace
 
-// The arrays are gone (48 bytes a sphere on the host exactly, and the 8 of the sphere id maps and
-// the owners' sphere ranges; at least 48 on a GPU), and the run is the full layout's bit for bit,
-// through the edits that switch the layout and back.
+// The arrays are gone (48 bytes a sphere on the host exactly, the 4 of its owner's index, and the 8
+// of the sphere id maps and the owners' sphere ranges; at least 52 on a GPU), and the run is the full layout's bit for
+// bit, through the edits that switch the layout and back.
 DEME_BACKEND_TEST(SphereLayout, OneSphereClumpsKeepNoOffsetsCentresOrArmsAndStepAlike) {
     EditedRun full;
     {
@@ -144,9 +145,9 @@ DEME_BACKEND_TEST(SphereLayout, OneSphereClumpsKeepNoOffsetsCentresOrArmsAndStep
     const EditedRun owners = runWithEdits();
 
     EXPECT_EQ(full.hostGeometry[0] - owners.hostGeometry[0],
-              SPHERES * (OFFSETS_CENTRES_ARMS + SPHERE_ID_MAPS) + SPHERE_RANGES);
+              SPHERES * (OFFSETS_CENTRES_ARMS + SPHERE_OWNER + SPHERE_ID_MAPS) + SPHERE_RANGES);
     if (onGpu()) {
-        EXPECT_GE(full.deviceGeometry - owners.deviceGeometry, SPHERES * OFFSETS_CENTRES_ARMS);
+        EXPECT_GE(full.deviceGeometry - owners.deviceGeometry, SPHERES * (OFFSETS_CENTRES_ARMS + SPHERE_OWNER));
     } else {
         EXPECT_EQ(owners.deviceGeometry, 0u);
     }

@@ -80,14 +80,20 @@ void writeStateSection(const SimState& s, ByteWriter& out) {
     // Sphere id maps shared with the owners' (state/SphereIds.h) are written as the maps they are.
     std::vector<bodyID_t> sphereToUser, userToSphere;
     if (s.sphereIdsAreOwnerIds) sphereIdMaps(s, sphereToUser, userToSphere);
-    // So are the owners' sphere ranges where spheres are their owners (state/SphereLayoutChoice.h).
+    // So are the owners' sphere ranges and the spheres' owners where spheres are their owners
+    // (state/SphereLayoutChoice.h).
     std::vector<uint32_t> sphereRanges;
-    if (s.spheresAreOwners) ownerSphereRanges(s, sphereRanges);
+    std::vector<bodyID_t> owners;
+    if (s.spheresAreOwners) {
+        ownerSphereRanges(s, sphereRanges);
+        sphereOwners(s, owners);
+    }
     forEachStoredArray(s, [&](const std::string& name, const auto& v) {
         out.text(name);
         if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::vector<bodyID_t>>) {
             if (s.sphereIdsAreOwnerIds && name == "sphereInternalToUser") return out.array(sphereToUser);
             if (s.sphereIdsAreOwnerIds && name == "sphereUserToInternal") return out.array(userToSphere);
+            if (s.spheresAreOwners && name == "spheres.owner") return out.array(owners);
         }
         if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::vector<uint32_t>>) {
             if (s.spheresAreOwners && name == "ownerSphereStart") return out.array(sphereRanges);
@@ -240,7 +246,10 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
         if (role == FieldRole::HOST) v.clear();
     });
     shareSphereIdsWithOwners(s);
-    if (s.spheresAreOwners) std::vector<uint32_t>().swap(s.ownerSphereStart);  // as the layout keeps it
+    if (s.spheresAreOwners) {  // as the layout keeps them: none
+        std::vector<uint32_t>().swap(s.ownerSphereStart);
+        std::vector<bodyID_t>().swap(s.spheres.owner);
+    }
 }
 
 }  // namespace deme

@@ -101,7 +101,7 @@ OutputFrame stageSphereFrame(const Simulation& sim) {
 #pragma omp parallel for schedule(static) if ((long)n > PARALLEL_MIN_ROWS)
     for (long i = 0; i < (long)n; i++) {
         const size_t k = rowOf.empty() ? sphereUserId(s, i) : rowOf[sphereUserId(s, i)];
-        const bodyID_t ow = s.spheres.owner[i];
+        const bodyID_t ow = sphereOwner(s, i);
         const float4 q = s.owners.oriQ[ow];
         putPoint(xyz, k, sphereCentre(s, i));
         r.values<float>()[k] = s.spheres.radius[i];

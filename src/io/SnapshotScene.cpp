@@ -42,7 +42,7 @@ SnapshotScene stageSnapshotScene(const Simulation& sim, const SnapshotOptions& o
         const double3 p = sphereCentre(s, i);
         scene.spherePos[i] = make_float3((float)p.x, (float)p.y, (float)p.z);
         scene.sphereRadius[i] = s.spheres.radius[i];
-        const bodyID_t ow = s.spheres.owner[i];
+        const bodyID_t ow = sphereOwner(s, i);
         switch (by) {
         case By::NONE: break;
         case By::SPEED: {

@@ -108,7 +108,7 @@ DEME_HD_INLINE void boxAround(const double3& p, double e, double3& lo, double3& 
 // Sphere i's box, enlarged by its margin.
 template <class S>
 DEME_HD_INLINE void sphereBox(const S& s, const DetectionArgs& a, size_t i, double3& lo, double3& hi) {
-    boxAround(sphereCentre(s, i), (double)s.spheres.radius[i] + marginOf(s, a, s.spheres.owner[i]), lo, hi);
+    boxAround(sphereCentre(s, i), (double)s.spheres.radius[i] + marginOf(s, a, sphereOwner(s, i)), lo, hi);
 }
 
 // The one bin that holds point p (not widened: a point is registered once).
@@ -222,7 +222,7 @@ DEME_HD_INLINE SearchedSphere searchedSphere(const S& s, const DetectionArgs& a,
     SearchedSphere A;
     A.id = sa;
     A.centre = sphereCentre(s, sa);
-    A.owner = s.spheres.owner[sa];
+    A.owner = sphereOwner(s, sa);
     A.reach = (double)s.spheres.radius[sa] + marginOf(s, a, A.owner);
     boxAround(A.centre, A.reach, A.lo, A.hi);
     if (a.centreReach > 0.0) {
@@ -255,7 +255,7 @@ DEME_HD_INLINE void spherePartnersInBin(const S& s, const DetectionArgs& a, cons
         const double3 pB = nearestImage(s.frame.periodic, A.centre, sphereCentre(s, b));
         const double rB = (double)s.spheres.radius[b];
         const bool shared = a.sharedExtraMargin >= 0.0;
-        const bodyID_t oB0 = shared ? 0 : s.spheres.owner[b];
+        const bodyID_t oB0 = shared ? 0 : sphereOwner(s, b);
         const double eB = rB + (shared ? a.margin + a.sharedExtraMargin : marginOf(s, a, oB0));
         const double reach = A.reach + eB;
         const double3 d = A.centre - pB;
@@ -263,7 +263,7 @@ DEME_HD_INLINE void spherePartnersInBin(const S& s, const DetectionArgs& a, cons
         if (a.centreReach <= 0.0 && !binOwnsPair(g, A.lo, make_double3(pB.x - eB, pB.y - eB, pB.z - eB), x, y, z, bin))
             continue;
         if (dot(d, d) >= reach * reach) continue;
-        const bodyID_t oB = shared ? s.spheres.owner[b] : oB0;
+        const bodyID_t oB = shared ? sphereOwner(s, b) : oB0;
         if (oB == A.owner || !A.maskRow[s.owners.family[oB]]) continue;
         f(b);
     }

@@ -27,7 +27,7 @@ struct DormantBinsView {
 // Whether sphere i is dormant (its owner's family is, `dormant`: 1 per family).
 template <class S>
 DEME_HD_INLINE bool sphereIsDormant(const S& s, const uint8_t* dormant, size_t i) {
-    return dormant[s.owners.family[s.spheres.owner[i]]] != 0;
+    return dormant[s.owners.family[sphereOwner(s, i)]] != 0;
 }
 
 // The registry's key of dormant sphere i: the bin that holds its centre.
@@ -40,7 +40,7 @@ DEME_HD_INLINE uint32_t dormantBinOf(const S& s, const BinGrid& g, size_t i) {
 // How far dormant sphere i reaches beyond its centre, the detection margin excluded.
 template <class S>
 DEME_HD_INLINE double dormantReachOf(const S& s, const float* familyExtraMargin, size_t i) {
-    return (double)s.spheres.radius[i] + (double)familyExtraMargin[s.owners.family[s.spheres.owner[i]]];
+    return (double)s.spheres.radius[i] + (double)familyExtraMargin[s.owners.family[sphereOwner(s, i)]];
 }
 
 // Whether owner o can move (of a wall or mesh: whether it could reach a dormant grain): forces move
@@ -68,7 +68,7 @@ DEME_HD_INLINE unsigned int dormantPartners(const S& s, const DetectionArgs& a, 
                                             bodyID_t* out, unsigned int capacity) {
     const BinGrid& g = a.grid;
     const double3 pA = sphereCentre(s, sa);
-    const bodyID_t oA = s.spheres.owner[sa];
+    const bodyID_t oA = sphereOwner(s, sa);
     const double eA = (double)s.spheres.radius[sa] + marginOf(s, a, oA);
     const double R = eA + d.maxReach + a.margin;
     const BinBox box =
@@ -90,10 +90,10 @@ DEME_HD_INLINE unsigned int dormantPartners(const S& s, const DetectionArgs& a, 
                     const bodyID_t b = d.items[e];
                     const double3 dd = pA - sphereCentre(s, b);
                     const double rB = (double)s.spheres.radius[b];
-                    const bodyID_t oB0 = shared ? 0 : s.spheres.owner[b];
+                    const bodyID_t oB0 = shared ? 0 : sphereOwner(s, b);
                     const double reach = eA + rB + (shared ? a.margin + a.sharedExtraMargin : marginOf(s, a, oB0));
                     if (dot(dd, dd) >= reach * reach) continue;
-                    const bodyID_t oB = shared ? s.spheres.owner[b] : oB0;
+                    const bodyID_t oB = shared ? sphereOwner(s, b) : oB0;
                     if (!maskRow[s.owners.family[oB]]) continue;
                     if (n < capacity) out[n] = b;
                     n++;

@@ -11,6 +11,7 @@
 #include "dynamics/ContactInputsGather.h"
 #include "state/ContactInitRule.h"
 #include "state/HistorySlot.h"
+#include "state/SphereLayout.h"
 
 namespace deme {
 
@@ -115,7 +116,7 @@ DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const 
     meshState = 0;
     persistent = 0;
     if (old.numRules == 0) return;
-    const family_t fa = s.owners.family[s.spheres.owner[fresh.geomA[i]]];
+    const family_t fa = s.owners.family[sphereOwner(s, fresh.geomA[i])];
     const bodyID_t b = fresh.geomB[i];
     const family_t fb = s.owners.family[geometryOwner(s, contactTypeOf(s, b), b)];
     for (unsigned int r = 0; r < old.numRules; r++) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "dynamics/ContactInputsGather.h"
+#include "state/SphereLayout.h"
 
 namespace deme {
 
@@ -13,7 +14,7 @@ size_t forSelected(SimState& s, const FamilySelector& which, Edit edit) {
     const ContactArrays& c = s.contacts;
     size_t n = 0;
     for (size_t i = 0; i < c.size(); i++) {
-        const family_t fa = s.owners.family[s.spheres.owner[c.geomA[i]]];
+        const family_t fa = s.owners.family[sphereOwner(s, c.geomA[i])];
         const family_t fb = s.owners.family[contactOwnerB(s, i)];
         if (!which.matches(fa, fb)) continue;
         edit(i);

@@ -130,9 +130,10 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         // Triangles, where there are any: their global boxes (2 double3), entries and their own
         // bins' starts.
         if (nT) detection += nT * 48 + (size_t)(4.0 * triEntries) + 4 * (bins + 1);
-        // Step subsets (CudaDynamics: 4 lists of 4 B), and the table of a batch's prescriptions (a
-        // row of families per step, CudaStepBatch.cpp).
-        b[(int)MemoryGroup::STEP_SCRATCH] = 16 * nO + MAX_BATCH_STEPS * NUM_FAMILIES * sizeof(FamilyStepMotion);
+        // The table of a batch's prescriptions (a row of families per step, CudaStepBatch.cpp). (The
+        // active box's step lists, 16-24 B per owner, exist only while some owner is fixed at rest:
+        // CudaStepSubset.cpp; not counted.)
+        b[(int)MemoryGroup::STEP_SCRATCH] = MAX_BATCH_STEPS * NUM_FAMILIES * sizeof(FamilyStepMotion);
     } else {
         contacts = contactSetBytes(s, false, e.pairs);
         // The registry's entries and bins' starts, for spheres and for triangles (whose global

@@ -127,7 +127,8 @@ RemovedClumps removeClumps(SimState& s, const std::vector<uint8_t>& remove) {
         r.mass += (double)s.massProps.mass[s.owners.inertia[o]];
     }
     if (r.count == 0) return r;
-    ownSphereIds(s);  // (shared again below where they can be)
+    ownSphereIds(s);     // (shared again below where they can be)
+    ownSphereOwners(s);  // (let go again below where spheres stay their owners)
     const std::vector<bodyID_t> newOwner = renumber(keepOwner);
     std::vector<uint8_t> keepSphere(nS);
     for (size_t i = 0; i < nS; i++) keepSphere[i] = keepOwner[s.spheres.owner[i]];

@@ -41,7 +41,8 @@ struct TrackerLoadArrays : TrackerLoadFields<HostArray> {
 };
 using MassProperties = MassFields<HostArray>;
 struct SphereArrays : SphereFields<HostArray> {
-    size_t size() const { return owner.size(); }
+    // (`owner` is empty where spheres are their owners; a state made field by field may lack radii)
+    size_t size() const { return owner.size() > radius.size() ? owner.size() : radius.size(); }
 };
 struct AnalyticalArrays : AnalyticalFields<HostArray> {
     size_t size() const { return owner.size(); }

@@ -15,7 +15,7 @@ bool fullSphereLayoutForced();
 // arrays for every scene: how tests compare the two layouts).
 bool spheresCanBeOwners(const SimState& s);
 
-// Spheres as their owners where they can be (their offsets, centres and arms released), the full
+// Spheres as their owners where they can be (their owners, offsets, centres and arms released), the full
 // arrays otherwise (expandSphereLayout). After the scene's clumps change: Initialize, UpdateClumps,
 // removals, a checkpoint read.
 void chooseSphereLayout(SimState& s);
@@ -24,6 +24,12 @@ void chooseSphereLayout(SimState& s);
 // ownerSphereStart where spheres are not their owners (where they are, owner o's is sphere o and the
 // state keeps none).
 void ownerSphereRanges(const SimState& s, std::vector<uint32_t>& start);
+
+// Each sphere's owner, as the full layout has it: where spheres are their owners the state keeps
+// none (sphere i's is i: state/SphereLayout.h's sphereOwner). ownSphereOwners puts them in the state
+// (for an edit that renumbers them; chooseSphereLayout lets them go again).
+void sphereOwners(const SimState& s, std::vector<bodyID_t>& owner);
+void ownSphereOwners(SimState& s);
 
 // The full arrays, whatever the scene: zero offsets, and centres and arms from the cached owner
 // positions (exactly what placing a centred sphere gives). Nothing if the state has them already.

@@ -3,6 +3,7 @@
 #include <deme/Error.h>
 
 #include "parallel/Parallel.h"
+#include "state/SphereLayoutChoice.h"
 
 namespace deme {
 
@@ -46,6 +47,7 @@ void CpuKinematics::submit(const DetectionOrder& order) {
         m_work.frame = m_live.frame;
         m_work.domainSize = m_live.domainSize;
         m_work.spheres = m_live.spheres;
+        sphereOwners(m_live, m_work.spheres.owner);  // (the worker's state has the full layout's)
         m_work.analytical = m_live.analytical;
         m_work.triangles.owner = m_live.triangles.owner;
         m_workGeometryStale = false;

@@ -11,6 +11,7 @@
 #include "backend/cpu/ContactARuns.h"
 #include "backend/cpu/ForcePassLoop.h"
 #include "physics/BuiltInForceModels.h"
+#include "state/SphereLayout.h"
 
 namespace deme {
 
@@ -73,7 +74,7 @@ void buildOwnerContactIndex(SimState& s) {
     c.ownerAStart.assign(nOwners + 1, 0);
     bodyID_t prev = 0;
     for (size_t i = 0; i < n; i++) {
-        const bodyID_t o = s.spheres.owner[c.geomA[i]];
+        const bodyID_t o = sphereOwner(s, c.geomA[i]);
         if (o < prev) throwError("contact detection", "internal: the contact set is not sorted by A's owner");
         if (o >= nOwners) throwError("contact detection", "internal: a contact's owner is not in the state");
         prev = o;

@@ -10,6 +10,7 @@
 #include "dynamics/OwnerStep.h"
 #include "physics/RigidBody.h"
 #include "runtime/MemoryAccounting.h"
+#include "state/SphereLayout.h"
 
 namespace deme {
 
@@ -161,7 +162,7 @@ void IntegrationSubset::update(SimState& s, const std::array<FamilyStepMotion, N
         }
     }
     for (size_t i = 0; i < s.spheres.size(); i++)
-        if (stepped[s.spheres.owner[i]]) spheres.push_back((bodyID_t)i);
+        if (stepped[sphereOwner(s, i)]) spheres.push_back((bodyID_t)i);
 }
 
 }  // namespace deme

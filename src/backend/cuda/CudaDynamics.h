@@ -97,7 +97,8 @@ class CudaDynamics : public DynamicsBackend {
     Stream m_stream = nullptr;  // dT's stream: every step kernel and copy of the dynamics side
     CudaModule m_dynamicsModule, m_exchangeModule;
     CudaKernel kBeginBatch, kClearLoads, kResolveMesh, kIntegrate, kPlaceAndFinish, kIntegrateAndPlace, kMaxTravelSince,
-        kTravelSinceOrder, kSteppedFlags, kSteppedScatter, kMarkContactOwners, kScatterFlagged, kFlagListed;
+        kTravelSinceOrder, kAnyOwnerAtRest, kSteppedFlags, kSteppedScatter, kMarkContactOwners, kScatterFlagged,
+        kFlagListed;
     // The batch's control block (dynamics/StepBatch.h) on the device, and its pinned host copy.
     DeviceBuffer<StepBatchControl> m_control;
     StepBatchControl* m_controlHost = nullptr;
@@ -124,7 +125,7 @@ class CudaDynamics : public DynamicsBackend {
     CudaModule m_conditionModule;
     CudaKernel kFamilyConditions;
     std::string m_conditionSource;
-    DeviceBuffer<unsigned int> m_changedCount;
+    DeviceBuffer<unsigned int> m_changedCount, m_anyOwnerAtRest;
     double m_compileSeconds = 0.0;
     bool m_fromCache = true;
     // DEME_CUDA_PROFILE_FROM_STEP: the step at which a profiler's capture starts (docs/gpu-tests.md).

@@ -54,6 +54,7 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     kIntegrate = m_dynamicsModule.kernel("deme_integrate");
     kPlaceAndFinish = m_dynamicsModule.kernel("deme_place_and_finish");
     kIntegrateAndPlace = m_dynamicsModule.kernel("deme_integrate_and_place");
+    kAnyOwnerAtRest = m_dynamicsModule.kernel("deme_any_owner_at_rest");
     kSteppedFlags = m_dynamicsModule.kernel("deme_stepped_flags");
     kSteppedScatter = m_dynamicsModule.kernel("deme_stepped_scatter");
     kMarkContactOwners = m_dynamicsModule.kernel("deme_mark_contact_owners");

@@ -82,6 +82,7 @@ struct CudaKinematics::Work {
     BinGrid grid{};
     DomainFrame frame{};
     uint32_t numOwners = 0, numSpheres = 0, numAnalytical = 0, numTriangles = 0;
+    bool spheresAreOwners = false;  // (Geometry's)
     // The snapshot and the contact list on this GPU, when staged.
     KinematicsInbox localIn;
     KinematicsOutbox localOut;
@@ -125,6 +126,7 @@ void CudaKinematics::Work::upload(const Geometry& g) {
     numSpheres = g.numSpheres;
     numAnalytical = g.numAnalytical;
     numTriangles = g.numTriangles;
+    spheresAreOwners = g.spheresAreOwners;
     if (staged) {
         localIn.spherePos.resizeDiscarding(numSpheres);
         localIn.triVert.resizeDiscarding(3 * (size_t)numTriangles);
@@ -173,6 +175,10 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     v.analytical.inside = anaInside.data();
     v.triangles.owner = triOwner.data();
     v.cache.spherePos = src.spherePos.data();
+    // Where spheres are their owners the snapshot's centres are the owners' positions, and sphere i's
+    // owner is i: the state keeps no owners to read (state/SphereLayout.h).
+    v.spheresAreOwners = spheresAreOwners;
+    v.cache.ownerPos = src.spherePos.data();
     v.cache.analPos = src.analPos.data();
     v.cache.analDir = src.analDir.data();
     v.cache.triVert = src.triVert.data();

@@ -5,7 +5,8 @@
 // owners' results do not change. With such a subset, the owners whose loads a step clears are also a
 // subset: the stepped ones and those of some contact of the set (others get no load), listed again
 // with each installed set; all loads are cleared once then, so that an owner that drops out of the
-// list reads zero.
+// list reads zero. Where no owner is at rest (most runs), a step needs no lists: then none is held
+// (the flags and their sums alone would be 16 B per sphere).
 #include "backend/cuda/CudaDynamics.h"
 
 namespace deme::cuda {
@@ -14,6 +15,23 @@ void CudaDynamics::updateStepSubset() {
     const Stream st = m_stream;
     const unsigned int nO = m_view.numOwners, nS = m_view.numSpheres;
     m_subsetStale = false;
+    if (m_anyOwnerAtRest.size() != 1) m_anyOwnerAtRest.resizeDiscarding(1);
+    m_anyOwnerAtRest.zeroAsync(st);
+    if (nO)
+        launch(kAnyOwnerAtRest, blocksFor(nO, 256), 256, 0, st, m_view, (const FamilyStepMotion*)m_motion.data(),
+               m_anyOwnerAtRest.data());
+    unsigned int anyAtRest = 0;
+    m_anyOwnerAtRest.downloadAsync(&anyAtRest, 1, st);
+    synchronize(st);
+    if (!anyAtRest) {
+        m_subsetAll = true;
+        m_loadOwnersStale = false;
+        for (DeviceBuffer<unsigned int>* b :
+             {&m_ownerStepped, &m_ownerStepOffset, &m_sphereStepped, &m_sphereStepOffset})
+            b->release();
+        for (DeviceBuffer<bodyID_t>* b : {&m_steppedOwners, &m_steppedSpheres, &m_loadOwners}) b->release();
+        return;
+    }
     m_ownerStepped.resizeDiscarding(nO + 1);
     m_ownerStepOffset.resizeDiscarding(nO + 1);
     m_sphereStepped.resizeDiscarding(nS + 1);

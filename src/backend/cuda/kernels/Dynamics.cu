@@ -384,6 +384,15 @@ extern "C" __global__ void deme_integrate_and_place(StateView s, StepBatchContro
     if (threadIdx.x == 0) finishStep(ctl, red);
 }
 
+// *anyAtRest = 1 if some owner is fixed and at rest (its step would be itself: the active box's
+// dormant grains); left as it was otherwise. One thread per owner. Where none is, every owner is
+// stepped and the step needs no lists (deme_stepped_flags).
+extern "C" __global__ void deme_any_owner_at_rest(StateView s, const FamilyStepMotion* motion,
+                                                  unsigned int* anyAtRest) {
+    const size_t o = globalIndex();
+    if (o < s.numOwners && ownerAtRest(s, motion, o)) *anyAtRest = 1u;
+}
+
 // Which owners and spheres a step integrates and places (backend/cpu/Integration.h,
 // IntegrationSubset): 1 in ownerStepped[o] unless owner o is fixed and at rest, 1 in
 // sphereStepped[i] if its owner is stepped. One thread per owner and per sphere.
@@ -391,7 +400,7 @@ extern "C" __global__ void deme_stepped_flags(StateView s, const FamilyStepMotio
                                               unsigned int* sphereStepped) {
     const size_t i = globalIndex();
     if (i < s.numOwners) ownerStepped[i] = ownerAtRest(s, motion, i) ? 0u : 1u;
-    if (i < s.numSpheres) sphereStepped[i] = ownerAtRest(s, motion, s.spheres.owner[i]) ? 0u : 1u;
+    if (i < s.numSpheres) sphereStepped[i] = ownerAtRest(s, motion, sphereOwner(s, i)) ? 0u : 1u;
 }
 
 // The active box: flags[o] = 1 for the owners of both geometries of every contact of the set (the
@@ -400,7 +409,7 @@ extern "C" __global__ void deme_mark_contact_owners(StateView s, unsigned int* f
     const size_t i = globalIndex();
     if (i >= s.numContacts) return;
     const ContactView& c = s.contacts;
-    flags[s.spheres.owner[c.geomA[i]]] = 1u;
+    flags[sphereOwner(s, c.geomA[i])] = 1u;
     flags[geometryOwner(s, contactTypeAt(s, i), c.geomB[i])] = 1u;
 }
 
