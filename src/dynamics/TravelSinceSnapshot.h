@@ -10,8 +10,8 @@
 namespace deme {
 
 // What an owner travelled since an order's snapshot: its travel now less its travel then. Travel
-// only grows between two installations and a float difference of a >= b is never negative, so
-// this is >= 0 (the max only guards an order kept across a restart's upload).
+// only grows between two installations, an order is taken (or dropped) before the next one, and a
+// float difference of a >= b is never negative: so this is >= 0, the max a guard only.
 DEME_HD_INLINE float travelSinceOrderSnapshot(float travel, float travelAtOrder) {
     const float d = travel - travelAtOrder;
     return d > 0.f ? d : 0.f;
