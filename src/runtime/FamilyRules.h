@@ -28,6 +28,12 @@ class FamilyRules {
     // Family changes on conditions (ChangeFamilyWhen), checked in this order at each detection.
     std::vector<FamilyCondition>& conditions() { return m_conditions; }
     const std::vector<FamilyCondition>& conditions() const { return m_conditions; }
+    // Whether some family is fixed: only then can an owner be at rest (dynamics/OwnerStep.h, ownerAtRest).
+    bool anyFixed() const {
+        for (const FamilyMotion& m : m_motion)
+            if (m.fixed) return true;
+        return false;
+    }
     // Families whose owners are dormant: fixed, and with contacts disabled with every fixed family
     // (itself included), so that their pairs among each other never need detecting. 1 per family.
     // And 1 per family with a prescribed velocity component: its owners move.

@@ -286,18 +286,17 @@ void Simulation::setOwnerPos(size_t owner, const double3& p, const char* call) {
 
 Simulation::Resumable Simulation::resumable() const {
     stateWithContacts();  // the backend's contact set is the host's record now
-    Resumable r{m_time,
-                m_step,
-                m_lastMaxSpeed,
-                m_realContacts,
-                m_realSphereSphere,
-                m_contacts.frequency().learned(),
-                m_contacts.progress(),
-                false};
+    if (m_resume) return *m_resume;  // read and not yet stepped: what was read
     // Before the first step, or right after an edit, there is no set in use to go on with.
-    r.contactSetResumable = !m_backendStale && m_backends.dynamics->contactSetResumable();
-    if (m_resume) r = *m_resume;  // read and not yet stepped: what was read
-    return r;
+    const bool resumable = !m_backendStale && m_backends.dynamics->contactSetResumable();
+    return Resumable{m_time,
+                     m_step,
+                     m_lastMaxSpeed,
+                     m_realContacts,
+                     m_realSphereSphere,
+                     m_contacts.frequency().learned(),
+                     m_contacts.progress(),
+                     resumable};
 }
 
 void Simulation::restore(SimState&& state, const Resumable& r) {

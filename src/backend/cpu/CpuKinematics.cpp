@@ -3,7 +3,6 @@
 #include <deme/Error.h>
 
 #include "parallel/Parallel.h"
-#include "state/SphereLayoutChoice.h"
 
 namespace deme {
 
@@ -47,7 +46,9 @@ void CpuKinematics::submit(const DetectionOrder& order) {
         m_work.frame = m_live.frame;
         m_work.domainSize = m_live.domainSize;
         m_work.spheres = m_live.spheres;
-        sphereOwners(m_live, m_work.spheres.owner);  // (the worker's state has the full layout's)
+        // Where spheres are their owners the snapshot's centres are the owners' positions (below), and
+        // sphere i's owner is i: the worker keeps no owners either (state/SphereLayout.h).
+        m_work.spheresAreOwners = m_live.spheresAreOwners;
         m_work.analytical = m_live.analytical;
         m_work.triangles.owner = m_live.triangles.owner;
         m_workGeometryStale = false;
@@ -89,7 +90,7 @@ void CpuKinematics::run() {
     Result result;
     while (m_mailbox.waitForOrder(order)) {
         try {
-            m_work.cache.spherePos.swap(order.spherePos);
+            (m_work.spheresAreOwners ? m_work.cache.ownerPos : m_work.cache.spherePos).swap(order.spherePos);
             m_work.cache.analPos.swap(order.analPos);
             m_work.cache.analDir.swap(order.analDir);
             m_work.cache.triVert.swap(order.triVert);

@@ -131,9 +131,11 @@ void IntegrationSubset::update(SimState& s, const std::array<FamilyStepMotion, N
     owners.clear();
     spheres.clear();
     reduced.clear();
-    std::vector<uint8_t> stepped(n);
-    size_t count = 0;
-    for (size_t o = 0; o < n; o++) {
+    // Only an owner of a fixed family can be at rest: without one (most runs) no sweep is needed.
+    const bool anyFixed = std::any_of(motion.begin(), motion.end(), [](const FamilyStepMotion& m) { return m.fixed; });
+    std::vector<uint8_t> stepped(anyFixed ? n : 0);
+    size_t count = anyFixed ? 0 : n;
+    for (size_t o = 0; anyFixed && o < n; o++) {
         stepped[o] = !ownerAtRest(s, motion.data(), o);
         count += stepped[o];
     }

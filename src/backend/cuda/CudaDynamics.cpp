@@ -98,6 +98,7 @@ void CudaDynamics::beginRun(const Settings&, const FamilyRules& families) {
     // dT's GPU stays current for the call's steps (and the contact-set work between them).
     select();
     prepareFamilyMotion(families);
+    m_anyFamilyFixed = families.anyFixed();
     m_subsetStale = true;
 }
 

@@ -151,6 +151,7 @@ class CudaDynamics : public DynamicsBackend {
     // rebuilt at the first step after an upload, a detection's install, a family change or the
     // start of a call, the only times families, velocities of fixed owners and the set change.
     bool m_subsetStale = true, m_subsetAll = true;
+    bool m_anyFamilyFixed = true;   // the call's rules (beginRun): without a fixed family every owner steps
     bool m_loadOwnersStale = true;  // the set changed: the owners whose loads a step clears follow
     DeviceBuffer<unsigned int> m_ownerStepped, m_ownerStepOffset, m_sphereStepped, m_sphereStepOffset;
     DeviceBuffer<bodyID_t> m_steppedOwners, m_steppedSpheres, m_loadOwners;

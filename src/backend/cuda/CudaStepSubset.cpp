@@ -6,7 +6,8 @@
 // subset: the stepped ones and those of some contact of the set (others get no load), listed again
 // with each installed set; all loads are cleared once then, so that an owner that drops out of the
 // list reads zero. Where no owner is at rest (most runs), a step needs no lists: then none is held
-// (the flags and their sums alone would be 16 B per sphere).
+// (the flags and their sums alone would be 16 B per sphere), and where no family is fixed none is
+// looked for either (no kernel, no wait for its answer at each call's start).
 #include "backend/cuda/CudaDynamics.h"
 
 namespace deme::cuda {
@@ -15,14 +16,15 @@ void CudaDynamics::updateStepSubset() {
     const Stream st = m_stream;
     const unsigned int nO = m_view.numOwners, nS = m_view.numSpheres;
     m_subsetStale = false;
-    if (m_anyOwnerAtRest.size() != 1) m_anyOwnerAtRest.resizeDiscarding(1);
-    m_anyOwnerAtRest.zeroAsync(st);
-    if (nO)
+    unsigned int anyAtRest = 0;
+    if (m_anyFamilyFixed && nO) {
+        if (m_anyOwnerAtRest.size() != 1) m_anyOwnerAtRest.resizeDiscarding(1);
+        m_anyOwnerAtRest.zeroAsync(st);
         launch(kAnyOwnerAtRest, blocksFor(nO, 256), 256, 0, st, m_view, (const FamilyStepMotion*)m_motion.data(),
                m_anyOwnerAtRest.data());
-    unsigned int anyAtRest = 0;
-    m_anyOwnerAtRest.downloadAsync(&anyAtRest, 1, st);
-    synchronize(st);
+        m_anyOwnerAtRest.downloadAsync(&anyAtRest, 1, st);
+        synchronize(st);
+    }
     if (!anyAtRest) {
         m_subsetAll = true;
         m_loadOwnersStale = false;
