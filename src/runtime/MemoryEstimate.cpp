@@ -41,7 +41,7 @@ struct SizedBytes {
 // memory (contactSetBytes), the CPU only for the pairs with a force, at the end of a call.
 size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host) {
     const void* notPerPair[] = {&c.force,  &c.meshContacts, &c.meshContactGroups, &c.ownerAStart,   &c.blockWindowStart,
-                                &c.window, &c.ownerBStart,  &c.ownerBSlots,       &c.ownerBInBlock, &c.bSlotWide};
+                                &c.window, &c.ownerBStart,  &c.ownerBSlots,       &c.ownerBInBlock, &c.windowOwner};
     size_t b = 0;
     forEachContactField(c, c, [&](const auto& v, const auto&, FieldRole role) {
         const void* f = &v;
@@ -147,12 +147,11 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
 size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs) {
     const unsigned int W = s.numWildcards;
     if (!onGpu) {
-        // One set with each pair's window slot; per owner its two starts, its bit of ownerBInBlock
-        // and its window slots (a force, a torque and the owner's entry each;
-        // backend/cpu/ForcePassLoop.h).
+        // One set; per owner its two starts, its bit of ownerBInBlock and its window slots (a force,
+        // a torque, the slot's owner and the owner's entry each; backend/cpu/ForcePassLoop.h).
         const size_t slots = (size_t)(ESTIMATED_WINDOW_SLOTS_PER_OWNER * (double)s.owners.size());
         return pairs * bytesPerPair(s.contacts, W, true) + 8 * (s.owners.size() + 1) + (s.owners.size() + 63) / 64 * 8 +
-               slots * (2 * sizeof(float3) + sizeof(uint32_t));
+               slots * (2 * sizeof(float3) + 2 * sizeof(uint32_t));
     }
     // Two sets (the one in use and the one history mapping reads from), the per-contact forces in
     // the idle set's wildcards' memory (grown to hold them where a pair has fewer than three

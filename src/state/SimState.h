@@ -116,11 +116,11 @@ struct ContactArrays : ContactFields<HostArray> {
         // made where they were.
         const bool restore = aAsRuns;
         const size_t bytes =
-            sizeof(uint32_t) *
-                (meshContacts.capacity() + meshContactGroups.capacity() + ownerAStart.capacity() +
-                 bSlotWide.capacity() + blockWindowStart.capacity() + ownerBStart.capacity() + ownerBSlots.capacity()) +
-            sizeof(uint16_t) * bSlot.capacity() + sizeof(WindowLoad) * window.capacity() +
-            sizeof(float3) * force.capacity() + sizeof(uint64_t) * ownerBInBlock.capacity();
+            sizeof(uint32_t) * (meshContacts.capacity() + meshContactGroups.capacity() + ownerAStart.capacity() +
+                                blockWindowStart.capacity() + windowOwner.capacity() + ownerBStart.capacity() +
+                                ownerBSlots.capacity()) +
+            sizeof(WindowLoad) * window.capacity() + sizeof(float3) * force.capacity() +
+            sizeof(uint64_t) * ownerBInBlock.capacity();
         release = release || bytes > KEEP_REBUILT_ARRAYS_UP_TO;
         auto reset = [release](auto& v) {
             if (release)
@@ -130,9 +130,8 @@ struct ContactArrays : ContactFields<HostArray> {
         };
         reset(meshContacts);
         reset(meshContactGroups);
-        reset(bSlot);
-        reset(bSlotWide);
         reset(blockWindowStart);
+        reset(windowOwner);
         reset(window);
         reset(ownerBStart);
         reset(ownerBSlots);

@@ -20,13 +20,6 @@ namespace deme {
 struct WindowLoad {
     float3 force, negTorque;
 };
-// A contact's B slot (bSlot, or bSlotWide where a block has more window slots than 15 bits
-// count): the top bit set for a B owner in the contact's own block, the low bits its index in the
-// block; else its slot in the block's window (from the block's first).
-template <class Slot>
-constexpr Slot inBlockSlotFlag() {
-    return (Slot)((Slot)1 << (8 * sizeof(Slot) - 1));
-}
 }  // namespace deme
 
 // Owners (paper §2.4): clumps, then analytical objects, then meshes, in a space-filling-curve order.
@@ -115,12 +108,12 @@ constexpr Slot inBlockSlotFlag() {
     /* pass adds to A's owner in contact order. B's share is summed per block of A's owners: a B  */    \
     /* owner in the block itself is summed by the block's thread and added to the owner at the    */    \
     /* block's end (ownerBInBlock); for the others each block has a window of slots, one per      */    \
-    /* distinct such owner (blockWindowStart; bSlot per contact), and the reduction adds an       */    \
-    /* owner's slots in block order (ownerBStart, ownerBSlots). So no load is stored per contact. */    \
+    /* distinct such owner in ascending order (blockWindowStart, windowOwner), in which the pass   */   \
+    /* finds a contact's slot by B's owner, and the reduction adds an owner's slots in block      */    \
+    /* order (ownerBStart, ownerBSlots). So nothing is stored per contact for the reduction.      */    \
     X(ownerAStart, uint32_t, HOST)      /* contacts [ownerAStart[o], ownerAStart[o + 1]) have A in o */ \
-    X(bSlot, uint16_t, HOST)            /* B's slot (inBlockSlotFlag); empty where bSlotWide is used */ \
-    X(bSlotWide, uint32_t, HOST)        /* the same, where a block's window has over 32,767 slots */    \
     X(blockWindowStart, uint32_t, HOST) /* block k's slots: [blockWindowStart[k], ... [k + 1]) */       \
+    X(windowOwner, bodyID_t, HOST)      /* per slot: its B owner (ascending within a block) */          \
     X(window, WindowLoad, HOST)         /* per slot: B's owner's loads from the block's contacts */     \
     X(ownerBStart, uint32_t, HOST)      /* owner o takes slots ownerBSlots[ownerBStart[o] ..] as B */   \
     X(ownerBSlots, uint32_t, HOST)                                                                      \

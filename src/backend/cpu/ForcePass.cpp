@@ -1,8 +1,6 @@
 #include "backend/cpu/ForcePass.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <cstring>
 #include <vector>
 
 #include <deme/Error.h>
@@ -35,36 +33,6 @@ ForcePassResult frictionlessHertzForcePass(SimState& s, double time, double dt, 
     return runForcePass(s, model, time, dt, store);
 }
 
-namespace {
-
-// DEME_WIDE_REDUCTION_SLOTS=1 takes 4-byte slots for any set (the tests compare the two widths).
-bool wideSlotsForced() {
-    const char* v = std::getenv("DEME_WIDE_REDUCTION_SLOTS");
-    return v && std::strcmp(v, "1") == 0;
-}
-
-// Each contact's B slot (inBlockSlotFlag, state/StateFields.h) in `slots`, per block's window.
-template <class Slot>
-void fillBSlots(SimState& s, const std::vector<std::vector<bodyID_t>>& window, std::vector<Slot>& slots) {
-    ContactArrays& c = s.contacts;
-    const size_t n = c.size(), nOwners = s.owners.size(), nBlocks = window.size();
-    slots.resize(n);
-#pragma omp parallel for schedule(dynamic, 4) if (n > PARALLEL_MIN_ITEMS)
-    for (long k = 0; k < (long)nBlocks; k++) {
-        size_t begin, end;
-        forcePassBlockRange(c, (size_t)k, nOwners, begin, end);
-        const std::vector<bodyID_t>& w = window[k];
-        for (size_t i = begin; i < end; i++) {
-            const bodyID_t b = contactOwnerB(s, i);
-            slots[i] = b < nOwners && b / FORCE_PASS_BLOCK_OWNERS == (size_t)k
-                           ? (Slot)(inBlockSlotFlag<Slot>() | (Slot)(b % FORCE_PASS_BLOCK_OWNERS))
-                           : (Slot)(std::lower_bound(w.begin(), w.end(), b) - w.begin());
-        }
-    }
-}
-
-}  // namespace
-
 void buildOwnerContactIndex(SimState& s) {
     ContactArrays& c = s.contacts;
     const size_t n = c.size();
@@ -85,9 +53,8 @@ void buildOwnerContactIndex(SimState& s) {
     // is indexed, which reads B only.
     keepContactAAsRuns(s, true);
     // B's side: per block of A's owners, the distinct owners its contacts have as B outside the
-    // block (the block's window, ascending), and each contact's slot in it; a B owner inside the
-    // block is summed by the block's own thread (most of them: a block is a compact clump of
-    // grains), marked in ownerBInBlock.
+    // block (the block's window, ascending); a B owner inside the block is summed by the block's
+    // own thread (most of them: a block is a compact clump of grains), marked in ownerBInBlock.
     const size_t nBlocks = forcePassBlocks(nOwners);
     c.ownerBInBlock.assign((nOwners + 63) / 64, 0);
     std::vector<std::vector<bodyID_t>> window(nBlocks);
@@ -115,17 +82,14 @@ void buildOwnerContactIndex(SimState& s) {
         c.blockWindowStart[k + 1] = c.blockWindowStart[k] + (uint32_t)window[k].size();
     }
     const size_t nSlots = c.blockWindowStart[nBlocks];
-    if (nSlots >= inBlockSlotFlag<uint32_t>())
+    if (nSlots >= WINDOW_SLOT_IN_BLOCK)
         throwError("DoDynamics", "a contact set with " + std::to_string(nSlots) +
                                      " reduction slots is more than the CPU backend indexes (2^31)");
-    // Each contact's slot, relative to its block's: 2 bytes, or 4 where a block's window has more
-    // slots than 15 bits count (a block of 512 owners with over 64 distinct B owners outside it each).
-    size_t largestWindow = 0;
-    for (const std::vector<bodyID_t>& w : window) largestWindow = std::max(largestWindow, w.size());
-    if (largestWindow < inBlockSlotFlag<uint16_t>() && !wideSlotsForced())
-        fillBSlots(s, window, c.bSlot);
-    else
-        fillBSlots(s, window, c.bSlotWide);
+    // Each slot's owner, ascending within its block: the force pass finds a contact's slot by B's
+    // owner there (backend/cpu/ForcePassLoop.h), so no slot is kept per contact.
+    c.windowOwner.resize(nSlots);
+    for (size_t k = 0; k < nBlocks; k++)
+        std::copy(window[k].begin(), window[k].end(), c.windowOwner.begin() + c.blockWindowStart[k]);
     // Per owner, its slots in block order (a fixed order for its sums).
     c.ownerBStart.assign(nOwners + 1, 0);
     for (const std::vector<bodyID_t>& w : window)
