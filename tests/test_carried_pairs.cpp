@@ -5,6 +5,7 @@
 // bit with every pair kept (DEME_KEEP_WHOLE_SET=1).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -82,6 +83,22 @@ TEST(CarriedPairs, KeepsThePairsThatHandSomethingWithTheirHistoryPooled) {
     EXPECT_EQ(h[1], -2.5f);
     EXPECT_TRUE(std::signbit(h[6]));
     EXPECT_EQ(h[2] + h[3] + h[4] + h[5] + h[7], 0.f);
+}
+
+// A set that keeps A as runs (backend/cpu/ContactARuns.h: sphere o is owner o, geomA let go) makes A
+// for the kept pairs only, from the runs, and holds geomA again.
+TEST(CarriedPairs, KeepsThePairsThatHandSomethingWhereAIsKeptAsRuns) {
+    SimState s = handMadeSet();
+    ContactArrays& c = s.contacts;
+    c.ownerAStart.clear();
+    for (uint32_t o = 0; o <= 11; o++) c.ownerAStart.push_back(std::min(o, 10u));  // pair i's A is owner i
+    std::vector<bodyID_t>().swap(c.geomA);
+    c.aAsRuns = true;
+    ASSERT_TRUE(keepOnlyCarriedPairs(s));
+    EXPECT_FALSE(c.aAsRuns);
+    expectCarriedPairsOnly(c);
+    EXPECT_EQ(c.wildcards.size(), kCarried.size() * W);
+    EXPECT_EQ(c.wildcards[0], 1.5f);
 }
 
 // Nothing dropped: where a contact-init rule gives new pairs values (a found pair of zeros keeps its

@@ -11,8 +11,11 @@ namespace deme {
 // Drops the pairs of s.contacts that carry nothing to the next set, where that is most of them and
 // no contact-init rule is set (new pairs would get its values, found ones not). Returns whether it
 // dropped any: the set is then only the next installation's source, and serves no step (CpuDynamics
-// detects afresh if that installation fails). The set's index is assumed emptied already.
-// DEME_KEEP_WHOLE_SET=1 keeps every pair (for comparisons).
+// detects afresh if that installation fails). Where the set keeps A as runs
+// (backend/cpu/ContactARuns.h), its index must still be built: the kept pairs' A is made from the
+// runs (restoring every pair's first was 4 B a pair at a detection's peak), and the set then holds
+// geomA again; the caller empties the index after. DEME_KEEP_WHOLE_SET=1 keeps every pair (for
+// comparisons).
 bool keepOnlyCarriedPairs(SimState& s);
 
 }  // namespace deme

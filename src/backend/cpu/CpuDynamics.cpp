@@ -170,8 +170,10 @@ void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
 }
 
 bool CpuDynamics::beforeDetectNow() {
-    m_s.contacts.resetIndex();
+    // Trimmed while the index gives A (runs), then the index emptied (restoring A only where the
+    // set was not trimmed).
     m_setTrimmed = keepOnlyCarriedPairs(m_s) || m_setTrimmed;
+    m_s.contacts.resetIndex();
     return m_setTrimmed;
 }
 

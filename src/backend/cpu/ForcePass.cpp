@@ -90,16 +90,17 @@ void buildOwnerContactIndex(SimState& s) {
     c.windowOwner.resize(nSlots);
     for (size_t k = 0; k < nBlocks; k++)
         std::copy(window[k].begin(), window[k].end(), c.windowOwner.begin() + c.blockWindowStart[k]);
-    // Per owner, its slots in block order (a fixed order for its sums).
+    std::vector<std::vector<bodyID_t>>().swap(window);
+    // Per owner, its slots in block order (a fixed order for its sums). The starts serve as the
+    // fill's cursors, each left at the next owner's start and shifted back after (a copy of them
+    // would be 4 B per owner more at the index's peak, a detection's).
     c.ownerBStart.assign(nOwners + 1, 0);
-    for (const std::vector<bodyID_t>& w : window)
-        for (bodyID_t o : w) c.ownerBStart[o + 1]++;
+    for (bodyID_t o : c.windowOwner) c.ownerBStart[o + 1]++;
     for (size_t o = 0; o < nOwners; o++) c.ownerBStart[o + 1] += c.ownerBStart[o];
     c.ownerBSlots.resize(nSlots);
-    std::vector<uint32_t> fill(c.ownerBStart.begin(), c.ownerBStart.end() - 1);
-    for (size_t k = 0; k < nBlocks; k++)
-        for (size_t j = 0; j < window[k].size(); j++)
-            c.ownerBSlots[fill[window[k][j]]++] = c.blockWindowStart[k] + (uint32_t)j;
+    for (uint32_t w = 0; w < (uint32_t)nSlots; w++) c.ownerBSlots[c.ownerBStart[c.windowOwner[w]]++] = w;
+    for (size_t o = nOwners; o > 0; o--) c.ownerBStart[o] = c.ownerBStart[o - 1];
+    c.ownerBStart[0] = 0;
     c.window.assign(nSlots, WindowLoad{make_float3(0.f), make_float3(0.f)});
 }
 

@@ -60,20 +60,40 @@ namespace {
 // The most pairs a CPU set indexes (its indices are 32-bit, and a flag bit is kept free).
 constexpr size_t MAX_INDEXED_PAIRS = 0x80000000u;
 
+// The new set's mesh states that are not 0 (its sphere-triangle pairs carried from the old set),
+// each thread's in pair order: the set's byte a pair is made from them once the set is indexed and
+// its geomA let go (A as runs), not beside geomA at an installation's peak (the early mixer's 17 MB).
+struct NonzeroMeshStates {
+    explicit NonzeroMeshStates(int threads) : byThread(threads) {}
+    void record(int thread, size_t i, uint8_t v) {
+        if (v) byThread[thread].emplace_back((uint32_t)i, v);
+    }
+    void into(std::vector<uint8_t>& meshState, size_t n) const {
+        meshState.assign(n, 0);
+        for (const auto& list : byThread)
+            for (const auto& [i, v] : list) meshState[i] = v;
+    }
+    std::vector<std::vector<std::pair<uint32_t, uint8_t>>> byThread;
+};
+
+int mappingThreads(size_t nNew) { return nNew > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1; }
+
 // The new set's history, W floats per pair, where the set in use keeps that form (a settled bed:
 // most pairs touch): one pass, no other array. The form is chosen afterwards (chooseHistoryForm).
 void mapDenseHistory(const SimState& s, const DetectedContacts& fresh, const OldContactHistory& old,
-                     std::vector<float>& wildcards, std::vector<uint8_t>& meshState, std::vector<uint8_t>& persistent) {
+                     std::vector<float>& wildcards, NonzeroMeshStates& meshStates, std::vector<uint8_t>& persistent) {
     const size_t nNew = fresh.size();
     const unsigned int W = old.W;
     const ContactKeys freshKeys = keysOf(fresh.geomA, fresh.geomB);
     wildcards.resize(nNew * W);
-#pragma omp parallel for schedule(static) if (nNew > PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < nNew; i++) {
-        uint8_t unkept;  // (no pair is persistent where the set keeps no flags)
-        carryPairHistory(s, freshKeys, old, (unsigned int)i, wildcards.data() + i * W, meshState[i],
-                         persistent.empty() ? unkept : persistent[i]);
-    }
+    forEachThreadShare(nNew, mappingThreads(nNew), [&](int t, size_t b, size_t e) {
+        for (size_t i = b; i < e; i++) {
+            uint8_t ms, unkept;  // (no pair is persistent where the set keeps no flags)
+            carryPairHistory(s, freshKeys, old, (unsigned int)i, wildcards.data() + i * W, ms,
+                             persistent.empty() ? unkept : persistent[i]);
+            meshStates.record(t, i, ms);
+        }
+    });
 }
 
 // The same where the set in use is pooled, or there is none: first whether each pair has a history,
@@ -83,14 +103,14 @@ void mapDenseHistory(const SimState& s, const DetectedContacts& fresh, const Old
 // at the installation's peak; pooled, only the pairs with a history need it). Returns whether it
 // pooled.
 bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, const OldContactHistory& old,
-                            std::vector<float>& wildcards, PooledHistory& pool, std::vector<uint8_t>& meshState,
+                            std::vector<float>& wildcards, PooledHistory& pool, NonzeroMeshStates& meshStates,
                             std::vector<uint8_t>& persistent) {
     const size_t nNew = fresh.size();
     const unsigned int W = old.W;
     const ContactKeys freshKeys = keysOf(fresh.geomA, fresh.geomB);
     std::vector<uint64_t> bits((nNew + 63) / 64, 0);
     const size_t nWords = bits.size();
-    const int T = nNew > PARALLEL_MIN_ITEMS ? cpuThreadCount() : 1;
+    const int T = mappingThreads(nNew);
     std::vector<size_t> first(T + 1, 0);
     auto pairsOf = [nNew](size_t w, size_t& b, size_t& e) {
         b = 64 * w;
@@ -104,9 +124,10 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
             pairsOf(w, b, e);
             uint64_t word = 0;
             for (size_t i = b; i < e; i++) {
-                uint8_t unkept;  // (as in mapDenseHistory)
-                carryPairHistory(s, freshKeys, old, (unsigned int)i, h.data(), meshState[i],
+                uint8_t ms, unkept;  // (as in mapDenseHistory)
+                carryPairHistory(s, freshKeys, old, (unsigned int)i, h.data(), ms,
                                  persistent.empty() ? unkept : persistent[i]);
+                meshStates.record(t, i, ms);
                 if (pairNeedsHistorySlot(contactTypeOf(s, fresh.geomB[i]), h.data(), W)) {
                     word |= 1ull << (i & 63);
                     k++;
@@ -169,15 +190,16 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh, bool modelWri
     PooledHistory pool;
     // The persistent flags where a pair of the old set has one or the model may set one; else none
     // (every pair's is 0: ContactArrays::persistent).
-    std::vector<uint8_t> meshState(nNew), persistent(anyPersistent || modelWritesPersistent ? nNew : 0);
+    std::vector<uint8_t> persistent(anyPersistent || modelWritesPersistent ? nNew : 0);
+    NonzeroMeshStates meshStates(mappingThreads(nNew));
     // The history's form (backend/cpu/HistoryForm.h): a dense set is mapped dense and pooled after
     // where few of its pairs have a history; otherwise the form is chosen before the history is made.
     const bool mapDense = W == 0 || (!oldPooled && c.size() > 0);
-    const bool pooled = !mapDense && mapHistoryChoosingForm(s, fresh, old, wildcards, pool, meshState, persistent);
-    if (mapDense) mapDenseHistory(s, fresh, old, wildcards, meshState, persistent);
+    const bool pooled = !mapDense && mapHistoryChoosingForm(s, fresh, old, wildcards, pool, meshStates, persistent);
+    if (mapDense) mapDenseHistory(s, fresh, old, wildcards, meshStates, persistent);
     c.geomA.swap(fresh.geomA);
     c.geomB.swap(fresh.geomB);
-    c.meshState.swap(meshState);
+    releaseVector(c.meshState);  // the old set's (made anew below)
     c.persistent.swap(persistent);
     if (pooled) {
         releaseVector(c.wildcards);
@@ -192,10 +214,10 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh, bool modelWri
     fresh = DetectedContacts();
     releaseVector(wildcards);
     pool.release();
-    releaseVector(meshState);
     releaseVector(persistent);
     if (mapDense) chooseHistoryForm(s);
     indexContactSet(s);
+    meshStates.into(c.meshState, nNew);
 }
 
 void keepPersistentFlagsWhereUsed(ContactArrays& c, bool modelWritesPersistent) {
