@@ -32,4 +32,10 @@ bool fixLargeBlockBound() {
     return fixed;
 }
 
+void returnFreedHeapPages() {
+#if defined(__GLIBC__)
+    malloc_trim(0);
+#endif
+}
+
 }  // namespace deme

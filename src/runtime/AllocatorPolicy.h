@@ -17,4 +17,11 @@ bool allocatorTunedByUser();
 
 constexpr unsigned long LARGE_BLOCK_BYTES = 4ul << 20;
 
+// Gives the heap's free pages back to the system (glibc's malloc_trim): blocks under
+// LARGE_BLOCK_BYTES that a large scene makes at every detection (a pool's bits, their ranks, the
+// trim's marks: 1-2 MiB each at 2.9 M spheres) are freed in the heap's middle, where they stay
+// resident until reused, some MiB per detection. Called after an installation where the set is
+// large (CpuDynamics::install); a no-op elsewhere.
+void returnFreedHeapPages();
+
 }  // namespace deme

@@ -167,6 +167,8 @@ void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
     releaseOrderBaseline();
     m_setTrimmed = false;
     m_subsetStale = true;  // the reduction's list (owners stepped or in a contact) follows the set
+    // A large set's installation freed blocks in the heap's middle (runtime/AllocatorPolicy.h).
+    if (m_s.contacts.size() * sizeof(bodyID_t) > KEEP_REBUILT_ARRAYS_UP_TO) returnFreedHeapPages();
 }
 
 bool CpuDynamics::beforeDetectNow() {
