@@ -133,31 +133,20 @@ TEST(ForceReduction, OwnersSumsCancelAndDoNotDependOnTheThreadCount) {
     EXPECT_LT(length(F), rounding * fScale) << "sum of forces " << F.x << " " << F.y << " " << F.z;
     EXPECT_LT(length(L), rounding * lScale) << "sum of moments " << L.x << " " << L.y << " " << L.z;
 
-    // The same sums, bit for bit, whatever the number of threads.
-    for (int threads : {2, 3}) {
+    // The same sums, bit for bit, whatever the number of threads, and with the 4-byte slots a set
+    // takes where a block's window has more slots than 2 bytes count.
+    for (int threads : {2, 3, -2}) {
+        const bool wide = threads < 0;
+        const ScopedEnvironmentVariable width("DEME_WIDE_REDUCTION_SLOTS", wide ? "1" : "0");
         SimState used;
-        const Loads many = passAndReduce(scene, threads, &used);
+        const Loads many = passAndReduce(scene, std::abs(threads), &used);
+        EXPECT_EQ(used.contacts.outSlotWide.empty(), !wide);
+        EXPECT_EQ(used.contacts.outSlot.empty(), wide);
         ASSERT_EQ(many.force.size(), one.force.size());
         for (size_t o = 0; o < one.force.size(); o++) {
             ASSERT_EQ(std::memcmp(&many.force[o], &one.force[o], sizeof(float3)), 0) << "owner " << o;
             ASSERT_EQ(std::memcmp(&many.torque[o], &one.torque[o], sizeof(float3)), 0) << "owner " << o;
         }
-    }
-}
-
-// The window's slots by owner (backend/cpu/ForcePassLoop.h): every owner of a window finds its own
-// slot, for windows of every size up to one with more slots than 2 bytes count (owners chosen to
-// collide in the table: multiples of its size, and runs of neighbours).
-TEST(ForceReduction, WindowSlotTableFindsEveryOwnersSlot) {
-    WindowSlotTable table;
-    for (uint32_t count : {0u, 1u, 2u, 7u, 8u, 9u, 300u, 1000u, 70000u}) {
-        std::vector<bodyID_t> owners;
-        for (uint32_t j = 0; j < count; j++)
-            owners.push_back(j % 3 == 0 ? j * 1024u : j % 3 == 1 ? 5000000u + j : 0xFFFFFFF0u - j);
-        std::sort(owners.begin(), owners.end());
-        owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
-        table.build(owners.data(), (uint32_t)owners.size());
-        for (uint32_t j = 0; j < owners.size(); j++) ASSERT_EQ(table.slotOf(owners[j]), j) << count << " owners";
     }
 }
 
@@ -205,6 +194,7 @@ TEST(ForceReduction, StoredForcesReadTheSameInBothFormsAndSumToTheOwnersForces) 
 // detected with a wide margin: a storing pass keeps nothing, and the set holds no load per pair (the
 // windows hold one slot per B owner of a block, not one per pair).
 TEST(ForceReduction, PairsApartKeepNoLoads) {
+    const ScopedEnvironmentVariable narrow("DEME_WIDE_REDUCTION_SLOTS", "0");  // the 2-byte slots read below
     const Scene scene = compressedBlock();
     SimState s;
     // Three-sphere clumps 2.1 R apart: within 4 R of each other, so a margin of 5 R finds pairs
@@ -225,8 +215,18 @@ TEST(ForceReduction, PairsApartKeepNoLoads) {
     // a B owner can be in; here about 0.75 per owner (1.5 while the block's own B owners had slots).
     EXPECT_LT(c.window.size(), s.owners.size());
     // A B owner in A's own block is summed in the pass (no slot), the others in their block's
-    // window, found there by owner (ascending, each once): nothing per contact.
-    size_t inBlock = 0;
+    // window: each crossing contact's slot, in contact order, names its B owner there.
+    ASSERT_TRUE(c.outSlotWide.empty());
+    std::vector<std::vector<bodyID_t>> windowOwners(c.blockWindowStart.size() - 1);
+    for (size_t o = 0; o < s.owners.size(); o++)
+        for (uint32_t j = c.ownerBStart[o]; j < c.ownerBStart[o + 1]; j++) {
+            const uint32_t w = c.ownerBSlots[j];
+            const size_t k = std::upper_bound(c.blockWindowStart.begin(), c.blockWindowStart.end(), w) -
+                             c.blockWindowStart.begin() - 1;
+            windowOwners[k].resize(c.blockWindowStart[k + 1] - c.blockWindowStart[k]);
+            windowOwners[k][w - c.blockWindowStart[k]] = (bodyID_t)o;
+        }
+    size_t inBlock = 0, crossing = 0;
     for (size_t i = 0; i < c.size(); i++) {
         const bodyID_t a = s.spheres.owner[c.geomA[i]], b = contactOwnerB(s, i);
         const bool same = a / FORCE_PASS_BLOCK_OWNERS == b / FORCE_PASS_BLOCK_OWNERS;
@@ -236,16 +236,16 @@ TEST(ForceReduction, PairsApartKeepNoLoads) {
             continue;
         }
         const size_t k = a / FORCE_PASS_BLOCK_OWNERS;
-        const auto first = c.windowOwner.begin() + c.blockWindowStart[k],
-                   last = c.windowOwner.begin() + c.blockWindowStart[k + 1];
-        EXPECT_TRUE(std::binary_search(first, last, b)) << "contact " << i;
+        ASSERT_LT(crossing, c.outSlot.size() - 1);
+        ASSERT_GE(crossing, c.blockOutStart[k]);
+        ASSERT_LT(crossing, c.blockOutStart[k + 1]);
+        ASSERT_LT(c.outSlot[crossing], windowOwners[k].size()) << "contact " << i;
+        EXPECT_EQ(windowOwners[k][c.outSlot[crossing]], b) << "contact " << i;
+        crossing++;
     }
     ASSERT_GT(inBlock, 0u);
     ASSERT_LT(inBlock, c.size());
-    ASSERT_EQ(c.windowOwner.size(), c.window.size());
-    for (size_t k = 0; k + 1 < c.blockWindowStart.size(); k++)
-        for (uint32_t w = c.blockWindowStart[k] + 1; w < c.blockWindowStart[k + 1]; w++)
-            ASSERT_LT(c.windowOwner[w - 1], c.windowOwner[w]) << "block " << k;
+    EXPECT_EQ(crossing + 1, c.outSlot.size());  // two bytes a crossing contact, and one entry past
     std::cout << "[ windows  ] " << (double)c.window.size() / (double)s.owners.size() << " slots per owner, "
               << (double)c.size() / (double)s.owners.size() << " pairs per owner" << std::endl;
     for (size_t o = 0; o < s.owners.size(); o++) {

@@ -40,8 +40,9 @@ struct SizedBytes {
 // bookkeeping included where `host`. Not the per-contact force: the GPU keeps it in the idle set's
 // memory (contactSetBytes), the CPU only for the pairs with a force, at the end of a call.
 size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host) {
-    const void* notPerPair[] = {&c.force,  &c.meshContacts, &c.meshContactGroups, &c.ownerAStart,   &c.blockWindowStart,
-                                &c.window, &c.ownerBStart,  &c.ownerBSlots,       &c.ownerBInBlock, &c.windowOwner};
+    const void* notPerPair[] = {
+        &c.force,       &c.meshContacts, &c.meshContactGroups, &c.ownerAStart,   &c.blockWindowStart, &c.window,
+        &c.ownerBStart, &c.ownerBSlots,  &c.ownerBInBlock,     &c.blockOutStart, &c.outSlot,          &c.outSlotWide};
     size_t b = 0;
     forEachContactField(c, c, [&](const auto& v, const auto&, FieldRole role) {
         const void* f = &v;
@@ -147,11 +148,13 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
 size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs) {
     const unsigned int W = s.numWildcards;
     if (!onGpu) {
-        // One set; per owner its two starts, its bit of ownerBInBlock and its window slots (a force,
-        // a torque, the slot's owner and the owner's entry each; backend/cpu/ForcePassLoop.h).
+        // One set with the crossing pairs' 2-byte slots; per owner its two starts, its bit of
+        // ownerBInBlock and its window slots (a force, a torque and the owner's entry each;
+        // backend/cpu/ForcePassLoop.h).
         const size_t slots = (size_t)(ESTIMATED_WINDOW_SLOTS_PER_OWNER * (double)s.owners.size());
-        return pairs * bytesPerPair(s.contacts, W, true) + 8 * (s.owners.size() + 1) + (s.owners.size() + 63) / 64 * 8 +
-               slots * (2 * sizeof(float3) + 2 * sizeof(uint32_t));
+        const size_t crossing = (size_t)(ESTIMATED_CROSSING_PAIR_SHARE * (double)pairs);
+        return pairs * bytesPerPair(s.contacts, W, true) + crossing * sizeof(uint16_t) + 8 * (s.owners.size() + 1) +
+               (s.owners.size() + 63) / 64 * 8 + slots * (2 * sizeof(float3) + sizeof(uint32_t));
     }
     // Two sets (the one in use and the one history mapping reads from), the per-contact forces in
     // the idle set's wildcards' memory (grown to hold them where a pair has fewer than three

@@ -25,6 +25,9 @@ constexpr double ESTIMATED_PAIRS_PER_SPHERE = 6.0;
 // outside the block, backend/cpu/ForcePassLoop.h); MIXER-BENCH early spheres hold 0.52, the
 // compressed block of clumps of the tests 0.75.
 constexpr double ESTIMATED_WINDOW_SLOTS_PER_OWNER = 0.75;
+// The share of a set's pairs whose B owner is outside A's block, each with a window slot (the early
+// mixer's spheres and CPU-BED's bed: 0.23).
+constexpr double ESTIMATED_CROSSING_PAIR_SHARE = 0.3;
 
 struct MemoryEstimate {
     size_t bytes[NUM_MEMORY_GROUPS] = {};

@@ -117,10 +117,10 @@ struct ContactArrays : ContactFields<HostArray> {
         const bool restore = aAsRuns;
         const size_t bytes =
             sizeof(uint32_t) * (meshContacts.capacity() + meshContactGroups.capacity() + ownerAStart.capacity() +
-                                blockWindowStart.capacity() + windowOwner.capacity() + ownerBStart.capacity() +
-                                ownerBSlots.capacity()) +
-            sizeof(WindowLoad) * window.capacity() + sizeof(float3) * force.capacity() +
-            sizeof(uint64_t) * ownerBInBlock.capacity();
+                                blockWindowStart.capacity() + blockOutStart.capacity() + outSlotWide.capacity() +
+                                ownerBStart.capacity() + ownerBSlots.capacity()) +
+            sizeof(uint16_t) * outSlot.capacity() + sizeof(WindowLoad) * window.capacity() +
+            sizeof(float3) * force.capacity() + sizeof(uint64_t) * ownerBInBlock.capacity();
         release = release || bytes > KEEP_REBUILT_ARRAYS_UP_TO;
         auto reset = [release](auto& v) {
             if (release)
@@ -131,7 +131,9 @@ struct ContactArrays : ContactFields<HostArray> {
         reset(meshContacts);
         reset(meshContactGroups);
         reset(blockWindowStart);
-        reset(windowOwner);
+        reset(blockOutStart);
+        reset(outSlot);
+        reset(outSlotWide);
         reset(window);
         reset(ownerBStart);
         reset(ownerBSlots);

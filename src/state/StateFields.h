@@ -108,12 +108,15 @@ struct WindowLoad {
     /* pass adds to A's owner in contact order. B's share is summed per block of A's owners: a B  */    \
     /* owner in the block itself is summed by the block's thread and added to the owner at the    */    \
     /* block's end (ownerBInBlock); for the others each block has a window of slots, one per      */    \
-    /* distinct such owner in ascending order (blockWindowStart, windowOwner), in which the pass   */   \
-    /* finds a contact's slot by B's owner, and the reduction adds an owner's slots in block      */    \
-    /* order (ownerBStart, ownerBSlots). So nothing is stored per contact for the reduction.      */    \
+    /* distinct such owner (blockWindowStart), each such contact its slot in the window, listed   */    \
+    /* in contact order (outSlot from blockOutStart; a B owner is in A's block or not by its id), */    \
+    /* and the reduction adds an owner's slots in block order (ownerBStart, ownerBSlots). So no   */    \
+    /* load is stored per contact, and a slot only per contact that crosses a block (a quarter).  */    \
     X(ownerAStart, uint32_t, HOST)      /* contacts [ownerAStart[o], ownerAStart[o + 1]) have A in o */ \
     X(blockWindowStart, uint32_t, HOST) /* block k's slots: [blockWindowStart[k], ... [k + 1]) */       \
-    X(windowOwner, bodyID_t, HOST)      /* per slot: its B owner (ascending within a block) */          \
+    X(blockOutStart, uint32_t, HOST)    /* block k's crossing contacts' slots from outSlot[this] */     \
+    X(outSlot, uint16_t, HOST)          /* per crossing contact, its window slot; empty where ... */    \
+    X(outSlotWide, uint32_t, HOST)      /* ... a window has over 65,535 slots, and this is used */      \
     X(window, WindowLoad, HOST)         /* per slot: B's owner's loads from the block's contacts */     \
     X(ownerBStart, uint32_t, HOST)      /* owner o takes slots ownerBSlots[ownerBStart[o] ..] as B */   \
     X(ownerBSlots, uint32_t, HOST)                                                                      \

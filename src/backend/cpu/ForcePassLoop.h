@@ -116,57 +116,21 @@ inline void keepPooledHistory(PooledHistory& p, int thread, size_t b, size_t m, 
     }
 }
 
-// A contact's B sum in its block: the block's own owner j (WINDOW_SLOT_IN_BLOCK | j) or the
-// window's slot j (from the block's first).
-constexpr uint32_t WINDOW_SLOT_IN_BLOCK = 1u << 31;
-
-// A block's window slots by owner, for the pass to find a contact's slot from B's owner (the set
-// keeps no slot per contact: 2 bytes a pair, 12 a sphere in a dense packing, against the window's
-// owners, 4 bytes a slot at 0.5-0.75 slots an owner). Open addressing at most half full, rebuilt
-// per block by the thread that sweeps it; every contact's owner is in it (buildOwnerContactIndex).
-class WindowSlotTable {
-  public:
-    void build(const bodyID_t* owners, uint32_t count) {
-        unsigned int bits = 4;
-        while ((1u << bits) < 2 * count) bits++;
-        m_shift = 32 - bits;
-        m_mask = (1u << bits) - 1;
-        m_entries.assign((size_t)1 << bits, EMPTY);
-        for (uint32_t j = 0; j < count; j++) {
-            uint32_t h = hash(owners[j]);
-            while (m_entries[h] != EMPTY) h = (h + 1) & m_mask;
-            m_entries[h] = (uint64_t)owners[j] << 32 | j;
-        }
-    }
-    uint32_t slotOf(bodyID_t owner) const {
-        for (uint32_t h = hash(owner);; h = (h + 1) & m_mask)
-            if ((uint32_t)(m_entries[h] >> 32) == owner) return (uint32_t)m_entries[h];
-    }
-
-  private:
-    static constexpr uint64_t EMPTY = ~0ull;  // owner 2^32 - 1 is no owner
-    uint32_t hash(bodyID_t owner) const { return (uint32_t)(owner * 2654435761u) >> m_shift; }
-    std::vector<uint64_t> m_entries;
-    unsigned int m_shift = 28;
-    uint32_t m_mask = 15;
-};
-
-// A chunk's loads onto B's sums: the block's own (in-block owners) or its window's slots, chosen by
-// the slot's flag without a branch (the flag is mixed).
-inline void addBShares(const SimState& s, const WindowSlotTable& table, size_t blockFirstOwner, size_t b,
+// A chunk's loads onto B's sums: the block's own (B's owner in the block, known by its id) or its
+// window's slots (B's owner outside it: the chunk's crossing contacts take the block's list of
+// slots in turn from `cursor`), chosen without a branch (the two are mixed). The list has an entry
+// past its end, read and not used where the block's last crossing contact is behind.
+template <class Slot>
+inline void addBShares(const SimState& s, const Slot* outSlot, size_t& cursor, size_t blockFirstOwner, size_t b,
                        WindowLoad* blockWindow, WindowLoad* inBlock, const float3* force, const float3* torqueB,
                        size_t m) {
-    uint32_t slot[FORCE_PASS_CHUNK];
-    for (size_t j = 0; j < m; j++) {
-        const bodyID_t o = contactOwnerB(s, b + j);
-        const size_t inBlockIndex = (size_t)o - blockFirstOwner;  // wraps for owners below the block
-        slot[j] =
-            inBlockIndex < FORCE_PASS_BLOCK_OWNERS ? WINDOW_SLOT_IN_BLOCK | (uint32_t)inBlockIndex : table.slotOf(o);
-    }
     WindowLoad* const sums[2] = {blockWindow, inBlock};
     for (size_t j = 0; j < m; j++) {
-        const uint32_t w = slot[j];
-        WindowLoad& sum = sums[w >> 31][w & ~WINDOW_SLOT_IN_BLOCK];
+        const size_t inBlockIndex = (size_t)contactOwnerB(s, b + j) - blockFirstOwner;  // wraps below the block
+        const bool own = inBlockIndex < FORCE_PASS_BLOCK_OWNERS;
+        const size_t slot = own ? inBlockIndex : (size_t)outSlot[cursor];
+        cursor += !own;
+        WindowLoad& sum = sums[own][slot];
         sum.force += force[j];
         sum.negTorque -= torqueB[j];
     }
@@ -230,7 +194,6 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
         std::vector<float> chunkHistory(pooled ? FORCE_PASS_CHUNK * W : 0);
         // B's sums for the block's own owners (zeros between blocks: each is reset as it is added).
         std::vector<WindowLoad> inBlock(FORCE_PASS_BLOCK_OWNERS, WindowLoad{make_float3(0.f), make_float3(0.f)});
-        WindowSlotTable windowSlots;
         size_t firstBlock, lastBlock;
         forcePassThreadBlocks(s, thread, T, firstBlock, lastBlock);
         for (size_t k = firstBlock; k < lastBlock; k++) {
@@ -238,8 +201,7 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
             forcePassBlockRange(c, k, nOwners, begin, end);
             for (uint32_t w = c.blockWindowStart[k]; w < c.blockWindowStart[k + 1]; w++)
                 window[w].force = window[w].negTorque = make_float3(0.f);
-            windowSlots.build(c.windowOwner.data() + c.blockWindowStart[k],
-                              c.blockWindowStart[k + 1] - c.blockWindowStart[k]);
+            size_t crossing = c.blockOutStart[k];  // the next crossing contact's entry in the slots
             bodyID_t owner = 0;
             size_t run = k * FORCE_PASS_BLOCK_OWNERS;  // the owner whose run as A holds the pair
             float3 F = make_float3(0.f), tau = make_float3(0.f);
@@ -285,8 +247,13 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
                     F += force[j];
                     tau += torqueA[j];
                 }
-                addBShares(s, windowSlots, k * FORCE_PASS_BLOCK_OWNERS, b, window + c.blockWindowStart[k],
-                           inBlock.data(), force, torqueB, m);
+                WindowLoad* const blockWindow = window + c.blockWindowStart[k];
+                const size_t base = k * FORCE_PASS_BLOCK_OWNERS;
+                if (c.outSlotWide.empty())
+                    addBShares(s, c.outSlot.data(), crossing, base, b, blockWindow, inBlock.data(), force, torqueB, m);
+                else
+                    addBShares(s, c.outSlotWide.data(), crossing, base, b, blockWindow, inBlock.data(), force, torqueB,
+                               m);
                 if (storePairs) storeChunkForces(stored, thread, b, m, force);
             }
             if (end > begin) {
