@@ -156,13 +156,14 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs) {
         return pairs * bytesPerPair(s.contacts, W, true) + crossing * sizeof(uint16_t) + 8 * (s.owners.size() + 1) +
                (s.owners.size() + 63) / 64 * 8 + slots * (2 * sizeof(float3) + sizeof(uint32_t));
     }
-    // Two sets (the one in use and the one history mapping reads from), the per-contact forces in
-    // the idle set's wildcards' memory (grown to hold them where a pair has fewer than three
-    // wildcards), and the pairs (ids, type) of the outbox kT fills (backend/cuda/CudaDynamics,
-    // CudaContactSets, DeviceHistoryMapping).
+    // Two sets at an installation (the one history mapping reads from and the fresh one, whose
+    // pairs were the outbox kT filled); between installations the set in use, the outbox's pairs
+    // (the old set's buffers) and the idle set's wildcards, which hold the per-contact forces
+    // (grown to hold them where a pair has fewer than three wildcards): at most as much
+    // (backend/cuda/CudaContactSets.cpp, DeviceHistoryMapping).
     const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
     const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;
-    return pairs * (2 * bytesPerPair(s.contacts, W, false) + forceGrowth + 9);
+    return pairs * (2 * bytesPerPair(s.contacts, W, false) + forceGrowth);
 }
 
 size_t memoryLimit(size_t available, const char* call) {

@@ -69,11 +69,14 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     returnForceMemory();  // the fresh set's wildcards take the mapped history
     DeviceContacts& old = m_contacts[m_current];
     DeviceContacts& fresh = m_contacts[1 - m_current];
-    // The outbox's buffers become the fresh set's pairs; the fresh set's former ones (unused since
-    // the set before) become the outbox, which kT resizes before it writes.
+    // The outbox's buffers become the fresh set's pairs. The fresh set's former ones (dead since
+    // the set before) are let go before the fresh set's history is made: the installation's peak
+    // holds two sets, not a third set of pairs (8 B a pair).
     KinematicsOutbox& out = m_kinematics->outbox();
     std::swap(fresh.geomA, out.geomA);
     std::swap(fresh.geomB, out.geomB);
+    out.geomA.release();
+    out.geomB.release();
     // Persistent pairs the detection missed stay in the set; every pair takes its history over.
     const MemoryGroupScope group(MemoryGroup::CONTACTS);  // history mapping's scratch
     const unsigned int total =
@@ -81,6 +84,18 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     // Per-contact forces are written by a storing step of the set in use only (nothing carries them
     // from one set to the next), in memory lent for it then.
     old.force.release();
+    // Once mapped, the old set's pairs and flags are dead until it is the fresh set of the next
+    // installation, which sizes them anew: its pairs' buffers become the outbox, which kT fills at
+    // the next order (issued after this returns; kT resizes it there before it writes), and its
+    // flags are let go. Its wildcards stay: they hold the per-contact forces of storing steps
+    // (lendIdleMemoryToForces) and the next set's history. Between installations a run then holds
+    // the set in use, the outbox's pairs and the idle wildcards: 50 B a pair with Hertz-Mindlin's
+    // four wildcards, where it held 60.
+    synchronize(m_stream);  // the mapping has read them
+    std::swap(out.geomA, old.geomA);
+    std::swap(out.geomB, old.geomB);
+    old.persistent.release();
+    old.meshState.release();
     m_current = 1 - m_current;
     m_numContacts = total;
     refreshView();
