@@ -76,6 +76,7 @@ inline void addMemoryStats(JsonLine& j, const deme::MemoryStats& m) {
     for (int g = 0; g < deme::NUM_MEMORY_GROUPS; g++) {
         const std::string key = deme::memoryGroupKey((deme::MemoryGroup)g);
         j.add("mem_device_" + key + "_per_sphere", (double)m.deviceBytes[g] / n);
+        j.add("mem_device_peak_" + key + "_per_sphere", (double)m.devicePeakBytes[g] / n);
         j.add("mem_host_" + key + "_per_sphere", (double)m.hostBytes[g] / n);
         j.add("mem_estimate_" + key + "_per_sphere", (double)m.estimatedBytes[g] / n);
     }

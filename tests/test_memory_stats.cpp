@@ -80,8 +80,14 @@ DEME_BACKEND_TEST(MemoryStatsGroups, GroupsHoldTheirArraysAndAddUp) {
         EXPECT_GE(m.host(MemoryGroup::CONTACTS), contacts * (2 * sizeof(bodyID_t) + 1 + 3 * sizeof(float)));
         EXPECT_GT(m.host(MemoryGroup::DETECTION), n * sizeof(uint32_t));
         EXPECT_EQ(m.deviceTotal(), 0u);
+        EXPECT_EQ(m.devicePeakTotal(), 0u);
         return;
     }
+    // The groups at the device's peak add up to the peak GetDeviceMemUsage's "at most" reports (the
+    // process's), which is at least what the run holds now.
+    EXPECT_EQ(m.devicePeakTotal(), sim.GetRunSummary().deviceBytesPeak);
+    EXPECT_GE(m.devicePeakTotal(), m.deviceTotal());
+    EXPECT_GT(m.devicePeakBytes[(int)MemoryGroup::CONTACTS], 0u);
     // The GPU: the device copy of the state, two contact sets, kT's bins and snapshot. The contact
     // set stays there: the host copies it only for a call that reads it (here a contact file) and
     // lets the copy go when the steps go on.

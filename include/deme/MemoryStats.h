@@ -25,6 +25,9 @@ const char* memoryGroupKey(MemoryGroup g);
 
 struct MemoryStats {
     size_t deviceBytes[NUM_MEMORY_GROUPS] = {};  // GPU memory held now (all of this process's solvers)
+    // Each group's GPU memory when the process's total was last at its peak (GetDeviceMemUsage's
+    // "at most"): where the peak comes from. All zero on the CPU.
+    size_t devicePeakBytes[NUM_MEMORY_GROUPS] = {};
     size_t hostBytes[NUM_MEMORY_GROUPS] = {};    // host arrays of this solver (their capacities)
     // What Initialize estimated the run would hold where its steps keep their arrays (the GPU on the
     // CUDA backend, the host on the CPU's) with its first contact set of `estimatedPairs` pairs; a
@@ -37,6 +40,11 @@ struct MemoryStats {
     size_t deviceTotal() const {
         size_t t = 0;
         for (size_t b : deviceBytes) t += b;
+        return t;
+    }
+    size_t devicePeakTotal() const {
+        size_t t = 0;
+        for (size_t b : devicePeakBytes) t += b;
         return t;
     }
     size_t hostTotal() const {

@@ -41,10 +41,11 @@ void exportMessagesAndOutput(py::class_<S>& c) {
             "GetMemoryStats",
             [](const S& d) {
                 const deme::MemoryStats m = d.GetMemoryStats();
-                py::dict device, host, estimate;
+                py::dict device, devicePeak, host, estimate;
                 for (int g = 0; g < deme::NUM_MEMORY_GROUPS; g++) {
                     const char* key = deme::memoryGroupKey((deme::MemoryGroup)g);
                     device[key] = m.deviceBytes[g];
+                    devicePeak[key] = m.devicePeakBytes[g];
                     host[key] = m.hostBytes[g];
                     estimate[key] = m.estimatedBytes[g];
                 }
@@ -53,6 +54,8 @@ void exportMessagesAndOutput(py::class_<S>& c) {
                 r["device"] = device;
                 r["host"] = host;
                 r["device_total"] = m.deviceTotal();
+                r["device_peak"] = devicePeak;
+                r["device_peak_total"] = m.devicePeakTotal();
                 r["host_total"] = m.hostTotal();
                 r["estimate"] = estimate;
                 r["estimate_total"] = m.estimatedTotal();
@@ -60,7 +63,9 @@ void exportMessagesAndOutput(py::class_<S>& c) {
                 return r;
             },
             "Memory by array group: {'spheres', 'device': {group: bytes}, 'host': {group: bytes}, 'device_total', "
-            "'host_total', 'estimate': {group: bytes}, 'estimate_total', 'estimated_pairs'}; groups owner_state, "
+            "'host_total', 'device_peak': {group: bytes}, 'device_peak_total', 'estimate': {group: bytes}, "
+            "'estimate_total', 'estimated_pairs'}; device_peak: each group's GPU memory when the process's total "
+            "was last at its peak (zeros on 'cpu'); groups owner_state, "
             "geometry, contacts_and_history, wildcards, detection_scratch, output_staging, step_scratch. The "
             "estimate is what Initialize expected the run to hold where its steps keep their arrays (the GPU's on "
             "'cuda', the host's on 'cpu'), with its first contact set of estimated_pairs pairs.")

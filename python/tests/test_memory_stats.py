@@ -35,10 +35,14 @@ def test_groups_add_up_and_hold_the_state(capfd):
     assert m[side]["contacts_and_history"] > 0
     if side == "device":
         assert m["host"]["contacts_and_history"] == 0
+    assert sorted(m["device_peak"]) == sorted(GROUPS)
+    assert m["device_peak_total"] == sum(m["device_peak"].values())
     if sim.GetBackend() == "cuda":
         assert m["device_total"] == sim.GetDeviceMemUsage()
+        assert m["device_peak_total"] >= m["device_total"]
     else:
         assert m["device_total"] == 0
+        assert m["device_peak_total"] == 0
     sim.ShowMemoryStats()
     out = capfd.readouterr().out
     assert "contacts and history" in out and "total" in out

@@ -376,7 +376,10 @@ MemoryStats DEMSolver::GetMemoryStats() const {
     // for UpdateClumps (docs/memory.md).
     for (const auto& b : m_scene->batches) m.hostBytes[(int)MemoryGroup::OWNER_STATE] += b->GetHostBytes();
     if (m_sim->settings.onGpu)
-        for (int g = 0; g < NUM_MEMORY_GROUPS; g++) m.deviceBytes[g] = cuda::deviceBytesInGroup((MemoryGroup)g);
+        for (int g = 0; g < NUM_MEMORY_GROUPS; g++) {
+            m.deviceBytes[g] = cuda::deviceBytesInGroup((MemoryGroup)g);
+            m.devicePeakBytes[g] = cuda::deviceBytesInGroupAtPeak((MemoryGroup)g);
+        }
     return m;
 }
 

@@ -63,17 +63,27 @@ std::string memoryReport(const MemoryStats& m) {
     std::ostringstream os;
     const double perSphere = m.spheres ? 1.0 / (double)m.spheres : 0.0;
     auto mib = [](size_t b) { return (double)b / (1 << 20); };
+    // A GPU run also shows each group at the device's peak (where the peak comes from).
+    const bool peak = m.devicePeakTotal() > 0;
     os << "Memory by array group (" << m.spheres << " spheres; MiB, and bytes per sphere):\n";
     os << "  " << std::left << std::setw(22) << "group" << std::right << std::setw(12) << "device MiB" << std::setw(10)
-       << "B/sphere" << std::setw(12) << "host MiB" << std::setw(10) << "B/sphere" << "\n";
-    os << std::fixed;
+       << "B/sphere" << std::setw(12) << "host MiB" << std::setw(10) << "B/sphere";
+    if (peak) os << std::setw(14) << "device peak" << std::setw(10) << "B/sphere";
+    os << "\n" << std::fixed;
+    auto column = [&](size_t b) {
+        os << std::setprecision(1) << std::setw(12) << mib(b) << std::setprecision(0) << std::setw(10)
+           << (double)b * perSphere;
+    };
     for (int g = 0; g <= NUM_MEMORY_GROUPS; g++) {
         const bool total = g == NUM_MEMORY_GROUPS;
-        const size_t d = total ? m.deviceTotal() : m.deviceBytes[g], h = total ? m.hostTotal() : m.hostBytes[g];
-        os << "  " << std::left << std::setw(22) << (total ? "total" : memoryGroupName((MemoryGroup)g)) << std::right
-           << std::setprecision(1) << std::setw(12) << mib(d) << std::setprecision(0) << std::setw(10)
-           << (double)d * perSphere << std::setprecision(1) << std::setw(12) << mib(h) << std::setprecision(0)
-           << std::setw(10) << (double)h * perSphere << (total ? "" : "\n");
+        os << "  " << std::left << std::setw(22) << (total ? "total" : memoryGroupName((MemoryGroup)g)) << std::right;
+        column(total ? m.deviceTotal() : m.deviceBytes[g]);
+        column(total ? m.hostTotal() : m.hostBytes[g]);
+        if (peak) {
+            os << "  ";
+            column(total ? m.devicePeakTotal() : m.devicePeakBytes[g]);
+        }
+        if (!total) os << "\n";
     }
     return os.str();
 }

@@ -56,6 +56,7 @@ size_t deviceBytesAllocated() { return 0; }
 size_t deviceBytesAllocatedPeak() { return 0; }
 size_t deviceBytesAllocatedOn(int) { return 0; }
 size_t deviceBytesInGroup(MemoryGroup) { return 0; }
+size_t deviceBytesInGroupAtPeak(MemoryGroup) { return 0; }
 MemoryGroupScope::MemoryGroupScope(MemoryGroup) : previous_(MemoryGroup::STEP_SCRATCH) {}
 MemoryGroupScope::~MemoryGroupScope() = default;
 RawDeviceBuffer::~RawDeviceBuffer() = default;

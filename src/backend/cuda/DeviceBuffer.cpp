@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <mutex>
 #include <string>
 
 #include "backend/cuda/CudaCheck.h"
@@ -20,18 +21,26 @@ std::atomic<size_t> peakBytes{0};
 constexpr int MAX_COUNTED_DEVICES = 64;
 std::atomic<size_t> allocatedOn[MAX_COUNTED_DEVICES] = {};
 std::atomic<size_t> allocatedInGroup[NUM_MEMORY_GROUPS] = {};
+// Each group's bytes when the total last reached its peak: where a run's peak comes from. The
+// counts change under one lock (allocations are rare beside the work between them), so that the
+// groups at the peak add up to it; they are read without it.
+std::mutex countMutex;
+size_t inGroupAtPeak[NUM_MEMORY_GROUPS] = {};
 thread_local MemoryGroup currentGroup = MemoryGroup::STEP_SCRATCH;
 
 void countAllocation(int device, MemoryGroup group, size_t bytes) {
+    const std::lock_guard<std::mutex> lock(countMutex);
     const size_t now = allocatedBytes.fetch_add(bytes) + bytes;
     if (device >= 0 && device < MAX_COUNTED_DEVICES) allocatedOn[device] += bytes;
     allocatedInGroup[(int)group] += bytes;
-    size_t peak = peakBytes.load();
-    while (now > peak && !peakBytes.compare_exchange_weak(peak, now)) {
+    if (now > peakBytes.load()) {
+        peakBytes = now;
+        for (int g = 0; g < NUM_MEMORY_GROUPS; g++) inGroupAtPeak[g] = allocatedInGroup[g].load();
     }
 }
 
 void countFree(int device, MemoryGroup group, size_t bytes) {
+    const std::lock_guard<std::mutex> lock(countMutex);
     allocatedBytes -= bytes;
     if (device >= 0 && device < MAX_COUNTED_DEVICES) allocatedOn[device] -= bytes;
     allocatedInGroup[(int)group] -= bytes;
@@ -113,6 +122,11 @@ size_t deviceBytesAllocatedOn(int device) {
 
 size_t deviceBytesInGroup(MemoryGroup g) { return allocatedInGroup[(int)g].load(); }
 
+size_t deviceBytesInGroupAtPeak(MemoryGroup g) {
+    const std::lock_guard<std::mutex> lock(countMutex);
+    return inGroupAtPeak[(int)g];
+}
+
 MemoryGroupScope::MemoryGroupScope(MemoryGroup g) : previous_(currentGroup) { currentGroup = g; }
 MemoryGroupScope::~MemoryGroupScope() { currentGroup = previous_; }
 
@@ -168,8 +182,11 @@ void RawDeviceBuffer::reallocateExactly(size_t bytes, size_t keepBytes, Stream s
 }
 
 void RawDeviceBuffer::setGroup(MemoryGroup g) {
-    allocatedInGroup[(int)group_] -= capacity_;
-    allocatedInGroup[(int)g] += capacity_;
+    {
+        const std::lock_guard<std::mutex> lock(countMutex);
+        allocatedInGroup[(int)group_] -= capacity_;
+        allocatedInGroup[(int)g] += capacity_;
+    }
     group_ = g;
     groupFixed_ = true;
 }

@@ -28,6 +28,8 @@ size_t deviceBytesAllocatedOn(int device);
 
 // Bytes held now by the buffers of one group (MemoryGroup), all GPUs and solvers of this process.
 size_t deviceBytesInGroup(MemoryGroup g);
+// Bytes a group held when the total (deviceBytesAllocatedPeak) was last raised.
+size_t deviceBytesInGroupAtPeak(MemoryGroup g);
 
 // The group a buffer's memory counts to is the one current for the thread that allocates it first
 // (STEP_SCRATCH outside any scope); it stays with the buffer (also when moved or swapped).
