@@ -53,6 +53,26 @@ TEST(CudaDeviceBuffer, UploadsAndDownloads) {
     EXPECT_EQ(buf.download(), std::vector<int>(1000, 0));
 }
 
+// A buffer that grows without keeping its contents lets its old memory go before it makes the new:
+// the process's peak is the new allocation, not the two together (a large contact set's arrays are
+// resized so at each installation).
+TEST(CudaDeviceBuffer, GrowingWithoutKeepingHoldsOneAllocationAtATime) {
+    SKIP_WITHOUT_GPU();
+    const size_t mib = 1u << 20, base = deviceBytesAllocated();
+    DeviceBuffer<char> buf;
+    // Larger than this process's peak so far, so that the peak below is this test's.
+    const size_t first = std::max<size_t>(256 * mib, deviceBytesAllocatedPeak() + 64 * mib);
+    buf.resizeDiscarding(first);
+    ASSERT_EQ(deviceBytesAllocated(), base + first);
+    buf.resizeDiscarding(first + 1);  // grows by half
+    const size_t grown = buf.capacity();
+    EXPECT_GE(grown, first + first / 2);
+    EXPECT_EQ(deviceBytesAllocated(), base + grown);
+    EXPECT_EQ(deviceBytesAllocatedPeak(), base + grown);  // never first + grown
+    buf.release();
+    EXPECT_EQ(deviceBytesAllocated(), base);
+}
+
 TEST(CudaDeviceBuffer, GrowsGeometricallyKeepsContentsAndNeverShrinksUnlessAsked) {
     SKIP_WITHOUT_GPU();
     DeviceBuffer<uint32_t> buf;

@@ -163,6 +163,15 @@ void RawDeviceBuffer::reserve(size_t bytes, size_t keepBytes, Stream stream) {
     const size_t grown = std::max(bytes, capacity_ + capacity_ / 2);
     DeviceScope scope(device_);
     if (!data_ && !groupFixed_) group_ = currentGroup;
+    if (data_ && keepBytes == 0) {
+        // Nothing to keep: the old memory goes before the new is made (made first, the two were held
+        // together, 2.5 times the buffer, at a large set's installation). cudaFree waits for the
+        // device, as it did after the allocation.
+        DEME_CUDA_CHECK("DeviceBuffer", cudaFree(data_));
+        countFree(device_, group_, capacity_);
+        data_ = nullptr;
+        capacity_ = 0;
+    }
     data_ = reallocate(data_, capacity_, grown, keepBytes, group_, stream);
     capacity_ = grown;
     device_ = currentDevice();
