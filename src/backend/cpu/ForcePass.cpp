@@ -62,7 +62,7 @@ void fillOutSlots(SimState& s, const std::vector<std::vector<bodyID_t>>& window,
         size_t at = c.blockOutStart[k];
         for (size_t i = begin; i < end; i++) {
             const bodyID_t b = contactOwnerB(s, i);
-            if (b < nOwners && b / FORCE_PASS_BLOCK_OWNERS == (size_t)k) continue;
+            if (b < nOwners && indexInForcePassBlock(b, (size_t)k) < FORCE_PASS_BLOCK_OWNERS) continue;
             slots[at++] = (Slot)(std::lower_bound(w.begin(), w.end(), b) - w.begin());
         }
     }
@@ -104,7 +104,7 @@ void buildOwnerContactIndex(SimState& s) {
         for (size_t i = begin; i < end; i++) {
             // (A block's owners are whole words of the bits: no two threads write one word.)
             const bodyID_t b = contactOwnerB(s, i);
-            if (b < nOwners && b / FORCE_PASS_BLOCK_OWNERS == (size_t)k)
+            if (b < nOwners && indexInForcePassBlock(b, (size_t)k) < FORCE_PASS_BLOCK_OWNERS)
                 c.ownerBInBlock[b / 64] |= 1ull << (b % 64);
             else
                 w.push_back(b);

@@ -47,6 +47,11 @@ constexpr size_t FORCE_PASS_CHUNK = 256;
 constexpr size_t FORCE_PASS_BLOCK_OWNERS = 512;
 static_assert(FORCE_PASS_BLOCK_OWNERS % 64 == 0, "a block's owners are whole words of the bits");
 
+// Owner o's index in block k: under FORCE_PASS_BLOCK_OWNERS where o is one of the block's owners,
+// larger otherwise (an owner below the block wraps). The one test of whether a contact's B owner is
+// summed by its block's thread or takes a window slot (the index and the pass alike).
+inline size_t indexInForcePassBlock(size_t o, size_t k) { return o - k * FORCE_PASS_BLOCK_OWNERS; }
+
 inline size_t forcePassBlocks(size_t nOwners) {
     return (nOwners + FORCE_PASS_BLOCK_OWNERS - 1) / FORCE_PASS_BLOCK_OWNERS;
 }
@@ -121,12 +126,12 @@ inline void keepPooledHistory(PooledHistory& p, int thread, size_t b, size_t m, 
 // slots in turn from `cursor`), chosen without a branch (the two are mixed). The list has an entry
 // past its end, read and not used where the block's last crossing contact is behind.
 template <class Slot>
-inline void addBShares(const SimState& s, const Slot* outSlot, size_t& cursor, size_t blockFirstOwner, size_t b,
+inline void addBShares(const SimState& s, const Slot* outSlot, size_t& cursor, size_t k, size_t b,
                        WindowLoad* blockWindow, WindowLoad* inBlock, const float3* force, const float3* torqueB,
                        size_t m) {
     WindowLoad* const sums[2] = {blockWindow, inBlock};
     for (size_t j = 0; j < m; j++) {
-        const size_t inBlockIndex = (size_t)contactOwnerB(s, b + j) - blockFirstOwner;  // wraps below the block
+        const size_t inBlockIndex = indexInForcePassBlock(contactOwnerB(s, b + j), k);
         const bool own = inBlockIndex < FORCE_PASS_BLOCK_OWNERS;
         const size_t slot = own ? inBlockIndex : (size_t)outSlot[cursor];
         cursor += !own;
@@ -248,12 +253,10 @@ ForcePassResult runForcePass(SimState& s, const Model& model, double time, doubl
                     tau += torqueA[j];
                 }
                 WindowLoad* const blockWindow = window + c.blockWindowStart[k];
-                const size_t base = k * FORCE_PASS_BLOCK_OWNERS;
                 if (c.outSlotWide.empty())
-                    addBShares(s, c.outSlot.data(), crossing, base, b, blockWindow, inBlock.data(), force, torqueB, m);
+                    addBShares(s, c.outSlot.data(), crossing, k, b, blockWindow, inBlock.data(), force, torqueB, m);
                 else
-                    addBShares(s, c.outSlotWide.data(), crossing, base, b, blockWindow, inBlock.data(), force, torqueB,
-                               m);
+                    addBShares(s, c.outSlotWide.data(), crossing, k, b, blockWindow, inBlock.data(), force, torqueB, m);
                 if (storePairs) storeChunkForces(stored, thread, b, m, force);
             }
             if (end > begin) {
