@@ -32,10 +32,12 @@ def sphere_mass(r, rho):
 
 
 class Bed:
-    """A box of half-width `half` (m) poured to about `depth` (m), with one parked ball per density."""
+    """A box of half-width `half` (m) poured to about `depth` (m), with one parked ball per density;
+    `grain_scale` multiplies every grain's diameter (and the poured lattice and the surface's cells)."""
 
-    def __init__(self, deme, half, depth, ball_densities, seed=1):
-        self.half, self.depth = half, depth
+    def __init__(self, deme, half, depth, ball_densities, seed=1, grain_scale=1.0):
+        self.half, self.depth, self.scale = half, depth, grain_scale
+        radii, lattice = RADII * grain_scale, LATTICE * grain_scale
         sim = self.sim = deme.DEMSolver()
         sim.SetVerbosity("WARNING")
         mat = sim.LoadMaterial({"E": E, "nu": NU, "CoR": COR, "mu": MU, "Crr": 0.0})
@@ -44,17 +46,17 @@ class Bed:
         top = 2.0 * depth + 0.06 + 2 * BALL_D
         sim.InstructBoxDomainDimension((-half, half), (-half, half), (0.0, top))
         sim.InstructBoxDomainBoundingBC("top_open", mat)
-        types = [sim.LoadSphereType(sphere_mass(r, RHO_GRAIN), float(r), mat) for r in RADII]
+        types = [sim.LoadSphereType(sphere_mass(r, RHO_GRAIN), float(r), mat) for r in radii]
         # The cloud: lattice points moved by up to 0.1 mm, each grain of a random size, falling at 0.5 m/s.
         rng = np.random.default_rng(seed)
-        n = int(0.59 * (2 * half) ** 2 * depth / float(np.mean(4.0 / 3.0 * math.pi * RADII ** 3)))
-        xs = np.arange(-half + 0.5 * LATTICE + 2e-4, half - 0.5 * LATTICE - 2e-4, LATTICE)
-        zs = 0.5 * LATTICE + 2e-4 + LATTICE * np.arange(math.ceil(n / len(xs) ** 2))
+        n = int(0.59 * (2 * half) ** 2 * depth / float(np.mean(4.0 / 3.0 * math.pi * radii ** 3)))
+        xs = np.arange(-half + 0.5 * lattice + 2e-4, half - 0.5 * lattice - 2e-4, lattice)
+        zs = 0.5 * lattice + 2e-4 + lattice * np.arange(math.ceil(n / len(xs) ** 2))
         Z, X, Y = np.meshgrid(zs, xs, xs, indexing="ij")
         pts = np.stack([X.ravel(), Y.ravel(), Z.ravel()], axis=1)[:n]
         pts += rng.uniform(-1e-4, 1e-4, pts.shape)
-        kind = rng.integers(0, len(RADII), len(pts))
-        self.r = RADII[kind]
+        kind = rng.integers(0, len(radii), len(pts))
+        self.r = radii[kind]
         self.grains = sim.AddClumps([types[k] for k in kind], pts)
         self.grains.SetVel(np.tile([0.0, 0.0, -0.5], (len(pts), 1)))
         # The balls wait in a row near the domain's top, fixed and touching nothing.
@@ -66,7 +68,7 @@ class Bed:
         sim.SetFamilyFixed(PARKED)
         for f in (0, PARKED, FREE):
             sim.DisableContactBetweenFamilies(PARKED, f)
-        self.dt = 0.1 * deme.RayleighTime(float(RADII[0]), RHO_GRAIN, E, NU)
+        self.dt = 0.1 * deme.RayleighTime(float(radii[0]), RHO_GRAIN, E, NU)
         sim.SetInitTimeStep(self.dt)
         sim.SetGravitationalAcceleration([0.0, 0.0, -G])
         sim.SetErrorOutVelocity(20.0)
@@ -93,7 +95,7 @@ class Bed:
         over the volume of that block) and over the whole bed (all grains over the box up to the
         surface level), in kg/m^3."""
         p = self.grain_tr.Positions()
-        self.surface = surface_level(p, self.r, 2.0 * BALL_D)
+        self.surface = surface_level(p, self.r, 2.0 * BALL_D, 0.006 * self.scale)
         z, w, lo, hi = p[:, 2], self.half - 0.01, 0.01, self.surface - 0.01
         inside = (z > lo) & (z < hi) & (np.abs(p[:, 0]) < w) & (np.abs(p[:, 1]) < w)
         vol = 4.0 / 3.0 * math.pi * self.r ** 3

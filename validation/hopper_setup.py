@@ -1,11 +1,12 @@
-"""The flat-bottomed hopper of the paper's s. 6.2.2 (test ID 1, plastic spheres), shared by the
-hopper cases: build it, settle the grains on the closed orifice, open it, record the discharge, and
-write the settled packing and the floor for a LIGGGHTS run of the same hopper (hopper_liggghts.in).
+"""The flat-bottomed hopper of the paper's s. 6.2.2 (test IDs 1, plastic spheres, and 2, wooden
+cylinders), shared by the hopper cases: build it, settle the grains on the closed orifice, open it,
+record the discharge, and write the settled packing and the floor for a LIGGGHTS run of the same
+hopper (hopper_liggghts.in).
 
 Geometry: 0.20 m wide (x), 0.04 m deep (y), walls of the grains' material; a 0.04 x 0.04 m orifice in
-the middle of the floor, spanning the depth. Grains: r = 3 mm, rho = 1592 kg/m^3, E = 10 MPa,
-nu = 0.35, CoR = 0.85, mu = 0.40, Crr = 0.04, dt = 20 us. Grains that fall 5 cm below the floor are
-removed (SetDomainExitPolicy("remove")).
+the middle of the floor, spanning the depth. Test ID 1's grains: r = 3 mm, rho = 1592 kg/m^3, E = 10 MPa,
+nu = 0.35, CoR = 0.85, mu = 0.40, Crr = 0.04, dt = 20 us (test ID 2's: settled_cylinder_hopper).
+Grains that fall 5 cm below the floor are removed (SetDomainExitPolicy("remove")).
 """
 import math
 import os
@@ -25,12 +26,12 @@ FLOOR_F = [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]]
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def settled_hopper(deme, n, settle_time):
-    """A solver with n grains settled on the closed orifice; returns (sim, tracker, positions)."""
+def _hopper(deme, material, grain_top):
+    """A solver holding the hopper's walls, floor and closed gate, of the grains' material (a dict)."""
     sim = deme.DEMSolver()
     sim.SetVerbosity("WARNING")
-    mat = sim.LoadMaterial({"E": 1e7, "nu": 0.35, "CoR": 0.85, "mu": 0.40, "Crr": 0.04})
-    sim.InstructBoxDomainDimension((-HALF_X, HALF_X), (-HALF_Y, HALF_Y), (-0.05, 0.56))
+    mat = sim.LoadMaterial(material)
+    sim.InstructBoxDomainDimension((-HALF_X, HALF_X), (-HALF_Y, HALF_Y), (-0.05, max(0.56, grain_top + 0.01)))
     sim.SetDomainExitPolicy("remove")
     sim.AddBCPlane([-HALF_X, 0, 0], [1, 0, 0], mat)
     sim.AddBCPlane([HALF_X, 0, 0], [-1, 0, 0], mat)
@@ -38,23 +39,78 @@ def settled_hopper(deme, n, settle_time):
     sim.AddBCPlane([0, HALF_Y, 0], [0, -1, 0], mat)
     sim.AddWavefrontMeshObject(deme.DEMMeshConnected(FLOOR_V, FLOOR_F, mat))
     # The gate under the orifice while the bed settles: a plane of family 2, whose contacts with the
-    # grains are then disabled (open_orifice).
+    # grains are then disabled (discharge).
     gate = sim.AddExternalObject()
     gate.AddPlane([0, 0, 0], [0, 0, 1], mat)
     gate.SetFamily(2)
+    return sim, mat
+
+
+def _settle(sim, grains, settle_time, dt=DT):
+    sim.SetInitTimeStep(dt)
+    sim.SetGravitationalAcceleration([0, 0, -G])
+    sim.Initialize()
+    sim.DoDynamics(settle_time)
+    return np.array(sim.Track(grains).Positions())
+
+
+def settled_hopper(deme, n, settle_time):
+    """The paper's test ID 1: a solver with n plastic spheres settled on the closed orifice; returns
+    (sim, positions)."""
     # A loose grid, 30 x 6 per layer, each grain moved by up to 0.3 mm (so that the layers do not stack).
     rng = np.random.default_rng(3)
     spacing = 0.0066
     layer = [(-0.0957 + i * spacing, -0.0165 + j * spacing) for i in range(30) for j in range(6)]
     pts = [[x + rng.uniform(-3e-4, 3e-4), y + rng.uniform(-3e-4, 3e-4), 0.0035 + k * spacing]
            for k in range(math.ceil(n / len(layer))) for x, y in layer][:n]
+    sim, mat = _hopper(deme, {"E": 1e7, "nu": 0.35, "CoR": 0.85, "mu": 0.40, "Crr": 0.04}, max(p[2] for p in pts))
     grains = sim.AddClumps(sim.LoadSphereType(MASS, R, mat), pts)
-    sim.SetInitTimeStep(DT)
-    sim.SetGravitationalAcceleration([0, 0, -G])
-    sim.Initialize()
-    sim.DoDynamics(settle_time)
-    tr = sim.Track(grains)
-    return sim, np.array(tr.Positions())
+    return sim, _settle(sim, grains, settle_time)
+
+
+# The paper's test ID 2: wooden "cylinders" WC (its particle table: r = 2 mm, 8.5 mm long, 476 kg/m^3,
+# E = 10 MPa, nu = 0.35, CoR = 0.55; mu = 0.70 and Crr = 0.07 in its hopper table) as five spheres
+# of r = 2 mm on the axis, the end ones touching the ends, with a solid cylinder's mass and inertia.
+WC_R, WC_LENGTH, WC_RHO = 0.002, 0.0085, 476.0
+WC_CENTRES = [[x, 0.0, 0.0] for x in np.linspace(-(WC_LENGTH / 2 - WC_R), WC_LENGTH / 2 - WC_R, 5)]
+WC_MASS = WC_RHO * math.pi * WC_R ** 2 * WC_LENGTH
+WC_DT = 1e-5  # 13 % of a component sphere's Rayleigh time (20 us, the spheres' step, would be 26 %)
+_WC_I_AXIS = 0.5 * WC_MASS * WC_R ** 2
+WC_MOI = [_WC_I_AXIS, _WC_I_AXIS / 2 + WC_MASS * WC_LENGTH ** 2 / 12, _WC_I_AXIS / 2 + WC_MASS * WC_LENGTH ** 2 / 12]
+
+
+def settled_cylinder_hopper(deme, n, settle_time, seed=3):
+    """The paper's test ID 2: a solver with n wooden cylinders settled on the closed orifice; returns
+    (sim, positions). Poured as 2 x 2 bundles of parallel clumps filling cubes of the length plus
+    0.4 mm, each cube's axis x, y or z at random, each clump moved by up to 0.08 mm."""
+    rng = np.random.default_rng(seed)
+    c = WC_LENGTH + 0.4e-3
+    nx, ny = int(2 * HALF_X / c), int(2 * HALF_Y / c)
+    cubes = math.ceil(n / 4)
+    layers = math.ceil(cubes / (nx * ny))
+    k, i, j = np.meshgrid(np.arange(layers), np.arange(nx), np.arange(ny), indexing="ij")
+    centre = np.stack([-HALF_X + (i.ravel() + 0.5) * 2 * HALF_X / nx, -HALF_Y + (j.ravel() + 0.5) * 2 * HALF_Y / ny,
+                       0.5e-3 + (k.ravel() + 0.5) * c], axis=1)[:cubes]
+    # The clump's axis is its frame's x: a cube along y turns it 90 degrees about z, along z -90 about y.
+    h = math.sqrt(0.5)
+    quats = {0: [0.0, 0.0, 0.0, 1.0], 1: [0.0, 0.0, h, h], 2: [0.0, -h, 0.0, h]}
+    across = {0: (1, 2), 1: (0, 2), 2: (0, 1)}
+    pts, oris = [], []
+    for ctr, axis in zip(centre, rng.integers(0, 3, len(centre))):
+        a, b = across[int(axis)]
+        for da, db in ((-1, -1), (-1, 1), (1, -1), (1, 1)):
+            p = ctr.copy()
+            p[a] += da * c / 4
+            p[b] += db * c / 4
+            pts.append(p + rng.uniform(-8e-5, 8e-5, 3))
+            oris.append(quats[int(axis)])
+    pts, oris = np.array(pts[:n]), np.array(oris[:n])
+    material = {"E": 1e7, "nu": 0.35, "CoR": 0.55, "mu": 0.70, "Crr": 0.07}
+    sim, mat = _hopper(deme, material, float(pts[:, 2].max()) + c)
+    tmpl = sim.LoadClumpType(WC_MASS, WC_MOI, [WC_R] * 5, WC_CENTRES, mat)
+    grains = sim.AddClumps(tmpl, pts)
+    grains.SetOriQ(oris)
+    return sim, _settle(sim, grains, settle_time, WC_DT)
 
 
 def bulk_density(z):
@@ -64,31 +120,25 @@ def bulk_density(z):
     return fill, MASS * np.count_nonzero((z > lo) & (z < hi)) / (2 * HALF_X * 2 * HALF_Y * (hi - lo))
 
 
-def discharge(sim, n, t_end, frame=0.05):
-    """Opens the orifice and records (times, discharged mass fractions) every frame until t_end or
-    until all grains are out."""
+def discharge(sim, n, t_end, frame=0.05, grain_mass=MASS, stop_fraction=0.999):
+    """Opens the orifice (the gate of family 2 lets the grains through) and records (times, discharged
+    mass fractions) every frame until t_end or until `stop_fraction` of the grains' mass is out."""
     sim.DisableContactBetweenFamilies(0, 2)
-    total = n * MASS
+    total = n * grain_mass
     t, m = [0.0], [0.0]
-    while t[-1] < t_end - 1e-9 and sim.GetRemovedMass() < 0.999 * total:
+    while t[-1] < t_end - 1e-9 and sim.GetRemovedMass() < stop_fraction * total:
         sim.DoDynamics(frame)
         t.append(t[-1] + frame)
         m.append(sim.GetRemovedMass())
     return np.array(t), np.array(m) / total
 
 
-def steady_rate(t, frac, n):
+def steady_rate(t, frac, n, grain_mass=MASS):
     """Mass flow rate (kg/s): the slope of the discharged mass between 20 % and 60 % discharged."""
     w = (frac >= 0.2) & (frac <= 0.6)
     if np.count_nonzero(w) < 3:
         return float("nan")
-    return float(np.polyfit(t[w], frac[w] * n * MASS, 1)[0])
-
-
-def beverloo(rho_bulk):
-    """Beverloo et al. (1961) with C = 0.58, k = 1.5 and the orifice's hydraulic diameter."""
-    d_h = 4 * (2 * ORIFICE_HALF) ** 2 / (4 * 2 * ORIFICE_HALF)
-    return 0.58 * rho_bulk * math.sqrt(G) * (d_h - 1.5 * 2 * R) ** 2.5
+    return float(np.polyfit(t[w], frac[w] * n * grain_mass, 1)[0])
 
 
 def write_peer_files(folder, positions):

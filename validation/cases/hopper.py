@@ -1,0 +1,100 @@
+"""Discharge of a flat-bottomed silo through a circular orifice against Beverloo's law (paper s. 6.2.2).
+
+Set-up (validation/silo_setup.py): the grains of the paper's hopper test ID 1, plastic spheres PS
+(r = 3 mm, d = 6 mm, rho = 1592 kg/m^3, E = 10 MPa, nu = 0.35, CoR = 0.85, mu = 0.40, Crr = 0.04,
+dt = 20 us), poured into a cylindrical silo of their material and settled on the closed orifice, a
+circular hole of the paper's 0.04 m in the middle of the floor, which then opens; grains that leave
+(5 cm below the floor) are removed and their mass counted. Full: a silo 0.16 m across (four orifice
+diameters), 18,400 grains (about 0.18 m of fill), until 62 % has left (about 9 s); --quick: 0.10 m across (2.5 orifice
+diameters, the least for which the walls do not change the rate, Nedderman 1992, "Statics and
+kinematics of granular materials", ch. 10), 4,200 grains (about 0.11 m), until 62 % has left.
+
+Why a silo and not the paper's hopper: Beverloo's law was fitted to circular orifices in the floors
+of cylindrical bins. The paper's hopper (0.20 x 0.04 m, a 0.04 x 0.04 m orifice spanning its depth)
+is a slot between two smooth side walls: there the law with D_h = 0.04 m, the orifice's hydraulic
+diameter, gives 0.26 kg/s where the engine and LIGGGHTS 3.8 on the same hopper from the same packing
+both discharge 0.49 kg/s (validation/README.md, "hopper"); that hopper is judged against LIGGGHTS
+in peer_hopper.
+
+Full runs also discharge the paper's hopper itself for its test IDs 1 (14,058 plastic spheres PS,
+mu 0.40, Crr 0.04) and 2 (20,014 wooden cylinders WC as 5-sphere clumps, mu 0.70, Crr 0.07; both
+settled from a loose pour for 0.8 s, then 7.5 s open; validation/hopper_setup.py), drawn as the
+discharged mass fraction against time (not judged: the paper compares them with measurements of
+Jian et al. 2023 that are not in our data; peer_hopper judges test ID 1 against LIGGGHTS).
+HOPPER_PAPER=0 leaves them out (on the CPU, test ID 2's 100,070 spheres take hours).
+
+Reference: Beverloo, Leniger & van de Velde (1961), Chem. Eng. Sci. 15, 260:
+W = C rho_bulk sqrt(g) (D0 - k d)^(5/2), C = 0.58, k = 1.5, rho_bulk the settled bed's bulk density
+(measured in its middle). Verdict: the steady rate (the slope of the discharged mass between 20 % and
+60 % discharged) within 20 % of W.
+"""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from common import Case, import_deme  # noqa: E402
+import hopper_setup as hs  # noqa: E402
+import silo_setup as ss  # noqa: E402
+
+case = Case("hopper", __doc__)
+deme = import_deme()
+import numpy as np  # noqa: E402
+
+ORIFICE = 0.04
+if case.quick:
+    n, diameter, t_end, stop = 4200, 0.10, 2.5, 0.62
+else:
+    n, diameter, t_end, stop = 18400, 0.16, 10.0, 0.62
+silo = ss.Silo(deme, n, diameter, ORIFICE)
+t_settle = silo.settle()
+fill, rho_bulk = silo.measure()
+print(f"settled: {n} grains in {t_settle:.2f} s, fill height {fill:.3f} m, bulk density {rho_bulk:.0f} kg/m^3 "
+      f"(solid fraction {rho_bulk / hs.RHO:.3f})", flush=True)
+t, frac = silo.discharge(t_end, stop)
+rate, law = hs.steady_rate(t, frac, n), ss.beverloo(rho_bulk, ORIFICE)
+print(f"discharged {frac[-1] * 100:.1f} % in {t[-1]:.2f} s; steady rate {rate:.4f} kg/s, Beverloo {law:.4f} kg/s "
+      f"({(rate / law - 1) * 100:+.1f} %)")
+case.check(f"steady mass flow rate, 20-60 % discharged (kg/s; D0 = {ORIFICE} m, silo {diameter} m)", round(law, 4),
+           f"Beverloo et al. (1961), C = 0.58, k = 1.5, measured bulk density {rho_bulk:.0f} kg/m^3",
+           round(rate, 4), "20 %", math.isfinite(rate) and abs(rate - law) <= 0.2 * law)
+
+paper = [] if case.quick or os.environ.get("HOPPER_PAPER") == "0" else [
+    ("test ID 1, PS spheres", 14058, hs.settled_hopper, hs.MASS),
+    ("test ID 2, WC cylinders (5-sphere clumps)", 20014, hs.settled_cylinder_hopper, hs.WC_MASS)]
+paper_runs = []
+for label, count, build, grain_mass in paper:
+    psim, ppos = build(deme, count, 0.8)
+    pt, pfrac = hs.discharge(psim, count, 7.5, grain_mass=grain_mass)
+    prate = hs.steady_rate(pt, pfrac, count, grain_mass)
+    print(f"the paper's hopper, {label}: {count} grains, fill {float(ppos[:, 2].max()):.3f} m, discharged "
+          f"{pfrac[-1] * 100:.1f} % in {pt[-1]:.2f} s, steady rate {prate:.4f} kg/s", flush=True)
+    paper_runs.append((label, pt, pfrac, prate))
+
+fig, axes = case.figure(1, 3 if paper_runs else 2, figsize=(16 if paper_runs else 11, 4.2))
+ax, ax2 = axes[0], axes[1]
+mass = frac * n * hs.MASS
+ax.plot(t, frac, "-", color="C0", label="engine")
+w = (frac >= 0.2) & (frac <= 0.6)
+ax.axhspan(0.2, 0.6, color="gray", alpha=0.12, label="20-60 %: the steady rate's window")
+ax.set(xlabel="time since the orifice opened (s)", ylabel="discharged mass fraction",
+       title=f"silo {diameter * 100:g} cm across, orifice {ORIFICE * 100:g} cm, {n} spheres")
+ax.legend(fontsize=7)
+ax2.plot(t, mass, "-", color="C0", label=f"engine: {rate:.3f} kg/s over 20-60 %")
+if np.count_nonzero(w) >= 2:
+    t_mid = float(np.mean(t[w]))
+    m_mid = float(np.interp(t_mid, t, mass))
+    span = np.array([t[w][0] - 0.3, t[w][-1] + 0.3])
+    ax2.plot(span, m_mid + law * (span - t_mid), "k--", label=f"Beverloo: {law:.3f} kg/s")
+    ax2.fill_between(span, m_mid + 0.8 * law * (span - t_mid), m_mid + 1.2 * law * (span - t_mid), color="gray",
+                     alpha=0.15, label="Beverloo +- 20 %")
+ax2.set(xlabel="time since the orifice opened (s)", ylabel="discharged mass (kg)")
+ax2.legend(fontsize=7)
+if paper_runs:
+    for k, (label, pt, pfrac, prate) in enumerate(paper_runs):
+        axes[2].plot(pt, pfrac, "-", color=f"C{k}", label=f"{label}: {prate:.3f} kg/s over 20-60 %")
+    axes[2].set(xlabel="time since the orifice opened (s)", ylabel="discharged mass fraction",
+                title="the paper's hopper (not judged)")
+    axes[2].legend(fontsize=7)
+case.save(fig)
+case.finish()
