@@ -1,6 +1,6 @@
 """A flat-bottomed cylindrical silo with a circular orifice in the middle of its floor: the geometry
 Beverloo's law was fitted to (Beverloo, Leniger & van de Velde 1961, Chem. Eng. Sci. 15, 260), for the
-beverloo case.
+hopper case.
 
 The silo: a cylinder of the grains' material (an analytical wall), a floor of their material (a mesh:
 a disc with a circular hole of `orifice` diameter, 96 sides), and a plate under the hole (family 2)

@@ -5,9 +5,10 @@ Set-up (validation/silo_setup.py): the grains of the paper's hopper test ID 1, p
 dt = 20 us), poured into a cylindrical silo of their material and settled on the closed orifice, a
 circular hole of the paper's 0.04 m in the middle of the floor, which then opens; grains that leave
 (5 cm below the floor) are removed and their mass counted. Full: a silo 0.16 m across (four orifice
-diameters), 18,400 grains (about 0.18 m of fill), until 62 % has left (about 9 s); --quick: 0.10 m across (2.5 orifice
-diameters, the least for which the walls do not change the rate, Nedderman 1992, "Statics and
-kinematics of granular materials", ch. 10), 4,200 grains (about 0.11 m), until 62 % has left.
+diameters), 18,400 grains (about 0.18 m of fill); --quick: 0.10 m across (2.5 orifice diameters,
+the least for which the walls do not change the rate, Nedderman 1992, "Statics and kinematics of
+granular materials", ch. 10), 4,200 grains (about 0.11 m); both until 62 % has left (about 9 s and
+2 s).
 
 Why a silo and not the paper's hopper: Beverloo's law was fitted to circular orifices in the floors
 of cylindrical bins. The paper's hopper (0.20 x 0.04 m, a 0.04 x 0.04 m orifice spanning its depth)
