@@ -25,7 +25,7 @@ speed rather than quasi-statically).
 
 --quick: gaps 10 and 40 mm, Crr 0.02 and 0.05, 7 masses a ladder (about 20 s on one core).
 STACK_DT_FRACTION (the step over the Rayleigh time, default 0.1), STACK_RAMP (the gravity ramp's
-length, default 0.5 s) and STACK_ROLLING=spring (validation/rolling_spring_model.py's rolling moment,
+length, default 0.5 s), STACK_COR (the restitution coefficient, default 0.5) and STACK_ROLLING=spring (validation/rolling_spring_model.py's rolling moment,
 which has a static state) are the studies of validation/README.md.
 """
 import math
@@ -40,7 +40,8 @@ case = Case("stacking", __doc__)
 deme = import_deme()
 import numpy as np  # noqa: E402
 
-R, M1, MU, G, E, NU, COR = 0.15, 1.0, 0.2, 9.81, 1e7, 0.3, 0.5
+R, M1, MU, G, E, NU = 0.15, 1.0, 0.2, 9.81, 1e7, 0.3
+COR = float(os.environ.get("STACK_COR", "0.5"))  # the damping study of validation/README.md
 STEP = 1.03
 # Gravity from 0 to g in 50 steps over 0.5 s (a quasi-static load; STACK_RAMP sets the time), then
 # held to 2.5 s after the ramp's end.
