@@ -25,8 +25,10 @@ speed rather than quasi-statically).
 
 --quick: gaps 10 and 40 mm, Crr 0.02 and 0.05, 7 masses a ladder (about 20 s on one core).
 STACK_DT_FRACTION (the step over the Rayleigh time, default 0.1), STACK_RAMP (the gravity ramp's
-length, default 0.5 s), STACK_COR (the restitution coefficient, default 0.5) and STACK_ROLLING=spring (validation/rolling_spring_model.py's rolling moment,
-which has a static state) are the studies of validation/README.md.
+length, default 0.5 s), STACK_COR (the restitution coefficient, default 0.5), STACK_ROLLING=spring
+(validation/rolling_spring_model.py's rolling moment, which has a static state) and
+STACK_ROLLING=caps-total / caps-elastic (validation/elastic_caps_model.py) are the studies of
+validation/README.md.
 """
 import math
 import os
@@ -69,9 +71,15 @@ sim = deme.DEMSolver()
 sim.SetVerbosity("QUIET")
 # STACK_ROLLING=spring: the rolling moment of validation/rolling_spring_model.py (a spring capped at the
 # default model's moment, with a static state) in place of the default model's (README says why).
-if os.environ.get("STACK_ROLLING", "default") == "spring":
+# STACK_ROLLING=caps-total / caps-elastic: the default model as a custom one, its caps from the whole
+# normal force or from its elastic part (validation/elastic_caps_model.py; the damping study).
+rolling = os.environ.get("STACK_ROLLING", "default")
+if rolling == "spring":
     import rolling_spring_model
     rolling_spring_model.use(sim)
+elif rolling in ("caps-total", "caps-elastic"):
+    import elastic_caps_model
+    elastic_caps_model.use(sim, rolling[len("caps-"):])
 floor = sim.LoadMaterial({"E": E, "nu": NU, "CoR": COR, "mu": MU, "Crr": 0.0})
 mats = {}
 for crr in CRRS:
