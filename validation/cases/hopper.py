@@ -12,7 +12,7 @@ granular materials", ch. 10), 4,200 grains (about 0.11 m); both until 62 % has l
 
 Why a silo and not the paper's hopper: Beverloo's law was fitted to circular orifices in the floors
 of cylindrical bins. The paper's hopper (0.20 x 0.04 m, a 0.04 x 0.04 m orifice spanning its depth)
-is a slot between two smooth side walls: there the law with D_h = 0.04 m, the orifice's hydraulic
+has a slot between its side walls: there the law with D_h = 0.04 m, the orifice's hydraulic
 diameter, gives 0.26 kg/s where the engine and LIGGGHTS 3.8 on the same hopper from the same packing
 both discharge 0.49 kg/s (validation/README.md, "hopper"); that hopper is judged against LIGGGHTS
 in peer_hopper.
