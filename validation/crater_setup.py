@@ -11,6 +11,8 @@ import math
 
 import numpy as np
 
+from settling import step_until_still
+
 G = 9.81
 RHO_GRAIN = 2500.0
 MU = 0.3
@@ -82,12 +84,8 @@ class Bed:
         """Pours the cloud and lets it settle, until the grains' mean speed is below v_mean and the
         fastest one's (a rattler on the surface) below v_max (m/s); returns the time it took and the
         fastest grain's speed then."""
-        while True:
-            self.sim.DoDynamics(frame)
-            v = np.linalg.norm(self.grain_tr.Velocities(), axis=1)
-            t = self.sim.GetSimTime()
-            if (t >= t_min and v.mean() < v_mean and v.max() < v_max) or t >= t_max:
-                return t, float(v.max())
+        t, _, fastest = step_until_still(self.sim, self.grain_tr, t_min, t_max, v_mean, v_max, frame)
+        return t, fastest
 
     def measure(self):
         """The settled bed: its surface level about the drop point (surface_level), its bulk density

@@ -15,6 +15,8 @@ import subprocess
 
 import numpy as np
 
+from drum_setup import Grain
+
 R, RHO, G = 0.003, 1592.0, 9.81
 HALF_X, HALF_Y, ORIFICE_HALF = 0.1, 0.02, 0.02
 MASS = RHO * 4.0 / 3.0 * math.pi * R ** 3
@@ -71,12 +73,11 @@ def settled_hopper(deme, n, settle_time):
 # The paper's test ID 2: wooden "cylinders" WC (its particle table: r = 2 mm, 8.5 mm long, 476 kg/m^3,
 # E = 10 MPa, nu = 0.35, CoR = 0.55; mu = 0.70 and Crr = 0.07 in its hopper table) as five spheres
 # of r = 2 mm on the axis, the end ones touching the ends, with a solid cylinder's mass and inertia.
-WC_R, WC_LENGTH, WC_RHO = 0.002, 0.0085, 476.0
-WC_CENTRES = [[x, 0.0, 0.0] for x in np.linspace(-(WC_LENGTH / 2 - WC_R), WC_LENGTH / 2 - WC_R, 5)]
-WC_MASS = WC_RHO * math.pi * WC_R ** 2 * WC_LENGTH
+WC_R, WC_LENGTH = 0.002, 0.0085
+WC = Grain("WC", WC_R, 476.0, [[x, 0.0, 0.0] for x in np.linspace(-(WC_LENGTH / 2 - WC_R), WC_LENGTH / 2 - WC_R, 5)],
+           per_metre=0.0)
+WC_MASS = WC.mass
 WC_DT = 1e-5  # 13 % of a component sphere's Rayleigh time (20 us, the spheres' step, would be 26 %)
-_WC_I_AXIS = 0.5 * WC_MASS * WC_R ** 2
-WC_MOI = [_WC_I_AXIS, _WC_I_AXIS / 2 + WC_MASS * WC_LENGTH ** 2 / 12, _WC_I_AXIS / 2 + WC_MASS * WC_LENGTH ** 2 / 12]
 
 
 def settled_cylinder_hopper(deme, n, settle_time, seed=3):
@@ -107,7 +108,7 @@ def settled_cylinder_hopper(deme, n, settle_time, seed=3):
     pts, oris = np.array(pts[:n]), np.array(oris[:n])
     material = {"E": 1e7, "nu": 0.35, "CoR": 0.55, "mu": 0.70, "Crr": 0.07}
     sim, mat = _hopper(deme, material, float(pts[:, 2].max()) + c)
-    tmpl = sim.LoadClumpType(WC_MASS, WC_MOI, [WC_R] * 5, WC_CENTRES, mat)
+    tmpl = sim.LoadClumpType(WC.mass, WC.moi, [WC_R] * len(WC.spheres), WC.spheres.tolist(), mat)
     grains = sim.AddClumps(tmpl, pts)
     grains.SetOriQ(oris)
     return sim, _settle(sim, grains, settle_time, WC_DT)

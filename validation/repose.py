@@ -13,6 +13,8 @@ import math
 
 import numpy as np
 
+from settling import step_until_still
+
 GATE = 2  # the gate's family
 FLOOR = 3  # the fixed grains of a rough floor
 
@@ -67,20 +69,10 @@ class Heap:
         self.tracker = sim.Track(grains)
         self.n = len(pts)
 
-    def _still(self, v_mean, v_max):
-        v = np.linalg.norm(self.tracker.Velocities(), axis=1)
-        return v.mean() < v_mean and v.max() < v_max
-
     def run_until_still(self, t_min, t_max, v_mean=1e-3, v_max=0.02, frame=0.02):
-        """Steps until the grains' mean speed is below v_mean and the fastest below v_max (m/s), at
-        least t_min and at most t_max seconds; returns the time it took and whether they came to rest."""
-        t0 = self.sim.GetSimTime()
-        while True:
-            self.sim.DoDynamics(frame)
-            t = self.sim.GetSimTime() - t0
-            still = self._still(v_mean, v_max)
-            if (t >= t_min and still) or t >= t_max:
-                return t, still
+        """Steps until the grains are still (settling.step_until_still); returns the time it took and
+        whether they came to rest."""
+        return step_until_still(self.sim, self.tracker, t_min, t_max, v_mean, v_max, frame)[:2]
 
     def open_gate(self):
         self.sim.DisableContactBetweenFamilies(0, GATE)

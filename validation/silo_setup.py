@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 import hopper_setup as hs
+from settling import step_until_still
 
 SIDES = 96
 GATE = 2  # as hopper_setup's gate, which hopper_setup.discharge opens
@@ -70,12 +71,7 @@ class Silo:
     def settle(self, t_min=0.3, t_max=2.0, v_mean=5e-3, frame=0.05):
         """Lets the cloud settle on the closed orifice until the grains' mean speed is below v_mean;
         returns the time it took."""
-        while True:
-            self.sim.DoDynamics(frame)
-            t = self.sim.GetSimTime()
-            v = np.linalg.norm(self.tracker.Velocities(), axis=1)
-            if (t >= t_min and v.mean() < v_mean) or t >= t_max:
-                return t
+        return step_until_still(self.sim, self.tracker, t_min, t_max, v_mean, frame=frame)[0]
 
     def measure(self):
         """The settled bed: its fill height (m: the median top of its highest 3 % of grains) and its
