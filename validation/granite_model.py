@@ -15,9 +15,14 @@ The law (paper s. 6.4, after Scholtes & Donze 2013, Int. J. Rock Mech. Min. Sci.
 - A_int = pi min(R_i, R_j)^2; sigma_t = 9.3 MPa and c = 200 MPa (the paper's listing), mu = 0.3.
 - A broken or never-bonded pair in contact follows Hertz-Mindlin (paper s. 3.1: E_eff, G_eff from
   E and nu, CoR-derived damping, Coulomb friction with mu of the pair); so do the spheres and plates.
-- The bending moment of the paper's bonds is left out: the paper gives neither its stiffness nor a
-  failure for it. (A force model can express it as `couple_torque`, the opposite couples of a bent
-  bond; a force at the contact point or `torque_only_force` gives both spheres torques of one sense.)
+- The bending moment (the paper's s. 6.4, after Belheine et al. 2009): a rotational spring of stiffness
+  k_r = R_i R_j k_t on the two spheres' relative rolling (their relative spin less its twisting part,
+  integrated incrementally and kept in the contact's tangent plane), capped at eta min(R_i, R_j) |F_n|
+  with eta = 0.1 (the paper's listing; GRANITE_ETA sets another, 0 leaves it out), with no failure of
+  its own, on bonds and unbonded sphere pairs alike (not on the plates). It acts as a pure couple
+  (`couple_torque`: A gets it, B its opposite), as a bent bond's moment does; the paper's listing
+  adds to the contact force a force min(ts k_r / R_A, eta |F|) along a rotational velocity instead,
+  which is neither a couple nor a spring's moment, so we follow its text, not its listing.
 
 Each sphere's owner wildcard `cracked` turns 1 when one of its bonds breaks (for the rendering).
 """
@@ -35,6 +40,14 @@ const float rMin = fminf(ARadius, BRadius);
 float3 ut = make_float3(ut_x, ut_y, ut_z);
 ut -= dot(ut, B2A) * B2A;                          // history into the current tangent plane
 ut += ts * vt;
+// The bending moment (paper s. 6.4, after Belheine et al. 2009): a spring k_r = R_i R_j k_t on the
+// two spheres' relative rolling, capped at eta min(R_i, R_j) |F_n|, no failure of its own; a pure
+// couple (A gets it, B its opposite). Only between rock spheres (eta_r > 0 for both).
+const float etaR = fminf(eta_r[bodyAMatType], eta_r[bodyBMatType]);
+float3 mr = make_float3(mr_x, mr_y, mr_z);
+float3 wRoll = rotateToGlobal(AOriQ, ARotVel) - rotateToGlobal(BOriQ, BRotVel);
+wRoll -= dot(wRoll, B2A) * B2A;
+mr -= dot(mr, B2A) * B2A;                          // history into the current tangent plane
 if (bond == 1.f) {                                 // marked at set-up: linked if within the range
     if (-overlapDepth <= gamma_int[bodyAMatType] * rMin) {
         bond = 2.f;
@@ -60,6 +73,13 @@ if (bond == 2.f) {
         if (length(ft) <= cap) {
             force += fn * B2A + ft;
             ut_x = ut.x; ut_y = ut.y; ut_z = ut.z;
+            if (etaR > 0.f) {
+                mr -= ts * ARadius * BRadius * kt * wRoll;
+                const float mCap = etaR * rMin * fabsf(fn), mLen = length(mr);
+                if (mLen > mCap) mr *= mCap / mLen;
+                couple_torque = mr;
+                mr_x = mr.x; mr_y = mr.y; mr_z = mr.z;
+            }
             return;
         }
     }
@@ -73,6 +93,7 @@ if (bond == 2.f) {
 const float ov = (float)overlapDepth - fmaxf(overlap0, 0.f);
 if (ov <= 0.f) {
     ut_x = ut_y = ut_z = 0.f;
+    mr_x = mr_y = mr_z = 0.f;
     return;
 }
 const float R = ARadius * BRadius / (ARadius + BRadius);
@@ -91,13 +112,24 @@ if (ftLen > cap && ftLen > 0.f) {
 }
 force += fmaxf(fn, 0.f) * B2A + ft;
 ut_x = ut.x; ut_y = ut.y; ut_z = ut.z;
+if (etaR > 0.f) {
+    mr -= ts * ARadius * BRadius * St * wRoll;
+    const float mCap = etaR * rMin * fmaxf(fn, 0.f), mLen = length(mr);
+    if (mLen > mCap) mr *= mCap / mLen;
+    couple_torque = mr;
+    mr_x = mr.x; mr_y = mr.y; mr_z = mr.z;
+}
 """
 
 # Granite and plates (paper s. 6.4, its table, after Potyondy & Cundall 2004 and Scholtes & Donze 2013).
 RHO, E_ROCK, NU_ROCK, MU_ROCK = 2640.0, 60e9, 0.25, 0.30
-UCS, SIGMA_T, COHESION = 200e6, 9.3e6, 200e6
+UCS, SIGMA_T = 200e6, 9.3e6
+# The bonds' cohesion (the paper's listing: 200 MPa); GRANITE_COHESION (Pa) sets another, for studies.
+COHESION = float(os.environ.get("GRANITE_COHESION", "200e6"))
 E_PLATE, NU_PLATE, MU_PLATE = 100e9, 0.30, 0.50
 RADIUS = 1.2e-3
+# The bending moment's cap coefficient eta (the paper's listing: 0.1); GRANITE_ETA=0 leaves the moment out.
+ETA_R = float(os.environ.get("GRANITE_ETA", "0.1"))
 
 
 def affine_modulus(links_per_shell, kn_over_e, radius=RADIUS, nu_micro=NU_ROCK, axis=2):
@@ -146,14 +178,15 @@ def build(deme, half, gamma_int, e_micro, plate_speed, dt, jitter=0.0, seed=1, p
     sim = deme.DEMSolver()
     sim.SetVerbosity("ERROR")
     model = sim.DefineContactForceModel(GRANITE_MODEL)
-    model.SetMustHaveMatProp(["E", "nu", "CoR", "E_micro", "sigma_t", "cohesion", "gamma_int"])
+    model.SetMustHaveMatProp(["E", "nu", "CoR", "E_micro", "sigma_t", "cohesion", "gamma_int", "eta_r"])
     model.SetMustPairwiseMatProp(["mu"])
-    model.SetPerContactWildcards(["bond", "overlap0", "ut_x", "ut_y", "ut_z"])
+    model.SetPerContactWildcards(["bond", "overlap0", "ut_x", "ut_y", "ut_z", "mr_x", "mr_y", "mr_z"])
     model.SetPerOwnerWildcards(["cracked"])
     rock = sim.LoadMaterial({"E": E_ROCK, "nu": NU_ROCK, "CoR": 0.5, "mu": MU_ROCK, "E_micro": e_micro,
-                             "sigma_t": sigma_t, "cohesion": cohesion, "gamma_int": gamma_int})
+                             "sigma_t": sigma_t, "cohesion": cohesion, "gamma_int": gamma_int,
+                             "eta_r": ETA_R})
     plate = sim.LoadMaterial({"E": E_PLATE, "nu": NU_PLATE, "CoR": 0.5, "mu": MU_PLATE, "E_micro": 0.0,
-                              "sigma_t": 0.0, "cohesion": 0.0, "gamma_int": 0.0})
+                              "sigma_t": 0.0, "cohesion": 0.0, "gamma_int": 0.0, "eta_r": 0.0})
     sim.SetMaterialPropertyPair("mu", rock, plate, MU_PLATE)
     a = 2.0 * RADIUS
     # GRANITE_C_AXIS=x: the lattice's stacking axis along x (the sampler stacks its layers along z),
