@@ -18,8 +18,9 @@ The law (paper s. 6.4, after Scholtes & Donze 2013, Int. J. Rock Mech. Min. Sci.
 - The bending moment (the paper's s. 6.4, after Belheine et al. 2009): a rotational spring of stiffness
   k_r = R_i R_j k_t on the two spheres' relative rolling (their relative spin less its twisting part,
   integrated incrementally and kept in the contact's tangent plane), capped at eta min(R_i, R_j) |F_n|
-  with eta = 0.1 in the paper's listing, with no failure of its own, on bonds and unbonded sphere pairs alike (not on the plates). It acts as a pure couple
-  (`couple_torque`: A gets it, B its opposite), as a bent bond's moment does; the paper's listing
+  with eta = 0.1 in the paper's listing, with no failure of its own, on bonds and unbonded sphere
+  pairs alike (not on the plates). It acts as a pure couple (`couple_torque`: A gets it, B its
+  opposite), as a bent bond's moment does; the paper's listing
   adds to the contact force a force min(ts k_r / R_A, eta |F|) along a rotational velocity instead,
   which is neither a couple nor a spring's moment (and about 2 mN here, against a bond's yield force
   of 42 N: practically none), so we follow its text, not its listing, where the moment is applied
