@@ -13,7 +13,8 @@ neighbours and 0.9 and 1.1 also the 6 at sqrt(2) a (gap 0.83 R). The micro modul
 that its own bonds at gamma_int 1.1, uniformly strained, give E = 60 GPa along its stacking axis as
 the test measures it (the full block: E_micro = 43.1 GPa; the infinite lattice would need 39.4, the
 block's free faces lack bonds; granite_model.specimen_modulus); it is not fitted to a run. Plate
-speed 0.05 m/s instead of 5 mm/s (the quasi-static equivalent: the dynamic overstress rho c v = 0.6 MPa, 0.3 % of the strength, with c = sqrt(E / rho) = 4.8 km/s; the
+speed 0.05 m/s instead of 5 mm/s (the quasi-static equivalent: the dynamic overstress rho c v =
+0.6 MPa, 0.3 % of the strength, with c = sqrt(E / rho) = 4.8 km/s; the
 loading lasts some 240 transits of an elastic wave through the block), dt = 0.1 us, to 1 % strain.
 No gravity (2.6 kPa of weight against 200 MPa). Strain: the shortening between the mean heights of
 the top and bottom sphere layers over their initial distance (a strain gauge on the specimen: the
