@@ -57,14 +57,6 @@ else:
 # GRANITE_END_STRAIN: the plates' travel over the block's height at the end (a block that hardens
 # further than the default reaches shows no peak within it).
 end_strain = float(os.environ.get("GRANITE_END_STRAIN", end_strain))
-# GRANITE_PACKING=random: the specimen cut from a dense random packing (validation/granite_packing.py)
-# instead of the lattice. As in Scholtes & Donze, the micro tensile strength is calibrated to the
-# rock's tensile strength (the table's 9.3 MPa) in a direct tension test of the same specimen
-# (granite_model.pull: the specimen's tensile strength is proportional to it, the cohesion hardly
-# acting in tension). The lattice's affine modulus does not hold for a random packing, so E_micro is
-# then calibrated on the elastic part of runs at the judged gamma_int: every bond's stiffness is
-# proportional to E_micro (k_t = nu k_n, k_r = R_i R_j k_t), and below the first bond failures so is
-# the specimen's modulus. The peak in compression is the prediction.
 # E_micro from the specimen's affine elasticity along the loading axis (z; the lattice's stacking axis,
 # or across it where GRANITE_C_AXIS=x turns it): the modulus its own bonds at the judged gamma_int give
 # under a uniform strain, measured as the test measures it (granite_model.specimen_modulus). Its free
@@ -77,10 +69,17 @@ positions, sigma_t = None, gm.SIGMA_T
 # symmetric load collapses late, where rounding first breaks its symmetry (validation/README.md); the
 # bonds are made at the moved positions, so the specimen starts unstressed.
 jitter = float(os.environ.get("GRANITE_JITTER", "0.001"))
-jitter_seed = int(os.environ.get("GRANITE_PACKING_SEED", "1"))
+seed = int(os.environ.get("GRANITE_PACKING_SEED", "1"))
+# GRANITE_PACKING=random: the specimen cut from a dense random packing (validation/granite_packing.py)
+# instead of the lattice. As in Scholtes & Donze, the micro tensile strength is calibrated to the
+# rock's tensile strength (the table's 9.3 MPa) in a direct tension test of the same specimen
+# (granite_model.pull: the specimen's tensile strength is proportional to it, the cohesion hardly
+# acting in tension). The lattice's affine modulus does not hold for a random packing, so E_micro is
+# then calibrated on the elastic part of runs at the judged gamma_int: every bond's stiffness is
+# proportional to E_micro (k_t = nu k_n, k_r = R_i R_j k_t), and below the first bond failures so is
+# the specimen's modulus. The peak in compression is the prediction.
 if os.environ.get("GRANITE_PACKING", "hcp") == "random":
     import granite_packing as gp  # noqa: E402
-    seed = int(os.environ.get("GRANITE_PACKING_SEED", "1"))
     positions, solid, walls = gp.random_packing(deme, half, gm.RADIUS, gm.RHO, seed=seed, log=print)
     jitter = 0.0  # a random packing has its imperfections
     # The tensile strength first (a bond's yield force sigma_t A does not depend on E_micro, so
@@ -100,7 +99,7 @@ if os.environ.get("GRANITE_PACKING", "hcp") == "random":
 runs = {}
 for g in gammas:
     r = gm.compress(deme, half, g, e_micro, speed, 1e-7, end_strain, 100, positions=positions, sigma_t=sigma_t,
-                    jitter=jitter, seed=jitter_seed)
+                    jitter=jitter, seed=seed)
     r["modulus"] = gm.initial_modulus(r["strain"], r["stress"])
     ipk = int(np.argmax(r["stress"]))
     r["peak"], r["peak_strain"] = float(r["stress"][ipk]), float(r["strain"][ipk])
