@@ -33,6 +33,18 @@ import os
 
 import numpy as np
 
+def _bending(kt, fn):
+    """The bending moment's step in the model's text (the spring k_r = R_i R_j k_t, capped at eta min(R)
+    |F_n|), given the branch's k_t and |F_n|: written once, put in both branches."""
+    return f"""if (etaR > 0.f) {{
+    mr -= ts * ARadius * BRadius * {kt} * wRoll;
+    const float mCap = etaR * rMin * {fn}, mLen = length(mr);
+    if (mLen > mCap) mr *= mCap / mLen;
+    couple_torque = mr;
+    mr_x = mr.x; mr_y = mr.y; mr_z = mr.z;
+}}"""
+
+
 GRANITE_MODEL = r"""
 const float3 velB2A = (ALinVel + rotVelCPA) - (BLinVel + rotVelCPB);
 const float vn = dot(velB2A, B2A);                 // > 0: separating
@@ -75,13 +87,7 @@ if (bond == 2.f) {
         if (length(ft) <= cap) {
             force += fn * B2A + ft;
             ut_x = ut.x; ut_y = ut.y; ut_z = ut.z;
-            if (etaR > 0.f) {
-                mr -= ts * ARadius * BRadius * kt * wRoll;
-                const float mCap = etaR * rMin * fabsf(fn), mLen = length(mr);
-                if (mLen > mCap) mr *= mCap / mLen;
-                couple_torque = mr;
-                mr_x = mr.x; mr_y = mr.y; mr_z = mr.z;
-            }
+            BENDING_BOND
             return;
         }
     }
@@ -114,14 +120,10 @@ if (ftLen > cap && ftLen > 0.f) {
 }
 force += fmaxf(fn, 0.f) * B2A + ft;
 ut_x = ut.x; ut_y = ut.y; ut_z = ut.z;
-if (etaR > 0.f) {
-    mr -= ts * ARadius * BRadius * St * wRoll;
-    const float mCap = etaR * rMin * fmaxf(fn, 0.f), mLen = length(mr);
-    if (mLen > mCap) mr *= mCap / mLen;
-    couple_torque = mr;
-    mr_x = mr.x; mr_y = mr.y; mr_z = mr.z;
-}
+BENDING_HM
 """
+GRANITE_MODEL = GRANITE_MODEL.replace("BENDING_BOND", _bending("kt", "fabsf(fn)")).replace(
+    "BENDING_HM", _bending("St", "fmaxf(fn, 0.f)"))
 
 # Granite and plates (paper s. 6.4, its table, after Potyondy & Cundall 2004 and Scholtes & Donze 2013).
 RHO, E_ROCK, NU_ROCK, MU_ROCK = 2640.0, 60e9, 0.25, 0.30
@@ -201,7 +203,7 @@ def specimen_modulus(pts, half, gamma_int, cut=False, radius=RADIUS, nu_micro=NU
         d = rows[:, None, :] - cols[None, :, :]
         dist = np.linalg.norm(d, axis=2)
         idx_r, idx_c = np.nonzero((dist <= reach) & (dist > 0))
-        keep = start + idx_c > start + idx_r  # each pair once
+        keep = idx_c > idx_r  # each pair once (cols start at the chunk's first row)
         vectors.append(d[idx_r[keep], idx_c[keep]])
     low, high = outer_layers(pts)
     volume = section_area(pts, half, cut) * float(pts[high, 2].mean() - pts[low, 2].mean())

@@ -57,12 +57,6 @@ else:
 # GRANITE_END_STRAIN: the plates' travel over the block's height at the end (a block that hardens
 # further than the default reaches shows no peak within it).
 end_strain = float(os.environ.get("GRANITE_END_STRAIN", end_strain))
-# E_micro from the specimen's affine elasticity along the loading axis (z; the lattice's stacking axis,
-# or across it where GRANITE_C_AXIS=x turns it): the modulus its own bonds at the judged gamma_int give
-# under a uniform strain, measured as the test measures it (granite_model.specimen_modulus). Its free
-# faces lack bonds, so a small block needs a larger E_micro than the infinite lattice
-# (granite_model.affine_modulus), by 1 / 0.69 for the quick block and 1 / 0.83 for a 2.5 x 2.5 x 5 cm one.
-e_micro = gm.E_ROCK / gm.specimen_modulus(gm.lattice(deme, half), half, max(gammas))
 positions, sigma_t = None, gm.SIGMA_T
 # The lattice's imperfections: each sphere moved at random by up to GRANITE_JITTER (default 0.001) of a
 # diameter each way, GRANITE_PACKING_SEED the generator's seed. A perfect lattice under a perfectly
@@ -96,6 +90,14 @@ if os.environ.get("GRANITE_PACKING", "hcp") == "random":
     print(f"random packing (seed {seed}): {len(positions)} spheres, solid fraction {solid:.3f}; "
           f"E_micro calibrated to {e_micro / 1e9:.1f} GPa; tensile strength {tension['peak'] / 1e6:.2f} MPa "
           f"with the micro 9.3 MPa, so the micro tensile strength calibrated to {sigma_t / 1e6:.2f} MPa")
+else:
+    # E_micro from the specimen's affine elasticity along the loading axis (z; the lattice's stacking
+    # axis, or across it where GRANITE_C_AXIS=x turns it): the modulus its own bonds at the judged
+    # gamma_int give under a uniform strain, measured as the test measures it
+    # (granite_model.specimen_modulus). Its free faces lack bonds, so a small block needs a larger
+    # E_micro than the infinite lattice (granite_model.affine_modulus): by 1 / 0.69 for the quick
+    # block, 1 / 0.83 for a 2.5 x 2.5 x 5 cm one.
+    e_micro = gm.E_ROCK / gm.specimen_modulus(gm.lattice(deme, half), half, max(gammas))
 runs = {}
 for g in gammas:
     r = gm.compress(deme, half, g, e_micro, speed, 1e-7, end_strain, 100, positions=positions, sigma_t=sigma_t,
