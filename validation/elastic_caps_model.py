@@ -26,8 +26,4 @@ if (Crr_cnt > 0.f) {
 
 def use(sim, caps):
     """Makes the model with the given caps ("total" or "elastic") the solver's; returns it."""
-    model = sim.DefineContactForceModel(model_text(caps))
-    model.SetMustHaveMatProp(["E", "nu", "CoR"])
-    model.SetMustPairwiseMatProp(["mu", "Crr", "CoR"])
-    model.SetPerContactWildcards(["delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time"])
-    return model
+    return rolling_model.use(sim, model_text(caps))

@@ -92,9 +92,10 @@ if (Crr_cnt > 0.f) {
 """)
 
 
-def use(sim):
-    """Makes MODEL the solver's contact force model; returns it."""
-    model = sim.DefineContactForceModel(MODEL)
+def use(sim, text=MODEL):
+    """Makes MODEL (or another text of hertz_mindlin's, with its wildcards) the solver's contact force
+    model; returns it."""
+    model = sim.DefineContactForceModel(text)
     model.SetMustHaveMatProp(["E", "nu", "CoR"])
     model.SetMustPairwiseMatProp(["mu", "Crr", "CoR"])  # CoR: beta_CoR mixes the pair values
     model.SetPerContactWildcards(["delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time"])
