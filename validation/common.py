@@ -77,6 +77,13 @@ def device(backend):
     return f"CPU ({os.cpu_count()} cores, {platform.machine()})"
 
 
+def write_json(path, record):
+    """Writes `record` to `path` through a temporary name, so that a crash never leaves half a file."""
+    with open(path + ".tmp", "w") as f:
+        json.dump(record, f, indent=1)
+    os.replace(path + ".tmp", path)
+
+
 class Case:
     """One case's command line (--quick, --backend, --out), verdicts and plot."""
 
@@ -122,13 +129,14 @@ class Case:
         import matplotlib.pyplot as plt
         return plt.subplots(*args, **kwargs)
 
-    def save(self, fig, origin=None):
-        """Writes the case's plot to <out>/<case>.png (through a temporary name). origin: where the
-        data came from when it is not this run (e.g. "cuda, 9ac9233", a GPU run drawn here)."""
+    def save(self, fig, origin=None, name=None):
+        """Writes the case's plot to <out>/<name>.png (name: the case's by default; through a temporary
+        name). origin: where the data came from when it is not this run (e.g. "cuda, 9ac9233", a GPU
+        run drawn here)."""
         made = f"{self.backend}, {commit()}" if origin is None else f"{origin} (drawn on {self.backend}, {commit()})"
         fig.suptitle(f"{self.name}{' (quick)' if self.quick else ''}: {made}", fontsize=8, y=0.995)
         fig.tight_layout()
-        path = os.path.join(self.args.out, self.name + ".png")
+        path = os.path.join(self.args.out, (name or self.name) + ".png")
         tmp = path + ".tmp.png"
         fig.savefig(tmp, dpi=110)
         os.replace(tmp, path)
@@ -141,9 +149,6 @@ class Case:
         if skipped:
             record["skipped"] = skipped
             print(f"SKIPPED  {self.name}: {skipped}")
-        path = os.path.join(self.args.out, self.name + ".json")
-        with open(path + ".tmp", "w") as f:
-            json.dump(record, f, indent=1)
-        os.replace(path + ".tmp", path)
+        write_json(os.path.join(self.args.out, self.name + ".json"), record)
         ok = bool(skipped) or (bool(self.verdicts) and all(v["pass"] for v in self.verdicts))
         sys.exit(0 if ok else 1)

@@ -121,9 +121,10 @@ def bulk_density(z):
     return fill, MASS * np.count_nonzero((z > lo) & (z < hi)) / (2 * HALF_X * 2 * HALF_Y * (hi - lo))
 
 
-def discharge(sim, n, t_end, frame=0.05, grain_mass=MASS, stop_fraction=0.999):
+def discharge(sim, n, t_end, frame=0.05, grain_mass=MASS, stop_fraction=0.999, on_frame=None):
     """Opens the orifice (the gate of family 2 lets the grains through) and records (times, discharged
-    mass fractions) every frame until t_end or until `stop_fraction` of the grains' mass is out."""
+    mass fractions) every frame until t_end or until `stop_fraction` of the grains' mass is out;
+    on_frame(times, fractions), if given, sees the curve so far after every frame."""
     sim.DisableContactBetweenFamilies(0, 2)
     total = n * grain_mass
     t, m = [0.0], [0.0]
@@ -131,6 +132,8 @@ def discharge(sim, n, t_end, frame=0.05, grain_mass=MASS, stop_fraction=0.999):
         sim.DoDynamics(frame)
         t.append(t[-1] + frame)
         m.append(sim.GetRemovedMass())
+        if on_frame:
+            on_frame(t, [x / total for x in m])
     return np.array(t), np.array(m) / total
 
 

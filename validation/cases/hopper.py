@@ -23,19 +23,23 @@ settled from a loose pour for 0.8 s, then 7.5 s open; validation/hopper_setup.py
 discharged mass fraction against time (not judged: the paper compares them with measurements of
 Jian et al. 2023 that are not in our data; peer_hopper judges test ID 1 against LIGGGHTS).
 HOPPER_PAPER=0 leaves them out, HOPPER_PAPER=1 or 2 takes one (on the CPU, test ID 2's 100,070 spheres
-take hours; on one H100 the silo and both IDs do not fit one 10-minute command).
+take hours; on one H100 the silo and both IDs do not fit one 10-minute command), and HOPPER_SILO=0
+leaves the silo out (the case is then recorded as skipped: no verdict). Each test ID's curve is kept
+in <out>/hopper_paper_<id>.json, rewritten every frame (a run cut short keeps what it reached), and
+<out>/hopper_paper.png draws every such file in the folder: runs of separate commands draw together.
 
 Reference: Beverloo, Leniger & van de Velde (1961), Chem. Eng. Sci. 15, 260:
 W = C rho_bulk sqrt(g) (D0 - k d)^(5/2), C = 0.58, k = 1.5, rho_bulk the settled bed's bulk density
 (measured in its middle). Verdict: the steady rate (the slope of the discharged mass between 20 % and
 60 % discharged) within 20 % of W.
 """
+import json
 import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from common import Case, import_deme  # noqa: E402
+from common import Case, commit, import_deme, write_json  # noqa: E402
 import hopper_setup as hs  # noqa: E402
 import silo_setup as ss  # noqa: E402
 
@@ -44,6 +48,62 @@ deme = import_deme()
 import numpy as np  # noqa: E402
 
 ORIFICE = 0.04
+PAPER_IDS = {"1": ("test ID 1, PS spheres", 14058, hs.settled_hopper, hs.MASS),
+             "2": ("test ID 2, WC cylinders (5-sphere clumps)", 20014, hs.settled_cylinder_hopper, hs.WC_MASS)}
+
+
+def paper_file(run_id):
+    return os.path.join(case.args.out, f"hopper_paper_{run_id}.json")
+
+
+def discharge_paper_hopper(run_id):
+    """Settles and discharges the paper's hopper for one test ID, its curve kept in paper_file(run_id)."""
+    label, count, build, grain_mass = PAPER_IDS[run_id]
+    psim, ppos = build(deme, count, 0.8)
+    record = {"label": label, "grains": count, "fill": float(ppos[:, 2].max()), "backend": case.backend,
+              "commit": commit(), "t": [], "fraction": [], "rate": None}
+
+    def keep(t, frac):
+        record["t"], record["fraction"] = [float(x) for x in t], [float(x) for x in frac]
+        rate = hs.steady_rate(np.array(t), np.array(frac), count, grain_mass)
+        record["rate"] = rate if math.isfinite(rate) else None  # None until 60 % has left
+        write_json(paper_file(run_id), record)
+
+    pt, pfrac = hs.discharge(psim, count, 7.5, grain_mass=grain_mass, on_frame=keep)
+    keep(pt, pfrac)
+    print(f"the paper's hopper, {label}: {count} grains, fill {record['fill']:.3f} m, discharged "
+          f"{pfrac[-1] * 100:.1f} % in {pt[-1]:.2f} s, steady rate {record['rate']} kg/s", flush=True)
+
+
+def draw_paper_hopper():
+    """<out>/hopper_paper.png: every test ID's curve kept in the out folder, with its origin."""
+    runs = []
+    for run_id in sorted(PAPER_IDS):
+        if os.path.exists(paper_file(run_id)):
+            with open(paper_file(run_id)) as f:
+                runs.append(json.load(f))
+    if not runs:
+        return
+    fig, ax = case.figure(1, 1, figsize=(6.5, 4.2))
+    for k, r in enumerate(runs):
+        rate = "under 60 % discharged" if r["rate"] is None else f"{r['rate']:.3f} kg/s over 20-60 %"
+        ax.plot(r["t"], r["fraction"], "-", color=f"C{k}",
+                label=f"{r['label']}, {r['grains']} grains: {rate} ({r['backend']}, {r['commit']})")
+    ax.set(xlabel="time since the orifice opened (s)", ylabel="discharged mass fraction",
+           title="the paper's hopper, 0.20 x 0.04 m, orifice 0.04 m (not judged)")
+    ax.legend(fontsize=7)
+    origins = sorted({f"{r['backend']}, {r['commit']}" for r in runs})
+    case.save(fig, origin="; ".join(origins), name="hopper_paper")
+
+
+# HOPPER_PAPER: which of the paper's test IDs the full run discharges ("1,2", the default; "0": none).
+paper_ids = [] if case.quick else [i for i in os.environ.get("HOPPER_PAPER", "1,2").split(",") if i in PAPER_IDS]
+if os.environ.get("HOPPER_SILO", "1") == "0":
+    for run_id in paper_ids:
+        discharge_paper_hopper(run_id)
+    draw_paper_hopper()
+    case.finish(skipped="the silo left out (HOPPER_SILO=0): no verdict; the paper's hopper drawn")
+
 if case.quick:
     n, diameter, t_end, stop = 4200, 0.10, 2.5, 0.62
 else:
@@ -61,22 +121,11 @@ case.check(f"steady mass flow rate, 20-60 % discharged (kg/s; D0 = {ORIFICE} m, 
            f"Beverloo et al. (1961), C = 0.58, k = 1.5, measured bulk density {rho_bulk:.0f} kg/m^3",
            round(rate, 4), "20 %", math.isfinite(rate) and abs(rate - law) <= 0.2 * law)
 
-# HOPPER_PAPER: which of the paper's test IDs the full run discharges ("1,2", the default; "0": none).
-paper_ids = set(os.environ.get("HOPPER_PAPER", "1,2").split(","))
-paper = [] if case.quick else [run for run_id, run in (
-    ("1", ("test ID 1, PS spheres", 14058, hs.settled_hopper, hs.MASS)),
-    ("2", ("test ID 2, WC cylinders (5-sphere clumps)", 20014, hs.settled_cylinder_hopper, hs.WC_MASS)))
-    if run_id in paper_ids]
-paper_runs = []
-for label, count, build, grain_mass in paper:
-    psim, ppos = build(deme, count, 0.8)
-    pt, pfrac = hs.discharge(psim, count, 7.5, grain_mass=grain_mass)
-    prate = hs.steady_rate(pt, pfrac, count, grain_mass)
-    print(f"the paper's hopper, {label}: {count} grains, fill {float(ppos[:, 2].max()):.3f} m, discharged "
-          f"{pfrac[-1] * 100:.1f} % in {pt[-1]:.2f} s, steady rate {prate:.4f} kg/s", flush=True)
-    paper_runs.append((label, pt, pfrac, prate))
+for run_id in paper_ids:
+    discharge_paper_hopper(run_id)
+draw_paper_hopper()
 
-fig, axes = case.figure(1, 3 if paper_runs else 2, figsize=(16 if paper_runs else 11, 4.2))
+fig, axes = case.figure(1, 2, figsize=(11, 4.2))
 ax, ax2 = axes[0], axes[1]
 mass = frac * n * hs.MASS
 ax.plot(t, frac, "-", color="C0", label="engine")
@@ -95,11 +144,5 @@ if np.count_nonzero(w) >= 2:
                      alpha=0.15, label="Beverloo +- 20 %")
 ax2.set(xlabel="time since the orifice opened (s)", ylabel="discharged mass (kg)")
 ax2.legend(fontsize=7)
-if paper_runs:
-    for k, (label, pt, pfrac, prate) in enumerate(paper_runs):
-        axes[2].plot(pt, pfrac, "-", color=f"C{k}", label=f"{label}: {prate:.3f} kg/s over 20-60 %")
-    axes[2].set(xlabel="time since the orifice opened (s)", ylabel="discharged mass fraction",
-                title="the paper's hopper (not judged)")
-    axes[2].legend(fontsize=7)
 case.save(fig)
 case.finish()
