@@ -65,4 +65,16 @@ std::string demeErrorMessage(F&& f) {
     return "";
 }
 
+// How many step batches ended early (a set that expired, a fault), from the collaboration report.
+inline unsigned long long batchesEndedEarly(const deme::DEMSolver& sim) {
+    testing::internal::CaptureStdout();
+    sim.ShowThreadCollaborationStats();
+    const std::string report = testing::internal::GetCapturedStdout();
+    const std::string tail = " ended early";
+    const size_t at = report.find(tail);
+    if (at == std::string::npos) return 0;
+    const size_t start = report.rfind(", ", at);
+    return std::stoull(report.substr(start + 2, at - start - 2));
+}
+
 }  // namespace deme_test

@@ -102,18 +102,6 @@ void expectBitForBit(const Trajectory& a, const Trajectory& b) {
 
 constexpr int STEPS = 3000;
 
-// How many step batches ended early, from the collaboration report.
-unsigned long long batchesEndedEarly(const DEMSolver& sim) {
-    testing::internal::CaptureStdout();
-    sim.ShowThreadCollaborationStats();
-    const std::string report = testing::internal::GetCapturedStdout();
-    const std::string tail = " ended early";
-    const size_t at = report.find(tail);
-    if (at == std::string::npos) return 0;
-    const size_t start = report.rfind(", ", at);
-    return std::stoull(report.substr(start + 2, at - start - 2));
-}
-
 Trajectory inOneCall(bool async, unsigned long long* endedEarly = nullptr) {
     BouncingSpheres s(async);
     s.pull();

@@ -40,6 +40,7 @@ enum OwnerStepFlag : uint8_t {
     STEP_LEFT_DOMAIN = 4,
     STEP_LARGE_ROTATION = 8,  // orientation still to be advanced by the exact (scalar) step
     STEP_MOVED = 16,          // its geometry may have moved: cached vertices need refreshing
+    STEP_PARKED = 32,         // a clump that left under the "remove" exit policy, parked (parkingPosition)
 };
 constexpr uint8_t STEP_FAULTS = STEP_NOT_FINITE | STEP_TOO_FAST | STEP_LEFT_DOMAIN;
 
@@ -61,7 +62,36 @@ struct StepConstants {
     // Tracker loads per owner (state/StateFields.h), or null in a call without any.
     const float3* extraAcc;
     const float3* extraAngAcc;
+    // SetDomainExitPolicy("remove"): a clump that leaves the domain is parked, not a fault.
+    bool parkLeavingClumps;
 };
+
+// Under the "remove" exit policy a clump that leaves the domain is not a fault that ends the batch:
+// it is parked, at rest, far beyond the domain, and the host takes the parked clumps out between
+// batches (Simulation::removeParkedClumps) -- at the end of the DoDynamics call, or sooner once
+// many are parked -- so that an outflow costs one host round trip per call, not one per step with
+// an exit. Parked clumps lie along the first bounded axis (an exit crosses a bounded face, so there
+// is one), from 1000 domain lengths out, 4 domain lengths apart: no contact can form with one, the
+// contacts it had end at once (their spheres are placed there in the same step), and binning
+// clamps them into a border bin. A parked clump stays parked: its place is outside the domain, so
+// it leaves again every step, and its flags say so until the host removes it.
+DEME_HD_INLINE int parkingAxis(const StepConstants& c) {
+    const unsigned int p = c.frame.periodic.axes;
+    return !(p & 1u) ? 0 : !(p & 2u) ? 1 : 2;
+}
+DEME_HD_INLINE double parkingUnit(const StepConstants& c) {
+    const double3 d = c.domainSize;
+    return fmax(d.x, fmax(d.y, d.z));
+}
+DEME_HD_INLINE double3 parkingPosition(const StepConstants& c, size_t o) {
+    const double far = (1000.0 + 4.0 * (double)o) * parkingUnit(c);
+    const int a = parkingAxis(c);
+    double3 x = c.frame.origin;
+    x.x += a == 0 ? far : 0.0;
+    x.y += a == 1 ? far : 0.0;
+    x.z += a == 2 ? far : 0.0;
+    return x;
+}
 
 struct OwnerStepResult {
     float travelSinceDetection;  // negative: not counted (fixed or analytical owners)
@@ -188,13 +218,18 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const OwnerStepInputs& 
     const bool notFinite = !finite3(v) || !finite3(w) || !finiteFloat(q.w);
     const bool tooFast = dynamic && dot(v, v) > c.maxSpeed2;
     const bool left = (clump && !insideBox(x, c.frame.origin, c.domainSize)) || !encoded;
+    // A diverged clump is a fault whatever the policy.
+    const bool park = c.parkLeavingClumps && clump && left && !notFinite && !tooFast;
+    v = park ? make_float3(0.f) : v;
+    w = park ? make_float3(0.f) : w;
     OwnerStepResult r;
-    r.flags = notFinite ? STEP_NOT_FINITE : tooFast ? STEP_TOO_FAST : left ? STEP_LEFT_DOMAIN : 0;
+    r.flags = notFinite ? STEP_NOT_FINITE : tooFast ? STEP_TOO_FAST : park ? STEP_PARKED : left ? STEP_LEFT_DOMAIN : 0;
     r.flags |= (dynamic || dot(v, v) > 0.f || dot(w, w) > 0.f) ? STEP_MOVED : 0;
-    r.flags |= large ? STEP_LARGE_ROTATION : 0;
+    const bool largeStep = large && !park;
+    r.flags |= largeStep ? STEP_LARGE_ROTATION : 0;
 
     // Travel bounds the motion of every point of the geometry (analytical owners: see below).
-    const bool travels = !fixed && !analytical;
+    const bool travels = !fixed && !analytical && !park;
     const float speed = lengthOrZero(v) + lengthOrZero(w) * extent;
     r.speed = travels ? speed : 0.f;
     const float travel = travel0 + r.speed * c.h;
@@ -208,13 +243,13 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const OwnerStepInputs& 
     ow.subX[o] = subX;
     ow.subY[o] = subY;
     ow.subZ[o] = subZ;
-    k.ownerPos[o] = decodePosition(voxel, subX, subY, subZ, c.frame);
+    k.ownerPos[o] = park ? parkingPosition(c, o) : decodePosition(voxel, subX, subY, subZ, c.frame);
     ow.travel[o] = travel;
     // An owner whose rotation is too large for the series leaves its midpoint angular velocity
     // (local frame) in its cache slot, for the exact step that follows in the same sweep
     // (finishLargeRotation), which puts the global angular velocity there: the one per-owner array
     // of the step serves both, instead of a scratch array written by every owner every step.
-    k.ownerAngVelGlobal[o] = large ? wMid : rotateToGlobal(q, w);
+    k.ownerAngVelGlobal[o] = largeStep ? wMid : rotateToGlobal(q, w);
     return r;
 }
 

@@ -22,6 +22,7 @@ struct StepTally {
     unsigned int errorFlags;  // KernelError bits (GPU)
     unsigned int errorItem;
     unsigned long long realContacts, realSphereSphere;
+    unsigned int parkedOwners;  // clumps parked after the step (OwnerStep.h, parkingPosition)
 };
 
 constexpr unsigned int NO_FAULT = 0xFFFFFFFFu;
@@ -62,6 +63,7 @@ DEME_HD_INLINE StepBatchControl beginStepBatch(double time, double dt, double ma
     c.last.errorFlags = 0u;
     c.last.errorItem = 0u;
     c.last.realContacts = c.last.realSphereSphere = 0ull;
+    c.last.parkedOwners = 0u;
     return c;
 }
 

@@ -58,6 +58,7 @@ struct StepOutcome {
     size_t faultOwner = 0;                          // lowest internal owner id with a fault
     uint8_t faultFlags = 0;                         // OwnerStepFlag bits of that owner
     unsigned int kernelError = 0, kernelErrorItem = 0;  // GPU only: KernelError bits and the sphere
+    size_t parkedOwners = 0;  // clumps that left under the "remove" policy, parked (dynamics/OwnerStep.h)
 };
 
 // A step's outcome as the end-of-step rule tallies it (dynamics/StepBatch.h), and back (the fault's
@@ -71,12 +72,14 @@ inline StepTally tallyOf(const StepOutcome& o) {
     t.errorItem = o.kernelErrorItem;
     t.realContacts = o.realContacts;
     t.realSphereSphere = o.realSphereSphere;
+    t.parkedOwners = (unsigned int)o.parkedOwners;
     return t;
 }
 inline StepOutcome outcomeOf(const StepTally& t) {
     StepOutcome o;
     o.realContacts = (size_t)t.realContacts;
     o.realSphereSphere = (size_t)t.realSphereSphere;
+    o.parkedOwners = t.parkedOwners;
     o.maxSpeed = t.maxSpeed;
     o.maxTravel = t.maxTravel;
     o.fault = t.firstFault != NO_FAULT;

@@ -166,6 +166,10 @@ namespace {
 // would cost a GPU one host synchronisation per step.
 constexpr unsigned int ASYNC_POLL_STEPS = 16;
 
+// Parked clumps (the "remove" exit policy) wait in one border bin, where each detection compares
+// them pairwise: past this many the host removes them before the call's end.
+constexpr size_t PARKED_CLUMPS_REMOVED_AT = 512;
+
 }  // namespace
 
 // The engine's one step loop, on either backend: steps run in batches (dynamics/StepBatch.h) between
@@ -180,6 +184,7 @@ void Simulation::advance(unsigned long long n) {
     const bool loads = !m_state.trackerLoads.empty();
     if (loads) dynamics.uploadTrackerLoads(m_state);
     dynamics.beginRun(settings, families);
+    size_t parked = 0;  // clumps parked after the last batch
     for (unsigned long long k = 0; k < n;) {
         m_state.frame.periodic.shearTime = m_time;  // the host state's time (a sheared cell's offset)
         // A contact set serves at most n_max steps, and only while nobody has travelled its margin.
@@ -210,9 +215,13 @@ void Simulation::advance(unsigned long long n) {
         m_lastMaxSpeed = last.maxSpeed;
         // Travel only grows, so the last step's is the batch's largest.
         m_contacts.afterStep(last.maxTravel);
-        if (last.fault || last.kernelError) {
-            StepOutcome fault = last;
-            if (last.kernelError || !removeLeavingClumps(fault)) reportFault(fault);
+        if (last.fault || last.kernelError) reportFault(last);
+        // Parked clumps (the "remove" exit policy) go at the call's end, or here once so many wait
+        // that their border bin would slow detection (dynamics/OwnerStep.h, parkingPosition).
+        parked = last.parkedOwners;
+        if (parked >= PARKED_CLUMPS_REMOVED_AT && k < n) {
+            removeParkedClumps();
+            parked = 0;
             uploadIfEdited();  // the clumps are gone from the backend's state too
             dynamics.beginRun(settings, families);
         }
@@ -224,6 +233,7 @@ void Simulation::advance(unsigned long long n) {
     }
     m_monitor.end(m_time);
     m_state.frame.periodic.shearTime = m_time;
+    if (parked) removeParkedClumps();  // a host edit: uploaded at the next call
     collab.dynamicsSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (loads) {
         clearTrackerLoads();

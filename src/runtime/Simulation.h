@@ -128,10 +128,9 @@ class Simulation {
     void uploadIfEdited();
     void clearTrackerLoads();
     [[noreturn]] void reportFault(const StepOutcome& out) const;
-    // The "remove" domain exit policy: after a step that reported a fault, removes the clumps that
-    // left the domain (true), or says the fault stands (false; `out` then names the first owner
-    // with a fault that is not a clump leaving the domain).
-    bool removeLeavingClumps(StepOutcome& out);
+    // The "remove" domain exit policy: takes the clumps the steps parked out of the state (a host
+    // edit, sent at the next upload); returns how many.
+    size_t removeParkedClumps();
 
     mutable SimState m_state;
     ModelLayout m_model;

@@ -33,31 +33,21 @@ size_t Simulation::removeClumps(const std::vector<uint8_t>& remove) {
     return r.count;
 }
 
-// The step has run for every owner; those that left are taken out here, on the host, and the whole
-// state goes back to the backend before the next step (Simulation::advance). One download and one
-// upload per step in which clumps leave: cheap next to the detection that any edit causes anyway.
-bool Simulation::removeLeavingClumps(StepOutcome& out) {
-    if (!settings.removeLeavingClumps || faultFromFlags(out.faultFlags) != OwnerFault::LEFT_DOMAIN) return false;
+// Clumps that left the domain under the "remove" exit policy were parked by their steps
+// (dynamics/OwnerStep.h, parkingPosition), which flag them STEP_PARKED until they go: here, between
+// batches, on the host. One download of the state and one upload (at the next step) for every
+// clump parked since the last time, instead of one per step in which some clump leaves.
+size_t Simulation::removeParkedClumps() {
     std::vector<uint8_t> flags;
     m_backends.dynamics->downloadStepFlags(flags);
     const SimState& s = state();
     std::vector<uint8_t> remove(s.owners.size(), 0);
-    for (size_t o = 0; o < flags.size() && o < remove.size(); o++) {
-        const uint8_t f = flags[o];
-        if (!(f & STEP_FAULTS)) continue;
-        // Any other fault, or a non-clump owner outside the encodable range, still stops the run.
-        if ((f & (STEP_NOT_FINITE | STEP_TOO_FAST)) || o >= s.numClumps) {
-            out.faultOwner = o;
-            out.faultFlags = f;
-            return false;
-        }
-        remove[o] = 1;
-    }
+    for (size_t o = 0; o < flags.size() && o < s.numClumps; o++) remove[o] = (flags[o] & STEP_PARKED) ? 1 : 0;
     const size_t n = removeClumps(remove);
     if (settings.verbosity >= Verbosity::STEP_METRIC)
         log(Verbosity::STEP_METRIC, "t = " + std::to_string(m_time) + " s: " + std::to_string(n) +
                                         " clumps left the domain and were removed");
-    return true;
+    return n;
 }
 
 }  // namespace deme

@@ -90,10 +90,12 @@ StepOutcome CpuDynamics::step(double time, const Settings& settings, const Famil
     }
     PhaseTimer t(timing, Phase::INTEGRATION);
     const IntegrationResult ir =
-        integrateOwners(m_s, m_stepMotion, settings.gravity, settings.dt, settings.errorOutVelocity, m_subset);
+        integrateOwners(m_s, m_stepMotion, settings.gravity, settings.dt, settings.errorOutVelocity,
+                        settings.removeLeavingClumps, m_subset);
     m_s.frame.periodic.shearTime = time + settings.dt;
     out.maxSpeed = ir.maxSurfaceSpeed;
     out.maxTravel = ir.maxTravel;
+    out.parkedOwners = ir.parkedOwners;
     if (ir.fault != OwnerFault::NONE) {
         out.fault = true;
         out.faultOwner = ir.faultOwner;

@@ -46,7 +46,7 @@ void reduceContactForces(SimState& s, const IntegrationSubset& subset) {
 // afterwards.
 IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,
                                   const float3& gravity, double dt, float errorOutVelocity,
-                                  const IntegrationSubset& subset) {
+                                  bool parkLeavingClumps, const IntegrationSubset& subset) {
     OwnerArrays& ow = s.owners;
     const size_t n = ow.size();
     const bodyID_t* ownerIds = subset.all ? nullptr : subset.owners.data();
@@ -64,7 +64,8 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
                                s.frame,
                                s.domainSize,
                                loads.empty() ? nullptr : loads.extraAcc.data(),
-                               loads.empty() ? nullptr : loads.extraAngAcc.data()};
+                               loads.empty() ? nullptr : loads.extraAngAcc.data(),
+                               parkLeavingClumps};
     IntegrationScratch& scratch = s.integrationScratch;
     scratch.flags.resize(n);
     uint8_t* flags = scratch.flags.data();
@@ -72,11 +73,13 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
     float maxTravel = 0.f;
     float maxSpeed = 0.f;
     size_t firstFault = n;
+    size_t parked = 0;
     int anyLarge = 0;
 
 #pragma omp parallel if (n > PARALLEL_MIN_ITEMS)
     {
-#pragma omp for simd schedule(static) reduction(max : maxTravel, maxSpeed, anyLarge) reduction(min : firstFault)
+#pragma omp for simd schedule(static) reduction(max : maxTravel, maxSpeed, anyLarge) reduction(min : firstFault) \
+    reduction(+ : parked)
         for (size_t k = 0; k < nStepped; k++) {
             const size_t o = ownerIds ? (size_t)ownerIds[k] : k;
             const OwnerStepResult r = stepOwner(s, o, familyMotion[ow.family[o]], consts);
@@ -85,6 +88,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
             maxSpeed = r.speed > maxSpeed ? r.speed : maxSpeed;
             firstFault = (r.flags & STEP_FAULTS) && o < firstFault ? o : firstFault;
             anyLarge = (r.flags & STEP_LARGE_ROTATION) ? 1 : anyLarge;
+            parked += (r.flags & STEP_PARKED) ? 1 : 0;
         }
 
         // Rotations too large for the series (over 0.2 rad in one step): rare, done exactly.
@@ -122,6 +126,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
     res.maxSurfaceSpeed = maxSpeed;
     res.fault = fault;
     res.faultOwner = faultOwner;
+    res.parkedOwners = parked;
     return res;
 }
 

@@ -15,6 +15,7 @@ struct IntegrationResult {
     float maxSurfaceSpeed = 0.f;  // largest speed of any geometry point (for the next margin)
     OwnerFault fault = OwnerFault::NONE;
     size_t faultOwner = 0;  // lowest owner id with a fault
+    size_t parkedOwners = 0;  // clumps parked (dynamics/OwnerStep.h, parkingPosition)
 };
 
 struct IntegrationSubset;
@@ -41,6 +42,6 @@ struct IntegrationSubset {
 // (OwnerArrays::travel) too; the result reports the largest such travel.
 IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion, NUM_FAMILIES>& motion,
                                   const float3& gravity, double dt, float errorOutVelocity,
-                                  const IntegrationSubset& subset);
+                                  bool parkLeavingClumps, const IntegrationSubset& subset);
 
 }  // namespace deme

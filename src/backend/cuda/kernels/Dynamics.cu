@@ -41,6 +41,7 @@ __device__ inline void clearReduction(StepReduction* red) {
     red->errorFlags = 0u;
     red->errorItem = 0u;
     red->realContacts = red->realSphereSphere = 0ull;
+    red->parkedOwners = 0u;
 }
 
 // Before a batch: its control block, and a clear reduction for its first step. One thread.
@@ -101,6 +102,7 @@ __device__ inline void finishStep(StepBatchControl* ctl, StepReduction* red) {
     t.errorItem = red->errorItem;
     t.realContacts = red->realContacts;
     t.realSphereSphere = red->realSphereSphere;
+    t.parkedOwners = red->parkedOwners;
     finishBatchStep(*ctl, t);
     clearReduction(red);
     ctl->forcePhaseNs += ctl->forcePhaseEndNs - ctl->forcePhaseStartNs;  // stamped by integration's block 0
@@ -262,6 +264,7 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
     double travel = 0.0;
     float speed = 0.f;
     unsigned int fault = NO_FAULT, large = 0u;
+    bool parked = false;
     if (st.owner >= 0) {
         const size_t o = (size_t)st.owner;
         const float3 force = s.owners.contactForce[o], torque = s.owners.contactTorque[o];
@@ -270,6 +273,7 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
         travel = r.travelSinceDetection > 0.f ? (double)r.travelSinceDetection : 0.0;
         speed = r.speed;
         if (r.flags & STEP_FAULTS) fault = (unsigned int)o;
+        parked = (r.flags & STEP_PARKED) != 0;
         large = (r.flags & STEP_LARGE_ROTATION) ? 1u : 0u;
         if (large) finishLargeRotation(s, o, consts.h);
         if (clearLoads) {
@@ -277,6 +281,9 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
             s.owners.contactTorque[o] = make_float3(0.f);
         }
     }
+    // Parked clumps are counted by warp (every thread of the block gets here): one atomic a warp.
+    const unsigned int parkedInWarp = __popc(__ballot_sync(0xFFFFFFFFu, parked));
+    if (parkedInWarp && (threadIdx.x & 31u) == 0u) atomicAdd(&red->parkedOwners, parkedInWarp);
     addStepMaxima(travel, speed, fault, large, red);
     return st.owner;
 }

@@ -17,7 +17,7 @@ struct StepReduction {
     unsigned int anyLargeRotation;
     unsigned int errorFlags;  // KernelError bits
     unsigned int errorItem;   // the item (owner, sphere) that raised the first error flag
-    unsigned int pad;
+    unsigned int parkedOwners;  // clumps parked in the step (dynamics/OwnerStep.h)
     unsigned long long realContacts, realSphereSphere;
 };
 
