@@ -189,7 +189,8 @@ class DEMSolver {
     // how many. The ids of the others do not change; a removed clump's tracker rows say so.
     size_t RemoveClumpsInFamily(unsigned int family);
     // What happens to a clump that leaves the domain: "error" (default) stops the run naming it;
-    // "remove" removes it at the step it leaves, and the run goes on.
+    // "remove" takes it out of the run at the step it leaves (parked on the device, its contacts
+    // gone; removed from the state by the end of the DoDynamics call), and the run goes on.
     void SetDomainExitPolicy(const std::string& policy);
     // Clumps removed since Initialize (RemoveClumpsInFamily and the "remove" exit policy), and their
     // total mass.

@@ -13,7 +13,8 @@ void export_scene_edits(py::class_<PySolver>& c) {
         .def("RemoveClumpsInFamily", &D::RemoveClumpsInFamily, py::arg("family"),
              "Removes every clump of the family now, with its contacts; returns how many. Other ids stay.")
         .def("SetDomainExitPolicy", &D::SetDomainExitPolicy, py::arg("policy"),
-             "\"error\" (default): a clump leaving the domain stops the run; \"remove\": it is removed.")
+             "\"error\" (default): a clump leaving the domain stops the run; \"remove\": it leaves the run "
+             "at that step and is removed from the state by the end of the DoDynamics call.")
         .def("GetNumRemovedClumps", &D::GetNumRemovedClumps, "Clumps removed since Initialize.")
         .def("GetRemovedMass", &D::GetRemovedMass, "Total mass of the clumps removed since Initialize.");
 }
