@@ -136,6 +136,10 @@ RADIUS = 1.2e-3
 # listing's bending force is negligible (above); GRANITE_ETA=0.1 (its listing's value) applies the
 # moment its text gives (validation/README.md: the specimen is then four times too strong).
 ETA_R = float(os.environ.get("GRANITE_ETA", "0"))
+# The bonds' shear stiffness over their normal one, k_t / k_n: the paper's nu (0.25);
+# GRANITE_SHEAR_RATIO sets another, for studies (the affine moduli below follow it).
+SHEAR_RATIO = float(os.environ.get("GRANITE_SHEAR_RATIO", str(NU_ROCK)))
+GRANITE_MODEL = GRANITE_MODEL.replace("const float kt = nu[bodyAMatType] * kn;", f"const float kt = {SHEAR_RATIO!r}f * kn;")
 
 
 def _bond_stiffness(vectors, kn, kt):
@@ -163,7 +167,7 @@ def _uniaxial(C, axis):
     return 1.0 / S[axis, axis], -S[other, axis] / S[axis, axis]
 
 
-def affine_modulus(links_per_shell, kn_over_e, radius=RADIUS, nu_micro=NU_ROCK, axis=2):
+def affine_modulus(links_per_shell, kn_over_e, radius=RADIUS, nu_micro=SHEAR_RATIO, axis=2):
     """Young's modulus along `axis` of an infinite HCP lattice of touching spheres stacked along z (axis
     2: its stacking axis c; axis 0: across the stacking, along a row of a layer), whose bonds are
     springs k_n (central) and k_t = nu k_n (shear) to the neighbours of the given shells (1: the 12
@@ -185,7 +189,7 @@ def affine_modulus(links_per_shell, kn_over_e, radius=RADIUS, nu_micro=NU_ROCK, 
     return _uniaxial(C, axis)
 
 
-def specimen_modulus(pts, half, gamma_int, cut=False, radius=RADIUS, nu_micro=NU_ROCK):
+def specimen_modulus(pts, half, gamma_int, cut=False, radius=RADIUS, nu_micro=SHEAR_RATIO):
     """Young's modulus along z of the specimen itself (its sphere centres `pts`), deformed affinely, per
     unit E_micro: its bonds as the model makes them (surfaces within gamma_int R), the stress over
     its cross-section (section_area) and the strain over its outer layers' distance h, as the test
