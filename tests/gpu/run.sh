@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|graphsteps|smallab|mixerab|profile-small|profile-step|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|graphsteps|smallab|discharge|mixerab|profile-small|profile-step|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -61,7 +61,7 @@ for step in "${steps[@]}"; do
         # command (`MIXERS=".base/build-gpu/bench/mixer ./build-gpu/bench/mixer" tests/gpu/run.sh settled`).
         base="${BASE:-.base}"
         (cmake -S "$base" -B "$base/build-gpu" -DCMAKE_BUILD_TYPE=Release -DDEME_ENABLE_CUDA=ON -DDEME_BUILD_TESTS=OFF \
-            -DDEME_BUILD_DEMOS=OFF && cmake --build "$base/build-gpu" -j"$jobs" --target mixer small_systems) >"$OUT/baseline-build.log" 2>&1 || {
+            -DDEME_BUILD_DEMOS=OFF && cmake --build "$base/build-gpu" -j"$jobs" --target mixer small_systems discharge) >"$OUT/baseline-build.log" 2>&1 || {
             tail -n 40 "$OUT/baseline-build.log"
             exit 1
         }
@@ -207,6 +207,19 @@ for step in "${steps[@]}"; do
             done
         done
         grep -E "^\{" "$OUT/graphsteps.log" | cut -c1-330
+        ;;
+    discharge)
+        # DISCHARGE (bench/discharge.cpp): a hopper emptying under the "remove" exit policy, 16,000
+        # grains, 0.5 s from the first exit; DISCHARGE_BIN lists the binaries (a baseline's and this
+        # build's), each run twice, alternating.
+        for round in 1 2; do
+            for bin in ${DISCHARGE_BIN:-./build-gpu/bench/discharge}; do
+                echo "{\"binary\": \"$bin\", \"round\": $round}" >>"$OUT/discharge.log"
+                timeout 200 "$bin" cuda 40 0.5 0.05 >>"$OUT/discharge.log" 2>&1
+                echo "discharge $bin round $round: rc $?"
+            done
+        done
+        grep -E '^\{' "$OUT/discharge.log" | cut -c1-300
         ;;
     smallab)
         # SMALL-SYSTEMS, each setting twice, alternating, in one command.
