@@ -22,9 +22,10 @@ mu 0.40, Crr 0.04) and 2 (20,014 wooden cylinders WC as 5-sphere clumps, mu 0.70
 settled from a loose pour for 0.8 s, then 7.5 s open; validation/hopper_setup.py), drawn as the
 discharged mass fraction against time (not judged: the paper compares them with measurements of
 Jian et al. 2023 that are not in our data; peer_hopper judges test ID 1 against LIGGGHTS).
-HOPPER_PAPER=0 leaves them out, HOPPER_PAPER=1 or 2 takes one (on the CPU, test ID 2's 100,070 spheres
-take hours; on one H100 both IDs take about 100 s), and HOPPER_SILO=0 leaves the silo out (the case is then recorded as skipped: no verdict). Each test ID's curve is kept
-in <out>/hopper_paper_<id>.json, rewritten every frame (a run cut short keeps what it reached), and
+HOPPER_PAPER=0 leaves them out, HOPPER_PAPER=1 or 2 takes one (on the CPU, test ID 2's 100,070
+spheres take hours; on one H100 both IDs take about 100 s), and HOPPER_SILO=0 leaves the silo out
+(the case is then recorded as skipped: no verdict). Each test ID's curve is kept in
+<out>/hopper_paper_<id>.json, rewritten every frame (a run cut short keeps what it reached), and
 <out>/hopper_paper.png draws every such file in the folder: runs of separate commands draw together.
 
 Reference: Beverloo, Leniger & van de Velde (1961), Chem. Eng. Sci. 15, 260:
