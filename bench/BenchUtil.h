@@ -2,6 +2,8 @@
 #pragma once
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -65,6 +67,19 @@ inline void addRunSummary(JsonLine& j, const deme::RunSummary& r) {
     if (!j.has("contacts_per_sphere")) j.add("contacts_per_sphere", r.contactsPerSphere);
     j.add("peak_host_rss_mib", (double)r.peakHostBytes / (1 << 20));
     j.add("device_bytes", (double)r.deviceBytes).add("device_peak_bytes", (double)r.deviceBytesPeak);
+}
+
+// A case's JSON line, with the run summary's keys (addRunSummary), on stdout at once; with
+// DEME_BENCH_TIMING set, the solver's phase timings and its threads' collaboration after it.
+template <class Solver>
+void printCase(JsonLine& j, const Solver& sim) {
+    addRunSummary(j, sim.GetRunSummary());
+    std::printf("%s\n", j.str().c_str());
+    std::fflush(stdout);
+    if (std::getenv("DEME_BENCH_TIMING")) {
+        sim.ShowTimingStats();
+        sim.ShowThreadCollaborationStats();
+    }
 }
 
 // The solver's memory by group (DEMSolver::GetMemoryStats): totals and bytes per sphere, device

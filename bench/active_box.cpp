@@ -79,13 +79,7 @@ CaseResult runCase(const std::string& backend, const std::string& mode, size_t g
         .add("detection", sim.UsesAsyncContactDetection() ? "async" : "sync")
         .add("initialize_s", initSeconds)
         .add("peak_host_mem_mib", deme_bench::peakMemoryMiB());
-    deme_bench::addRunSummary(j, sim.GetRunSummary());
-    std::printf("%s\n", j.str().c_str());
-    std::fflush(stdout);
-    if (std::getenv("DEME_BENCH_TIMING")) {
-        sim.ShowTimingStats();
-        sim.ShowThreadCollaborationStats();
-    }
+    deme_bench::printCase(j, sim);
     return CaseResult{(double)steps / wall};
 }
 

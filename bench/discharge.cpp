@@ -67,11 +67,6 @@ int main(int argc, char** argv) {
         .add("detection", sim.UsesAsyncContactDetection() ? "async" : "sync")
         .add("initialize_s", initSeconds)
         .add("peak_host_mem_mib", deme_bench::peakMemoryMiB());
-    deme_bench::addRunSummary(j, sim.GetRunSummary());
-    std::printf("%s\n", j.str().c_str());
-    if (std::getenv("DEME_BENCH_TIMING")) {
-        sim.ShowTimingStats();
-        sim.ShowThreadCollaborationStats();
-    }
+    deme_bench::printCase(j, sim);
     return 0;
 }

@@ -200,11 +200,6 @@ int main(int argc, char** argv) {
         .add("dT_wait_share", sim.GetDynamicsWaitShare())
         .add("contacts_per_sphere", sim.GetAvgSphContacts());
     if (ball) j.add("ball_z_m", ball->Pos().z).add("ball_vz_m_s", ball->Vel().z);
-    deme_bench::addRunSummary(j, sim.GetRunSummary());
-    std::printf("%s\n", j.str().c_str());
-    if (std::getenv("DEME_BENCH_TIMING")) {
-        sim.ShowTimingStats();
-        sim.ShowThreadCollaborationStats();
-    }
+    deme_bench::printCase(j, sim);
     return 0;
 }
