@@ -139,7 +139,9 @@ ETA_R = float(os.environ.get("GRANITE_ETA", "0"))
 # The bonds' shear stiffness over their normal one, k_t / k_n: the paper's nu (0.25);
 # GRANITE_SHEAR_RATIO sets another, for studies (the affine moduli below follow it).
 SHEAR_RATIO = float(os.environ.get("GRANITE_SHEAR_RATIO", str(NU_ROCK)))
-GRANITE_MODEL = GRANITE_MODEL.replace("const float kt = nu[bodyAMatType] * kn;", f"const float kt = {SHEAR_RATIO!r}f * kn;")
+_KT = "const float kt = nu[bodyAMatType] * kn;"
+assert _KT in GRANITE_MODEL  # the bond branch's k_t, which the ratio replaces
+GRANITE_MODEL = GRANITE_MODEL.replace(_KT, f"const float kt = {SHEAR_RATIO!r}f * kn;")
 
 
 def _bond_stiffness(vectors, kn, kt):

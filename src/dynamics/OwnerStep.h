@@ -52,6 +52,13 @@ inline OwnerFault faultFromFlags(uint8_t f) {
 }
 
 // What stays fixed over one integration sweep.
+// Where clumps that left the domain under the "remove" exit policy wait for the host to take them
+// out: clump o at start + o * stride (parkingLine, below).
+struct ParkingLine {
+    double3 start, stride;
+};
+
+// What stays fixed over one integration sweep.
 struct StepConstants {
     float3 gravity;
     float h;
@@ -64,6 +71,7 @@ struct StepConstants {
     const float3* extraAngAcc;
     // SetDomainExitPolicy("remove"): a clump that leaves the domain is parked, not a fault.
     bool parkLeavingClumps;
+    ParkingLine parking;
 };
 
 // Under the "remove" exit policy a clump that leaves the domain is not a fault that ends the batch:
@@ -74,23 +82,17 @@ struct StepConstants {
 // is one), from 1000 domain lengths out, 4 domain lengths apart: no contact can form with one, the
 // contacts it had end at once (their spheres are placed there in the same step), and binning
 // clamps them into a border bin. A parked clump stays parked: its place is outside the domain, so
-// it leaves again every step, and its flags say so until the host removes it.
-DEME_HD_INLINE int parkingAxis(const StepConstants& c) {
-    const unsigned int p = c.frame.periodic.axes;
-    return !(p & 1u) ? 0 : !(p & 2u) ? 1 : 2;
-}
-DEME_HD_INLINE double parkingUnit(const StepConstants& c) {
-    const double3 d = c.domainSize;
-    return fmax(d.x, fmax(d.y, d.z));
+// it leaves again every step, and its flags say so until the host removes it. The line is worked
+// out once per sweep (the backends' StepConstants), not per owner.
+DEME_HD_INLINE ParkingLine parkingLine(const DomainFrame& f, const double3& size) {
+    const unsigned int p = f.periodic.axes;
+    const int a = !(p & 1u) ? 0 : !(p & 2u) ? 1 : 2;
+    const double unit = fmax(size.x, fmax(size.y, size.z));
+    const double3 axis = make_double3(a == 0 ? 1.0 : 0.0, a == 1 ? 1.0 : 0.0, a == 2 ? 1.0 : 0.0);
+    return ParkingLine{f.origin + (1000.0 * unit) * axis, (4.0 * unit) * axis};
 }
 DEME_HD_INLINE double3 parkingPosition(const StepConstants& c, size_t o) {
-    const double far = (1000.0 + 4.0 * (double)o) * parkingUnit(c);
-    const int a = parkingAxis(c);
-    double3 x = c.frame.origin;
-    x.x += a == 0 ? far : 0.0;
-    x.y += a == 1 ? far : 0.0;
-    x.z += a == 2 ? far : 0.0;
-    return x;
+    return c.parking.start + (double)o * c.parking.stride;
 }
 
 struct OwnerStepResult {

@@ -65,7 +65,8 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
                                s.domainSize,
                                loads.empty() ? nullptr : loads.extraAcc.data(),
                                loads.empty() ? nullptr : loads.extraAngAcc.data(),
-                               parkLeavingClumps};
+                               parkLeavingClumps,
+                               parkingLine(s.frame, s.domainSize)};
     IntegrationScratch& scratch = s.integrationScratch;
     scratch.flags.resize(n);
     uint8_t* flags = scratch.flags.data();
