@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include <deme/DEMSolver.h>
 #include <deme/Error.h>
 
 namespace deme_bench {
@@ -20,6 +21,15 @@ inline std::string hertzMindlinSnippet() {
          "}\n"
       << in.rdbuf();
     return s.str();
+}
+
+// Makes the snippet `sim`'s contact force model, with the inputs the built-in model has; returns it.
+inline std::shared_ptr<deme::DEMForceModel> useHertzMindlinSnippet(deme::DEMSolver& sim) {
+    auto m = sim.DefineContactForceModel(hertzMindlinSnippet());
+    m->SetMustHaveMatProp({"E", "nu", "CoR", "mu", "Crr"});
+    m->SetMustPairwiseMatProp({"CoR", "mu", "Crr"});
+    m->SetPerContactWildcards({"delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time"});
+    return m;
 }
 
 }  // namespace deme_bench

@@ -6,12 +6,12 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <vector>
 
 #include <deme/deme.h>
 
 #include "BenchUtil.h"
+#include "HertzMindlinSnippet.h"
 
 using namespace deme;
 using namespace deme_bench;
@@ -57,17 +57,7 @@ int main(int argc, char** argv) {
     DEMSolver sim;
     sim.SetVerbosity("WARNING");
     auto mat = sim.LoadMaterial({{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}, {"Crr", 0.0}});
-    if (custom) {
-        std::ifstream body(DEME_SOURCE_DIR "/src/physics/models/HertzMindlin.inl");
-        std::ostringstream code;
-        code << "if (!(overlapDepth > 0.0)) {\n    delta_tan_x = delta_tan_y = delta_tan_z = delta_time = 0.f;\n"
-                "    return;\n}\n"
-             << body.rdbuf();
-        auto m = sim.DefineContactForceModel(code.str());
-        m->SetMustHaveMatProp({"E", "nu", "CoR", "mu", "Crr"});
-        m->SetMustPairwiseMatProp({"CoR", "mu", "Crr"});
-        m->SetPerContactWildcards({"delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time"});
-    }
+    if (custom) deme_bench::useHertzMindlinSnippet(sim);
     sim.InstructBoxDomainDimension({-0.01f, 0.11f}, {-0.01f, 0.11f}, {-0.01f, 0.2f});
     auto walls = sim.AddExternalObject();
     walls->AddPlane(make_float3(0, 0, 0), make_float3(1, 0, 0), mat);

@@ -37,12 +37,7 @@ double initializeSeconds(bool custom) {
     sim.SetVerbosity("ERROR");
     sim.SetBackend(g_backend);
     auto mat = sim.LoadMaterial({{"E", 1e8}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}, {"Crr", 0.01}});
-    if (custom) {
-        auto m = sim.DefineContactForceModel(hertzMindlinSnippet());
-        m->SetMustHaveMatProp({"E", "nu", "CoR", "mu", "Crr"});
-        m->SetMustPairwiseMatProp({"CoR", "mu", "Crr"});
-        m->SetPerContactWildcards({"delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time"});
-    }
+    if (custom) useHertzMindlinSnippet(sim);
     sim.InstructBoxDomainDimension(0.1f, 0.1f, 0.1f);
     sim.InstructBoxDomainBoundingBC("all", mat);
     sim.AddClumps(sim.LoadSphereType(1e-5f, 0.002f, mat),

@@ -13,6 +13,10 @@
 // solvers: that many independent solvers of the case, each on its own thread, timed together (a
 //         sweep on one GPU): the line adds total_steps_per_s over all of them; steps_per_s is the
 //         first solver's.
+// DEME_BENCH_MODEL: builtin (default), or the same Hertz-Mindlin model as a custom model's code
+//         (compiled at Initialize): "snippet", called for every pair of the contact set as custom
+//         models are by default, or "snippet-touching", not called for apart pairs
+//         (DEMForceModel::SetCalledForApartPairs(false)). The line's "model" says which.
 #include <deme/deme.h>
 
 #include <algorithm>
@@ -25,6 +29,7 @@
 #include <vector>
 
 #include "BenchUtil.h"
+#include "HertzMindlinSnippet.h"
 
 using namespace deme;
 
@@ -99,6 +104,15 @@ Impact setUpImpact(DEMSolver& sim) {
     return im;
 }
 
+// DEME_BENCH_MODEL's value (the header says what each is).
+std::string forceModelChoice() {
+    const char* v = std::getenv("DEME_BENCH_MODEL");
+    const std::string m = v && *v ? v : "builtin";
+    if (m != "builtin" && m != "snippet" && m != "snippet-touching")
+        throw Error("small_systems: DEME_BENCH_MODEL must be builtin, snippet or snippet-touching, not \"" + m + "\"");
+    return m;
+}
+
 // One run of the case: set up, warm-up, then `steps` timed steps; the timed part starts when `go`
 // says so (several solvers start together) and the run reports to `done`.
 struct Run {
@@ -120,6 +134,8 @@ void setUp(Run& run, bool drum, const std::string& backend, const std::string& m
     if (mode != "auto") sim.SetSynchronousContactDetection(mode == "sync");
     // DEME_BENCH_FORCE_THREADS: the force pass's block size (SetForceCalcThreadsPerBlock), for sweeps.
     if (const char* t = std::getenv("DEME_BENCH_FORCE_THREADS")) sim.SetForceCalcThreadsPerBlock(std::atoi(t));
+    const std::string model = forceModelChoice();
+    if (model != "builtin") deme_bench::useHertzMindlinSnippet(sim)->SetCalledForApartPairs(model == "snippet");
     sim.Initialize();
     run.dt = drum ? 0.8e-6 : 0.5e-6;
     run.ball = drum ? nullptr : sim.Track(impact.ball);
@@ -195,6 +211,7 @@ int main(int argc, char** argv) {
         .add("sphere_steps_per_s", spheres * (double)steps / runs[0]->wall)
         .add("total_steps_per_s", (double)solvers * (double)steps / wall)
         .add("total_sphere_steps_per_s", (double)solvers * spheres * (double)steps / wall)
+        .add("model", forceModelChoice())
         .add("detection", sim.UsesAsyncContactDetection() ? "async" : "sync")
         .add("update_freq", (double)sim.GetUpdateFreq())
         .add("dT_wait_share", sim.GetDynamicsWaitShare())

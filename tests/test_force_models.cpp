@@ -31,14 +31,19 @@ std::string readText(const std::filesystem::path& p) {
 struct SettlingBed {
     DEMSolver sim;
     std::shared_ptr<DEMTracker> grains;
-    explicit SettlingBed(bool customModel, const std::string& backend = "cpu") {
+    // calledForApartPairs: the custom model's DEMForceModel::SetCalledForApartPairs.
+    explicit SettlingBed(bool customModel, const std::string& backend = "cpu", bool calledForApartPairs = true) {
         sim.SetVerbosity("QUIET");
         sim.SetBackend(backend);
         auto grain = sim.LoadMaterial(material(1e7, 0.3, 0.4, 0.5, 0.05));
         auto wall = sim.LoadMaterial(material(2e7, 0.25, 0.6, 0.3));
         sim.SetMaterialPropertyPair("mu", grain, wall, 0.2);
         sim.SetMaterialPropertyPair("CoR", grain, wall, 0.5);
-        if (customModel) declareHertzMindlinInputs(*sim.DefineContactForceModel(hertzMindlinSnippet()));
+        if (customModel) {
+            auto model = sim.DefineContactForceModel(hertzMindlinSnippet());
+            declareHertzMindlinInputs(*model);
+            model->SetCalledForApartPairs(calledForApartPairs);
+        }
         sim.InstructBoxDomainDimension(0.06f, 0.06f, 0.12f);
         sim.InstructBoxDomainBoundingBC("top_open", wall);
         const float r = 0.002f;
@@ -81,8 +86,9 @@ class ForceModelBitIdentity : public ScratchDirTest {};
 // Test 1 of the issue. The same model text in the same loop template (backend/cpu/ForcePassLoop.h), built
 // into the library or compiled at run time with the library's flags, must give the same bits: every
 // clump's position, orientation and velocities, written with %.9g (exact for floats), at every frame.
-TEST_F(ForceModelBitIdentity, DefaultModelAsSnippetMatchesBuiltIn) {
-    SettlingBed builtIn(false), custom(true);
+namespace {
+
+void expectBedsBitIdentical(SettlingBed& builtIn, SettlingBed& custom, const std::filesystem::path& dir) {
     size_t contacts = 0;
     for (int frame = 0; frame < 12; frame++) {
         builtIn.sim.DoDynamics(0.02);
@@ -97,6 +103,21 @@ TEST_F(ForceModelBitIdentity, DefaultModelAsSnippetMatchesBuiltIn) {
         contacts = builtIn.sim.GetNumContacts();
     }
     EXPECT_GT(contacts, builtIn.sim.GetNumClumps());  // the bed has settled into a contact network
+}
+
+}  // namespace
+
+TEST_F(ForceModelBitIdentity, DefaultModelAsSnippetMatchesBuiltIn) {
+    SettlingBed builtIn(false), custom(true);
+    expectBedsBitIdentical(builtIn, custom, dir);
+}
+
+// The snippet not called for apart pairs (DEMForceModel::SetCalledForApartPairs(false)) takes the
+// built-in models' path for them: no gather, no call, history cleared. Its apart branch does just
+// that, so the bed is the same bit for bit.
+TEST_F(ForceModelBitIdentity, SnippetNotCalledForApartPairsMatchesBuiltIn) {
+    SettlingBed builtIn(false), custom(true, "cpu", false);
+    expectBedsBitIdentical(builtIn, custom, dir);
 }
 
 namespace {
@@ -139,11 +160,15 @@ namespace {
 struct FewBodies {
     DEMSolver sim;
     std::shared_ptr<DEMTracker> balls;
-    FewBodies(bool customModel, const std::string& backend) {
+    FewBodies(bool customModel, const std::string& backend, bool calledForApartPairs = true) {
         sim.SetVerbosity("QUIET");
         sim.SetBackend(backend);
         auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.5));
-        if (customModel) declareHertzMindlinInputs(*sim.DefineContactForceModel(hertzMindlinSnippet()));
+        if (customModel) {
+            auto model = sim.DefineContactForceModel(hertzMindlinSnippet());
+            declareHertzMindlinInputs(*model);
+            model->SetCalledForApartPairs(calledForApartPairs);
+        }
         sim.InstructBoxDomainDimension(1, 1, 1);
         sim.InstructBoxDomainBoundingBC("all", mat);
         const float r = 0.01f;
@@ -159,8 +184,8 @@ struct FewBodies {
 };
 
 // Built-in and snippet on `backend`, and the CPU's built-in as the reference.
-void expectFewBodiesAgree(const std::string& backend) {
-    FewBodies builtIn(false, backend), custom(true, backend), cpu(false, "cpu");
+void expectFewBodiesAgree(const std::string& backend, bool calledForApartPairs = true) {
+    FewBodies builtIn(false, backend), custom(true, backend, calledForApartPairs), cpu(false, "cpu");
     ASSERT_EQ(custom.sim.GetBackend(), backend);
     for (FewBodies* b : {&builtIn, &custom, &cpu}) b->sim.DoDynamics(0.3);
     for (size_t i = 0; i < 3; i++) {
@@ -182,3 +207,10 @@ void expectFewBodiesAgree(const std::string& backend) {
 // The instance's built-in model and snippet (on the GPU: the built-in kernel and the generated one)
 // against the CPU's built-in model.
 DEME_BACKEND_TEST(ForceModelFewBodies, SnippetFollowsBuiltInTrajectories) { expectFewBodiesAgree(backend()); }
+
+// The same with the snippet not called for apart pairs (the GPU's generated kernel then takes the
+// built-in kernels' path for them too).
+DEME_BACKEND_TEST(ForceModelFewBodies, SnippetNotCalledForApartPairsFollowsBuiltInTrajectories) {
+    expectFewBodiesAgree(backend(), false);
+}
+

@@ -103,6 +103,13 @@ TEST(ForceModelHandle, NamesAreChecked) {
     // The built-in models' inputs are fixed.
     auto builtIn = s.sim.UseFrictionalHertzianModel();
     EXPECT_TRUE(contains(demeErrorMessage([&] { builtIn->SetPerOwnerWildcards({"Q"}); }), "built-in"));
+    // Which pairs a model sees: a custom model every pair unless told otherwise, a built-in one only
+    // pairs that touch, fixed.
+    EXPECT_TRUE(m.GetCalledForApartPairs());
+    EXPECT_FALSE(builtIn->GetCalledForApartPairs());
+    const std::string msg = demeErrorMessage([&] { builtIn->SetCalledForApartPairs(true); });
+    EXPECT_TRUE(contains(msg, "DEMForceModel::SetCalledForApartPairs")) << msg;
+    EXPECT_TRUE(contains(msg, "built-in")) << msg;
 }
 
 DEME_BACKEND_TEST(ForceModelErrors, NamesMustNotClash) {
@@ -195,6 +202,7 @@ DEME_BACKEND_TEST(ForceModelErrors, UnknownWildcardNamesAndIds) {
     s.sim.SetSphereWildcardValue("g", 0, 5.f);
     EXPECT_EQ(s.sim.GetSphereWildcardValue("g", 0), 5.f);
     EXPECT_TRUE(contains(demeErrorMessage([&] { s.model->SetPerOwnerWildcards({"R"}); }), "before Initialize()"));
+    EXPECT_TRUE(contains(demeErrorMessage([&] { s.model->SetCalledForApartPairs(false); }), "before Initialize()"));
     EXPECT_TRUE(contains(demeErrorMessage([&] { s.sim.DefineContactForceModel(kQuiet); }), "DefineContactForceModel"));
 }
 

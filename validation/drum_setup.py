@@ -242,7 +242,8 @@ class DrumSet:
         # slower on the CPU); 20 suits the CPU, the GPU's cheaper detection a longer interval
         sim.SetCDMaxUpdateFreq(max_cd_interval)
         if rolling == "relative":
-            rolling_model.use(sim)
+            # DRUM_APART_PAIRS=called: the model called for apart pairs too (a comparison of speed)
+            rolling_model.use(sim, called_for_apart_pairs=os.environ.get("DRUM_APART_PAIRS") == "called")
         elif rolling != "paper":
             raise ValueError(f"rolling must be 'relative' or 'paper', not {rolling!r}")
         sim.Initialize()

@@ -92,10 +92,14 @@ if (Crr_cnt > 0.f) {
 """)
 
 
-def use(sim, text=MODEL):
+def use(sim, text=MODEL, called_for_apart_pairs=False):
     """Makes MODEL (or another text of hertz_mindlin's, with its wildcards) the solver's contact force
-    model; returns it."""
+    model; returns it. hertz_mindlin's branch for pairs that are apart (no force, history cleared) is
+    what the engine does for a model not called for them (SetCalledForApartPairs(False)), which then
+    skips them before gathering their inputs: the same results, faster (most of a contact set's pairs
+    are apart); called_for_apart_pairs=True runs that branch instead, for comparison."""
     model = sim.DefineContactForceModel(text)
+    model.SetCalledForApartPairs(called_for_apart_pairs)
     model.SetMustHaveMatProp(["E", "nu", "CoR"])
     model.SetMustPairwiseMatProp(["mu", "Crr", "CoR"])  # CoR: beta_CoR mixes the pair values
     model.SetPerContactWildcards(["delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time"])

@@ -38,8 +38,10 @@ m_roll_z = m_roll.z;
 
 
 def use(sim):
-    """Makes MODEL the solver's contact force model; returns it."""
+    """Makes MODEL the solver's contact force model; returns it (not called for apart pairs, whose
+    branch is the engine's rule for them: rolling_model.use)."""
     model = sim.DefineContactForceModel(MODEL)
+    model.SetCalledForApartPairs(False)
     model.SetMustHaveMatProp(["E", "nu", "CoR"])
     model.SetMustPairwiseMatProp(["mu", "Crr", "CoR"])
     model.SetPerContactWildcards(["delta_tan_x", "delta_tan_y", "delta_tan_z", "delta_time", "m_roll_x", "m_roll_y",

@@ -30,6 +30,12 @@ class DEMForceModel {
     void SetPerOwnerWildcards(const std::vector<std::string>& names);
     // Per-geometry wildcards: float* arrays indexed by AGeo / BGeo, set and read from the host.
     void SetPerGeometryWildcards(const std::vector<std::string>& names);
+    // Whether the model is called for pairs whose surfaces are apart (overlapDepth <= 0); true by
+    // default (a model may act at a distance). false: such pairs get no call, no force, and their
+    // contact wildcards are cleared to 0, as with the built-in models, and the engine tells most of
+    // them apart before gathering any input -- for a contact model that ignores apart pairs, the same
+    // results (bit for bit on the CPU), faster (docs/force-models.md, "Which pairs the model sees").
+    void SetCalledForApartPairs(bool called);
 
     Kind GetKind() const { return m_kind; }
     const std::string& GetSource() const { return m_source; }
@@ -39,17 +45,21 @@ class DEMForceModel {
     const std::vector<std::string>& GetPerContactWildcards() const { return m_contactWildcards; }
     const std::vector<std::string>& GetPerOwnerWildcards() const { return m_ownerWildcards; }
     const std::vector<std::string>& GetPerGeometryWildcards() const { return m_geometryWildcards; }
+    // The built-in models: false.
+    bool GetCalledForApartPairs() const { return m_calledForApartPairs; }
 
   private:
     friend class DEMSolver;
     // Names are checked here (valid identifiers, not a name the model already has); a built-in
     // model's lists and any model in use by an initialised solver are fixed.
+    void checkEditable(const char* call) const;
     void setNames(const char* call, std::vector<std::string>& list, const std::vector<std::string>& names,
                   bool materialProperty);
     Kind m_kind;
     std::string m_source, m_origin;
     std::vector<std::string> m_mustHave, m_pairwise;
     std::vector<std::string> m_contactWildcards, m_ownerWildcards, m_geometryWildcards;
+    bool m_calledForApartPairs;
     bool m_locked = false;  // set by DEMSolver::Initialize
 };
 

@@ -28,6 +28,10 @@ void export_force_models(py::module_& m) {
              "Per-owner wildcards: arrays indexed by AOwner / BOwner, set and read from the host.")
         .def("SetPerGeometryWildcards", &FM::SetPerGeometryWildcards, py::arg("names"),
              "Per-geometry wildcards: arrays indexed by AGeo / BGeo, set and read from the host.")
+        .def("SetCalledForApartPairs", &FM::SetCalledForApartPairs, py::arg("called"),
+             "Whether the model is called for pairs whose surfaces are apart (default True); False: they get "
+             "no call, no force and cleared contact wildcards, as with the built-in models, and run faster.")
+        .def("GetCalledForApartPairs", &FM::GetCalledForApartPairs, "See SetCalledForApartPairs.")
         .def("GetKind", &FM::GetKind, "Built-in or custom.")
         .def("GetSource", &FM::GetSource, "The snippet's C++ source (empty for a built-in model).")
         .def("GetOrigin", &FM::GetOrigin, "The name compiler messages give the source.")

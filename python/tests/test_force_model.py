@@ -19,9 +19,11 @@ LINEAR_SPRING = """
 """
 
 
-def spheres_on_a_floor(n, r, m, kn, cn):
+def spheres_on_a_floor(n, r, m, kn, cn, called_for_apart_pairs=True):
     sim = quiet_solver()
     model = sim.DefineContactForceModel(LINEAR_SPRING)
+    assert model.GetCalledForApartPairs()
+    model.SetCalledForApartPairs(called_for_apart_pairs)
     model.SetMustHaveMatProp(["kn", "cn"])
     model.SetPerOwnerWildcards(["touched"])
     model.SetPerGeometryWildcards(["gain"])
@@ -39,13 +41,16 @@ def spheres_on_a_floor(n, r, m, kn, cn):
     return sim, batch
 
 
-def test_custom_model_static_overlap_and_wildcards():
+# The snippet acts only where the surfaces overlap, so whether it is called for apart pairs
+# (SetCalledForApartPairs) changes nothing but the work done.
+@pytest.mark.parametrize("called_for_apart_pairs", [True, False])
+def test_custom_model_static_overlap_and_wildcards(called_for_apart_pairs):
     # A sphere resting on a linear spring kn * gain sinks by delta = m g / (kn * gain) at rest
     # (force balance; the dashpot cn brings it to rest: damping ratio about 0.4, so after 0.4 s the
     # oscillation has decayed by e^-50). Tolerance 1 % of delta.
     n, r, density, kn, cn = 4, 0.01, 1000.0, 411.0, 1.0
     m = sphere_mass(r, density)
-    sim, batch = spheres_on_a_floor(n, r, m, kn, cn)
+    sim, batch = spheres_on_a_floor(n, r, m, kn, cn, called_for_apart_pairs)
     sim.Initialize()
     tr = sim.Track(batch)
     gains = np.array([1.0, 2.0, 0.5, 1.0], dtype=np.float32)
@@ -96,3 +101,10 @@ def test_snippet_compile_error_names_its_line():
     with pytest.raises(deme.Error) as err:
         sim.Initialize()
     assert "undefined_thing" in str(err.value)
+
+
+def test_built_in_model_sees_touching_pairs_only():
+    model = quiet_solver().UseFrictionalHertzianModel()
+    assert not model.GetCalledForApartPairs()
+    with pytest.raises(deme.Error, match="SetCalledForApartPairs"):
+        model.SetCalledForApartPairs(True)

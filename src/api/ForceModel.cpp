@@ -9,7 +9,7 @@
 namespace deme {
 
 DEMForceModel::DEMForceModel(Kind kind, std::string source, std::string origin)
-    : m_kind(kind), m_source(std::move(source)), m_origin(std::move(origin)) {
+    : m_kind(kind), m_source(std::move(source)), m_origin(std::move(origin)), m_calledForApartPairs(kind == Kind::CUSTOM) {
     // The built-in models' inputs, fixed: what models/HertzMindlin.inl and HertzFrictionless.inl read.
     if (kind == Kind::FRICTIONAL_HERTZIAN) {
         m_mustHave = {"E", "nu", "CoR", "mu", "Crr"};
@@ -21,13 +21,18 @@ DEMForceModel::DEMForceModel(Kind kind, std::string source, std::string origin)
     }
 }
 
-void DEMForceModel::setNames(const char* call, std::vector<std::string>& list, const std::vector<std::string>& names,
-                             bool materialProperty) {
+// The checks every setter of a custom model's declarations makes.
+void DEMForceModel::checkEditable(const char* call) const {
     if (m_kind != Kind::CUSTOM)
         throwError(call,
                    "the built-in Hertzian models have fixed inputs; write a custom model "
                    "(DefineContactForceModel) to add material properties or wildcards");
     if (m_locked) throwError(call, "must be called before Initialize()");
+}
+
+void DEMForceModel::setNames(const char* call, std::vector<std::string>& list, const std::vector<std::string>& names,
+                             bool materialProperty) {
+    checkEditable(call);
     for (size_t i = 0; i < names.size(); i++) {
         const std::string& n = names[i];
         if (!isCppIdentifier(n))
@@ -57,6 +62,11 @@ void DEMForceModel::SetPerOwnerWildcards(const std::vector<std::string>& names) 
 }
 void DEMForceModel::SetPerGeometryWildcards(const std::vector<std::string>& names) {
     setNames("DEMForceModel::SetPerGeometryWildcards", m_geometryWildcards, names, false);
+}
+
+void DEMForceModel::SetCalledForApartPairs(bool called) {
+    checkEditable("DEMForceModel::SetCalledForApartPairs");
+    m_calledForApartPairs = called;
 }
 
 }  // namespace deme

@@ -55,6 +55,7 @@ ModelLayout resolveModelLayout(const DEMForceModel& model, const Scene& scene, c
     L.contactWildcards = model.GetPerContactWildcards();
     L.ownerWildcards = model.GetPerOwnerWildcards();
     L.geometryWildcards = model.GetPerGeometryWildcards();
+    L.calledForApartPairs = model.GetCalledForApartPairs();
     const std::string who = L.description();
     const size_t nMat = scene.materials.size();
 

@@ -156,11 +156,15 @@ DEME_HD_INLINE bool contactStepWithHistory(S& s, const Model& model, size_t i, c
         return false;
     }
     float3 force = make_float3(0.f), torque_only_force = make_float3(0.f), couple_torque = make_float3(0.f);
-    bool persistent = Model::kWritesPersistent && c.persistent[i] != 0;
+    const bool wasPersistent = Model::kWritesPersistent && c.persistent[i] != 0;
+    bool persistent = wasPersistent;
     if (kHistoryCopied) loadHistory<WC>(wc, copied);
+    // A model that sees apart pairs is mostly called for pairs without a history that keep none
+    // (most of a contact set's pairs are apart): their store is saved, as is an unchanged flag's.
+    const bool historyWasZero = Model::kSeesApartPairs && kHistoryCopied && historyIsZero<WC>(copied);
     model(in, kHistoryCopied ? copied : wc, force, torque_only_force, couple_torque, persistent);
-    if (kHistoryCopied) storeHistory<WC>(copied, wc);
-    if (Model::kWritesPersistent) c.persistent[i] = persistent ? 1 : 0;
+    if (kHistoryCopied && !(historyWasZero && historyIsZero<WC>(copied))) storeHistory<WC>(copied, wc);
+    if (Model::kWritesPersistent && persistent != wasPersistent) c.persistent[i] = persistent ? 1 : 0;
     const float3 total = force + torque_only_force;
     load.force = force;
     // The couple acts on A as given and on B reversed: a pure couple (a bent bond, a relative

@@ -71,8 +71,8 @@ std::string userForceModelSource(const ModelLayout& L, const std::string& banner
          "\n"
          "struct UserForceModel {\n"
       << "    static constexpr unsigned int kNumContactWildcards = " << L.contactWildcards.size() << ";\n"
-      << "    static constexpr bool kSeesApartPairs = true;\n"
-         "    static constexpr bool kWritesPersistent = true;\n"
+      << "    static constexpr bool kSeesApartPairs = " << (L.calledForApartPairs ? "true" : "false") << ";\n"
+      << "    static constexpr bool kWritesPersistent = true;\n"
          "    static constexpr bool kWritesCouple = true;\n"
          "\n"
          "    PairTable E_eff, G_eff, beta_CoR;\n";

@@ -17,6 +17,7 @@ struct ModelLayout {
     std::vector<std::string> materialProps;  // name[bodyAMatType]
     std::vector<std::string> pairProps;      // name[bodyAMatType][bodyBMatType]
     std::vector<std::string> contactWildcards, ownerWildcards, geometryWildcards;
+    bool calledForApartPairs = true;         // DEMForceModel::SetCalledForApartPairs
 
     bool builtIn() const { return kind != DEMForceModel::Kind::CUSTOM; }
     // "the frictional Hertzian model", "the custom force model", for messages.

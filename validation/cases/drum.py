@@ -39,7 +39,8 @@ map's drums are 0.05 m deep (DRUM_DEPTH_PC; 4,759 clumps, 23,795 spheres a drum:
 walls' share of the paper's drum, and it runs the grid's first and last Crr only (Crr is not judged
 for the cylinders; so that the map fits one 10-minute command; its drums turn the paper's 2 s). The LIGGGHTS points run on three more PS drums, 0.05 m deep
 (DRUM_DEPTH_PEER: 3,256 spheres each, so that LIGGGHTS on the CPU keeps pace with the GPU), from the
-engine's settled state (positions, velocities, spins) in both codes. DRUM_TIMES=settle,steady,measure.
+engine's settled state (positions, velocities, spins) in both codes. DRUM_TIMES=settle,steady,measure; DRUM_TIMING=1
+prints each run's phase timings and detection statistics.
 
 Reference and verdicts: the paper's findings (s. 6.2.1; its figure's values are not in our data):
 spheres at mu = 0 give under 5 degrees (every Crr); the angle rises with mu (every Crr, both
@@ -256,7 +257,7 @@ for run in runs:
     drums = ds.DrumSet(deme, g, run["depth"], drum_points, settle=settle, dt=run["dt"], young=run["young"],
                        max_cd_interval=20 if case.backend == "cpu" else 60, rolling=rolling, seeds=drum_seeds)
     print(f"{run['name']}: {len(drum_points)} drums of {drums.n} grains ({drums.sim.GetNumSpheres()} spheres), "
-          f"depth {run['depth']} m, dt {run['dt']} s", flush=True)
+          f"depth {run['depth']} m, dt {run['dt']} s, set up in {time.time() - t0:.1f} s", flush=True)
 
     def settled(states, run=run, drum_points=drum_points):
         global handle
@@ -271,6 +272,9 @@ for run in runs:
 
     per_drum = drums.run(run["steady"], measure, SAMPLES, on_settled=settled)
     wall = time.time() - t0
+    if os.environ.get("DRUM_TIMING") == "1":  # where the run's time went (phases, detection)
+        drums.sim.ShowTimingStats()
+        drums.sim.ShowThreadCollaborationStats()
     steps = int(round((settle + run["steady"] + measure) / run["dt"]))
     angles, stats, replicas = [], [], []
     for p in run["points"]:

@@ -21,6 +21,13 @@ __device__ inline void atomicAdd3(float3* target, const float3& v) {
     atomicAdd(&target->z, v.z);
 }
 
+// Whether every component of a contact's load is zero (of either sign).
+__device__ inline bool isZeroLoad(const ContactLoad& l) {
+    const float3 f = l.force, a = l.torqueA, b = l.torqueB;
+    return f.x == 0.f && f.y == 0.f && f.z == 0.f && a.x == 0.f && a.y == 0.f && a.z == 0.f && b.x == 0.f &&
+           b.y == 0.f && b.z == 0.f;
+}
+
 }  // namespace force_pass_detail
 
 // The body of a force-pass kernel: one thread per contact, blocks of any size. The step's time and
@@ -33,6 +40,7 @@ template <class Model, bool NoTriangles = false>
 __device__ inline void forcePassKernel(const StateView& s, const Model& model, const StepBatchControl* ctl,
                                        unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red) {
     using force_pass_detail::atomicAdd3;
+    using force_pass_detail::isZeroLoad;
     constexpr uint8_t kType = NoTriangles ? NO_TRIANGLE_CONTACT : ANY_CONTACT_TYPE;
     // The contact's ids are read before the wait (DependentLaunch.cuh): the kernel before (the last
     // step's integration, or this step's load clearing or mesh rule) does not write them -- no kernel
@@ -59,7 +67,9 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, c
         ContactLoad load;
         const bool touching = contactStepOfType<Model, kType>(s, model, i, ids, time, dt, applied, load);
         if (c.force) c.force[i] = applied ? load.force : make_float3(0.f);
-        if (applied) {
+        // A load of zeros adds nothing (an owner's sum starts at +0 and so never is -0, which a +0
+        // or -0 added would change): a custom model, called for every pair, exerts zeros on most.
+        if (applied && !isZeroLoad(load)) {
             atomicAdd3(&s.owners.contactForce[load.ownerA], load.force);
             atomicAdd3(&s.owners.contactTorque[load.ownerA], load.torqueA);
             const unsigned int slot = load.ownerB - firstNonClump;
