@@ -27,8 +27,9 @@ bin); a least-squares line through the bins' heights; the angle is atan of its s
 uncertainty (se) is the samples' standard deviation over the square root of their effective number
 (lag-1 autocorrelation).
 
-What the full version changes from the paper, and why (on one H200 the PS map takes about 4 minutes
-and the PC map 7, so they run as two commands, DRUM_RUNS=PS and DRUM_RUNS=PC; LIGGGHTS beside them on
+What the full version changes from the paper, and why (on one H200 the 7 x 3 PS map took about 4
+minutes and the PC map 7 before the custom models' apart pairs were made cheap, about 1.6 and 2.3 times
+less since (validation/README.md), so they run as two commands, DRUM_RUNS=PS and DRUM_RUNS=PC; LIGGGHTS beside them on
 the CPU): the PS map turns 6 s before it is measured, not 2 (DRUM_STEADY_PS): measured over 2.3-5.3 s
 its drums' 3 s means still carried an uncertainty of up to 2.4 degrees (the surface swung between
 avalanches), so that Crr's rise of 3 degrees at low mu could not be told from it; over 6.3-9.3 s the
@@ -59,7 +60,7 @@ DRUM_FROM=<that output folder> run.py drum, on a machine with LIGGGHTS, then run
 those packings and states every verdict, with the maps read back from <out>/drum-data.json. A map
 too large for one command runs in parts: DRUM_SHARD=i/n runs the maps' mu columns i, i + n, ... only;
 DRUM_FROM=<dir1>,<dir2>,... then judges and draws the parts together (e.g. the paper's 13 x 5 PS map:
-DRUM_GRID=13x5 DRUM_RUNS=PS with DRUM_SHARD=1/2 and 2/2, two commands of about 6 minutes on one H200).
+DRUM_GRID=13x5 DRUM_RUNS=PS with DRUM_SHARD=1/2 and 2/2, 177 and 152 s on one H100).
 
 --quick (CI, one core, about 200 s idle): spheres only; a thin drum (0.02 m deep, 1,302 spheres),
 soft grains (E = 1 MPa, dt = 1e-4 s: 15 % of their Rayleigh time), four points, (mu, Crr) = (0, 0),
