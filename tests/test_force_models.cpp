@@ -213,4 +213,3 @@ DEME_BACKEND_TEST(ForceModelFewBodies, SnippetFollowsBuiltInTrajectories) { expe
 DEME_BACKEND_TEST(ForceModelFewBodies, SnippetNotCalledForApartPairsFollowsBuiltInTrajectories) {
     expectFewBodiesAgree(backend(), false);
 }
-

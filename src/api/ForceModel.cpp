@@ -9,7 +9,10 @@
 namespace deme {
 
 DEMForceModel::DEMForceModel(Kind kind, std::string source, std::string origin)
-    : m_kind(kind), m_source(std::move(source)), m_origin(std::move(origin)), m_calledForApartPairs(kind == Kind::CUSTOM) {
+    : m_kind(kind),
+      m_source(std::move(source)),
+      m_origin(std::move(origin)),
+      m_calledForApartPairs(kind == Kind::CUSTOM) {
     // The built-in models' inputs, fixed: what models/HertzMindlin.inl and HertzFrictionless.inl read.
     if (kind == Kind::FRICTIONAL_HERTZIAN) {
         m_mustHave = {"E", "nu", "CoR", "mu", "Crr"};
@@ -25,8 +28,8 @@ DEMForceModel::DEMForceModel(Kind kind, std::string source, std::string origin)
 void DEMForceModel::checkEditable(const char* call) const {
     if (m_kind != Kind::CUSTOM)
         throwError(call,
-                   "the built-in Hertzian models have fixed inputs; write a custom model "
-                   "(DefineContactForceModel) to add material properties or wildcards");
+                   "the built-in Hertzian models are fixed (their inputs, and which pairs they see); write a "
+                   "custom model (DefineContactForceModel) to add material properties or wildcards");
     if (m_locked) throwError(call, "must be called before Initialize()");
 }
 
