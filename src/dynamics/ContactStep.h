@@ -32,6 +32,15 @@
 
 namespace deme {
 
+// Sphere pairs told apart from their centres before the gather (the rule above). 0 gathers every pair
+// and lets the exact overlap decide: the same pairs, the same bits, one dependent round of loads
+// fewer for the pairs that touch. A switch for timing the GPU's pass both ways
+// (DEME_CUDA_DEFINES="DEME_CENTRE_PRETEST=0", docs/cuda-backend.md); on the CPU a gather costs far
+// more than the test.
+#ifndef DEME_CENTRE_PRETEST
+#define DEME_CENTRE_PRETEST 1
+#endif
+
 // Histories of at most this many floats are copied into registers for the model (contactStepWithHistory).
 constexpr unsigned int MAX_COPIED_HISTORY = 8;
 
@@ -134,7 +143,7 @@ DEME_HD_INLINE bool contactStepWithHistory(S& s, const Model& model, size_t i, c
                              ? (stored == SPHERE_SPHERE ? (uint8_t)SPHERE_SPHERE : (uint8_t)SPHERE_ANALYTICAL)
                              : stored;
     bool gather = type != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
-    if (!Model::kSeesApartPairs && (SphereSphere || type == SPHERE_SPHERE)) {
+    if (DEME_CENTRE_PRETEST && !Model::kSeesApartPairs && (SphereSphere || type == SPHERE_SPHERE)) {
         const double3 pA = sphereCentre(s, ids.a);
         const double3 d = pA - nearestImage(s.frame.periodic, pA, sphereCentre(s, ids.b));
         const double reach = (double)s.spheres.radius[ids.a] + (double)s.spheres.radius[ids.b];
