@@ -15,6 +15,7 @@
 #include "TestHelpers.h"
 #include "io/AtomicFile.h"
 #include "io/CheckpointFile.h"
+#include "runtime/SceneFingerprint.h"
 
 #include <zlib.h>
 
@@ -136,6 +137,23 @@ TEST_F(CheckpointFiles, OtherSceneIsAnErrorAndChangesNothing) {
     writeOther(friction);
     msg = t.errorReading(p);
     EXPECT_TRUE(has(msg, "another scene") && has(msg, "material properties differ")) << msg;
+}
+
+// Which pairs a custom model is called for is part of the model a checkpoint was written with; the
+// default (every pair) adds nothing to the hash, so checkpoints from before the setting still read.
+TEST(SceneFingerprintModel, CustomModelNotCalledForApartPairsIsAnotherModel) {
+    SimState s;
+    ModelLayout custom;
+    custom.kind = DEMForceModel::Kind::CUSTOM;
+    custom.source = "force += B2A;";
+    ModelLayout contactsOnly = custom;
+    contactsOnly.calledForApartPairs = false;
+    EXPECT_NE(sceneFingerprint(s, custom).model, sceneFingerprint(s, contactsOnly).model);
+    EXPECT_NE(fingerprintMismatch(sceneFingerprint(s, contactsOnly), sceneFingerprint(s, custom)).find("force model"),
+              std::string::npos);
+    ModelLayout builtIn, builtInFlagged;  // the built-in models' setting is fixed: no part of the hash
+    builtInFlagged.calledForApartPairs = false;
+    EXPECT_EQ(sceneFingerprint(s, builtIn).model, sceneFingerprint(s, builtInFlagged).model);
 }
 
 TEST_F(CheckpointFiles, OtherFilesAreErrors) {
