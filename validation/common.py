@@ -57,6 +57,10 @@ def json_lines(text):
 
 
 def commit():
+    # DEME_COMMIT names it where the checkout's git does not know it (a copy of a working tree whose
+    # .git is older than its files, as on a remote GPU machine).
+    if os.environ.get("DEME_COMMIT"):
+        return os.environ["DEME_COMMIT"]
     try:
         return subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
                               timeout=10).stdout.strip() or "unknown"
