@@ -69,6 +69,8 @@ DEME_HD inline float3 cross(const float3& a, const float3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 DEME_HD inline float length(const float3& a) { return sqrtf(dot(a, a)); }
+// Every component zero, of either sign.
+DEME_HD inline bool isZero(const float3& a) { return a.x == 0.f && a.y == 0.f && a.z == 0.f; }
 
 // ---- double3 arithmetic (positions and penetration are computed in double) ----
 DEME_HD inline double3 operator+(const double3& a, const double3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }

@@ -29,7 +29,7 @@ void DEMForceModel::checkEditable(const char* call) const {
     if (m_kind != Kind::CUSTOM)
         throwError(call,
                    "the built-in Hertzian models are fixed (their inputs, and which pairs they see); write a "
-                   "custom model (DefineContactForceModel) to add material properties or wildcards");
+                   "custom model (DefineContactForceModel) to choose them");
     if (m_locked) throwError(call, "must be called before Initialize()");
 }
 

@@ -51,7 +51,6 @@ inline OwnerFault faultFromFlags(uint8_t f) {
                                     : OwnerFault::NONE;
 }
 
-// What stays fixed over one integration sweep.
 // Where clumps that left the domain under the "remove" exit policy wait for the host to take them
 // out: clump o at start + o * stride (parkingLine, below).
 struct ParkingLine {

@@ -164,7 +164,7 @@ OutputFrame stageContactFrame(const Simulation& sim) {
         const uint8_t type = contactTypeAt(s, c);
         const float3 F = forces[c];
         const bool counts = type != SPHERE_TRIANGLE || (s.contacts.meshState[c] & 1u);
-        const bool loaded = F.x != 0.f || F.y != 0.f || F.z != 0.f;
+        const bool loaded = !isZero(F);
         bool k = counts && loaded;
         if (counts && !loaded) {
             ContactInputs in;

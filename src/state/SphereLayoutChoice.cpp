@@ -51,7 +51,7 @@ bool spheresCanBeOwners(const SimState& s) {
     for (size_t i = 0; i < nS; i++)
         if (s.spheres.owner[i] != (bodyID_t)i) return false;
     for (const float3& r : s.spheres.relPos)
-        if (r.x != 0.f || r.y != 0.f || r.z != 0.f) return false;
+        if (!isZero(r)) return false;
     return true;
 }
 

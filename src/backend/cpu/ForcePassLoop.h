@@ -88,7 +88,7 @@ inline void storeChunkForces(StoredContactForces& st, int thread, size_t b, size
     for (size_t j = 0; j < m; j++) {
         index[count] = (uint32_t)(b + j);
         value[count] = force[j];
-        count += force[j].x != 0.f || force[j].y != 0.f || force[j].z != 0.f;
+        count += !isZero(force[j]);
     }
     st.index[thread].insert(st.index[thread].end(), index, index + count);
     st.force[thread].insert(st.force[thread].end(), value, value + count);

@@ -23,9 +23,7 @@ __device__ inline void atomicAdd3(float3* target, const float3& v) {
 
 // Whether every component of a contact's load is zero (of either sign).
 __device__ inline bool isZeroLoad(const ContactLoad& l) {
-    const float3 f = l.force, a = l.torqueA, b = l.torqueB;
-    return f.x == 0.f && f.y == 0.f && f.z == 0.f && a.x == 0.f && a.y == 0.f && a.z == 0.f && b.x == 0.f &&
-           b.y == 0.f && b.z == 0.f;
+    return isZero(l.force) && isZero(l.torqueA) && isZero(l.torqueB);
 }
 
 // Brings the line holding p into the multiprocessor's L1 without waiting for it.
@@ -108,8 +106,8 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, c
     __syncthreads();
     for (unsigned int k = threadIdx.x; k < slots; k += blockDim.x) {
         const float3 f = blockForce[k], t = blockTorque[k];
-        if (f.x != 0.f || f.y != 0.f || f.z != 0.f) atomicAdd3(&s.owners.contactForce[firstNonClump + k], f);
-        if (t.x != 0.f || t.y != 0.f || t.z != 0.f) atomicAdd3(&s.owners.contactTorque[firstNonClump + k], t);
+        if (!isZero(f)) atomicAdd3(&s.owners.contactForce[firstNonClump + k], f);
+        if (!isZero(t)) atomicAdd3(&s.owners.contactTorque[firstNonClump + k], t);
     }
     if (threadIdx.x == 0) {
         if (blockReal) atomicAdd(&red->realContacts, (unsigned long long)blockReal);
