@@ -34,11 +34,16 @@ namespace deme {
 
 // Sphere pairs told apart from their centres before the gather (the rule above). 0 gathers every pair
 // and lets the exact overlap decide: the same pairs, the same bits, one dependent round of loads
-// fewer for the pairs that touch. A switch for timing the GPU's pass both ways
-// (DEME_CUDA_DEFINES="DEME_CENTRE_PRETEST=0", docs/cuda-backend.md); on the CPU a gather costs far
-// more than the test.
+// fewer for the pairs that touch. So the GPU's pass goes without the test (measured on one H100,
+// 2026-12-06: SMALL-SYSTEMS 3-4 % more steps a second without it, BENCHMARKS.md) and the CPU's
+// keeps it, a gather costing it far more than the test. DEME_CUDA_DEFINES="DEME_CENTRE_PRETEST=1"
+// times the GPU's pass with it.
 #ifndef DEME_CENTRE_PRETEST
+#ifdef __CUDA_ARCH__
+#define DEME_CENTRE_PRETEST 0
+#else
 #define DEME_CENTRE_PRETEST 1
+#endif
 #endif
 
 // Histories of at most this many floats are copied into registers for the model (contactStepWithHistory).
