@@ -110,6 +110,20 @@ TEST_F(CudaForceModelNvrtc, BuiltInForcePassesAreInTheDynamicsModule) {
         EXPECT_NE(p.image.find(".entry " + std::string(k)), std::string::npos) << k;
 }
 
+// On sm_90 the passes add the owners' loads as vector reductions (kernels/ForcePassKernel.cuh,
+// DEME_VECTOR_ATOMICS): red.v4 where a load shares a 16-byte chunk with one neighbour's float, red.v2
+// elsewhere; a custom model's pass instantiates the same code. (ptxas accepts them for sm_90: the
+// GPU suite runs them.)
+TEST_F(CudaForceModelNvrtc, PassesAddTheOwnersLoadsAsVectorReductions) {
+    const CudaCompileResult r = compileEmbedded("backend/cuda/kernels/Dynamics.cu");
+    EXPECT_NE(r.image.find("red.global.add.v4.f32"), std::string::npos);
+    EXPECT_NE(r.image.find("red.global.add.v2.f32"), std::string::npos);
+    ModelLayout L = customLayout(deme_test::kElectrostatic);
+    L.ownerWildcards = {"Q"};
+    const CudaCompileResult m = compileModel(L);
+    EXPECT_NE(m.image.find("red.global.add.v4.f32"), std::string::npos);
+}
+
 // An error in the model's code: a deme::Error naming the call and quoting NVRTC at the code's own
 // line (the generated prologue does not count), for a syntax error and for an unknown name.
 TEST_F(CudaForceModelNvrtc, ErrorsNameTheSnippetLine) {

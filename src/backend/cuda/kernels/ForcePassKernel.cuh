@@ -15,11 +15,62 @@
 namespace deme {
 namespace force_pass_detail {
 
+// How an owner's float3 load in global memory is added to (sm_90 and later; older GPUs take 0):
+// 0: its three components one by one (three requests to L2);
+// 1: the pair of components that starts on an 8-byte boundary as one vector reduction (red.v2.f32),
+//    the third alone (owner o's float3 at 12 o bytes: x and y paired for even o, y and z for odd);
+// 2 (default): where the float3 shares a 16-byte line's chunk with one float of a neighbour (owners
+//    4k and 4k + 3 of an aligned array), one red.v4.f32 that adds +0 to the neighbour's float; the
+//    others as in 1. +0 leaves every owner's sum as it is (a sum starts at +0 and so is never -0,
+//    the one value that adding +0 changes), so each component gets exactly the additions it got.
+// Timed on one H100 (BENCHMARKS.md, SMALL-SYSTEMS): the atomics are a large part of a lab-scale
+// step. DEME_CUDA_DEFINES="DEME_VECTOR_ATOMICS=0" (or 1) times the others.
+#ifndef DEME_VECTOR_ATOMICS
+#define DEME_VECTOR_ATOMICS 2
+#endif
+
+// Adds v to the float3 at `target`, component by component (shared or global memory).
 __device__ inline void atomicAdd3(float3* target, const float3& v) {
     atomicAdd(&target->x, v.x);
     atomicAdd(&target->y, v.y);
     atomicAdd(&target->z, v.z);
 }
+
+#if DEME_VECTOR_ATOMICS && defined(__CUDA_ARCH__) && __CUDA_ARCH__ >= 900
+// Adds (a, b) to the two floats at p (8-byte aligned, global memory) in one reduction.
+__device__ inline void reduceAdd2(float* p, float a, float b) {
+    asm volatile("red.global.add.v2.f32 [%0], {%1, %2};" ::"l"(p), "f"(a), "f"(b) : "memory");
+}
+
+// Adds (a, b, c, d) to the four floats at p (16-byte aligned, global memory) in one reduction.
+__device__ inline void reduceAdd4(float* p, float a, float b, float c, float d) {
+    asm volatile("red.global.add.v4.f32 [%0], {%1, %2, %3, %4};" ::"l"(p), "f"(a), "f"(b), "f"(c), "f"(d)
+                 : "memory");
+}
+
+// Adds v to loads[o] of an array of n float3s in global memory (DEME_VECTOR_ATOMICS above).
+__device__ inline void atomicAddLoad(float3* loads, size_t o, size_t n, const float3& v) {
+    float* p = &loads[o].x;
+    const size_t at = reinterpret_cast<size_t>(p) & 15u;
+    if (DEME_VECTOR_ATOMICS >= 2 && at == 0 && o + 1 < n) {
+        reduceAdd4(p, v.x, v.y, v.z, 0.f);  // + 0 to owner o + 1's x
+        return;
+    }
+    if (DEME_VECTOR_ATOMICS >= 2 && at == 4 && o > 0) {
+        reduceAdd4(p - 1, 0.f, v.x, v.y, v.z);  // + 0 to owner o - 1's z
+        return;
+    }
+    if ((at & 7u) == 0) {
+        reduceAdd2(p, v.x, v.y);
+        atomicAdd(p + 2, v.z);
+    } else {
+        atomicAdd(p, v.x);
+        reduceAdd2(p + 1, v.y, v.z);
+    }
+}
+#else
+__device__ inline void atomicAddLoad(float3* loads, size_t o, size_t, const float3& v) { atomicAdd3(&loads[o], v); }
+#endif
 
 // Whether every component of a contact's load is zero (of either sign).
 __device__ inline bool isZeroLoad(const ContactLoad& l) {
@@ -50,6 +101,7 @@ template <class Model, bool NoTriangles = false>
 __device__ inline void forcePassKernel(const StateView& s, const Model& model, const StepBatchControl* ctl,
                                        unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red) {
     using force_pass_detail::atomicAdd3;
+    using force_pass_detail::atomicAddLoad;
     using force_pass_detail::isZeroLoad;
     constexpr uint8_t kType = NoTriangles ? NO_TRIANGLE_CONTACT : ANY_CONTACT_TYPE;
     // The contact's ids are read before the wait (DependentLaunch.cuh): the kernel before (the last
@@ -87,15 +139,15 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, c
         // A load of zeros adds nothing (an owner's sum starts at +0 and so never is -0, which a +0
         // or -0 added would change): a custom model, called for every pair, exerts zeros on most.
         if (applied && !isZeroLoad(load)) {
-            atomicAdd3(&s.owners.contactForce[load.ownerA], load.force);
-            atomicAdd3(&s.owners.contactTorque[load.ownerA], load.torqueA);
+            atomicAddLoad(s.owners.contactForce, load.ownerA, s.numOwners, load.force);
+            atomicAddLoad(s.owners.contactTorque, load.ownerA, s.numOwners, load.torqueA);
             const unsigned int slot = load.ownerB - firstNonClump;
             if (load.ownerB >= firstNonClump && slot < slots) {
                 atomicAdd3(&blockForce[slot], -load.force);
                 atomicAdd3(&blockTorque[slot], load.torqueB);
             } else {
-                atomicAdd3(&s.owners.contactForce[load.ownerB], -load.force);
-                atomicAdd3(&s.owners.contactTorque[load.ownerB], load.torqueB);
+                atomicAddLoad(s.owners.contactForce, load.ownerB, s.numOwners, -load.force);
+                atomicAddLoad(s.owners.contactTorque, load.ownerB, s.numOwners, load.torqueB);
             }
         }
         if (touching) {
@@ -106,8 +158,8 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, c
     __syncthreads();
     for (unsigned int k = threadIdx.x; k < slots; k += blockDim.x) {
         const float3 f = blockForce[k], t = blockTorque[k];
-        if (!isZero(f)) atomicAdd3(&s.owners.contactForce[firstNonClump + k], f);
-        if (!isZero(t)) atomicAdd3(&s.owners.contactTorque[firstNonClump + k], t);
+        if (!isZero(f)) atomicAddLoad(s.owners.contactForce, firstNonClump + k, s.numOwners, f);
+        if (!isZero(t)) atomicAddLoad(s.owners.contactTorque, firstNonClump + k, s.numOwners, t);
     }
     if (threadIdx.x == 0) {
         if (blockReal) atomicAdd(&red->realContacts, (unsigned long long)blockReal);
