@@ -280,6 +280,38 @@ DEME_BACKEND_TEST(SceneEdits, ClumpsLeavingInACallAreRemovedAtItsEndWithoutEndin
     }
 }
 
+// A parked clump touches nothing: a ball resting on a floor (an analytical plane, z = 0) and a ball
+// thrown out of the domain sideways, in one call. The thrown one waits parked (far beyond the domain
+// along x, at the domain's lowest z: 0.1 m below the floor's plane) from its exit at about 0.02 s to
+// the call's end, where it is removed. The floor carries the resting ball's weight in the call's
+// last step (to 1 %: it has come to rest in the 0.3 s before), not the parked one's overlap with the
+// infinite plane (0.11 m, some 10^5 N at E = 10^7 Pa), which a parked sphere once exerted on it.
+DEME_BACKEND_TEST(SceneEdits, ParkedClumpExertsNothingOnAnInfinitePlane) {
+    DEMSolver sim;
+    sim.SetVerbosity("QUIET");
+    auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.3, 0.5));
+    sim.InstructBoxDomainDimension({-0.5f, 0.5f}, {-0.5f, 0.5f}, {-0.1f, 0.4f});
+    auto floor = sim.AddBCPlane(make_float3(0, 0, 0), make_float3(0, 0, 1), mat);
+    const double r = 0.01, m = sphereMass(r, 1000), g = 9.81;
+    auto ball = sim.LoadSphereType((float)m, (float)r, mat);
+    sim.AddClumps(ball, {make_float3(0, 0, (float)r)});  // the resting ball
+    auto thrown = sim.AddClumps(ball, {make_float3(0.3f, 0, 0.3f)});
+    sim.SetDomainExitPolicy("remove");
+    sim.SetInitTimeStep(1e-5);
+    sim.SetGravitationalAcceleration(make_float3(0, 0, -(float)g));
+    sim.Initialize();
+    auto tf = sim.Track(floor), tt = sim.Track(thrown);
+    sim.DoDynamics(0.3);  // the resting ball settles; the other falls from 0.3 m, 0.25 s to the floor
+    EXPECT_EQ(sim.GetNumRemovedClumps(), 0u);
+    tt->SetPos(make_float3(0.3f, 0, 0.3f));
+    tt->SetVel(make_float3(10.f, 0, 0));  // out through x = 0.5 after 0.02 s
+    sim.DoDynamics(0.05);
+    EXPECT_EQ(sim.GetNumRemovedClumps(), 1u);
+    EXPECT_NEAR(tf->ContactForce().z, -m * g, 0.01 * m * g);
+    sim.DoDynamics(0.01);  // and after the removal
+    EXPECT_NEAR(tf->ContactForce().z, -m * g, 0.01 * m * g);
+}
+
 // Bad input: each a deme::Error naming the call, with nothing changed.
 DEME_BACKEND_TEST(SceneEdits, BadInputIsAnErrorNamingTheCall) {
     DEMSolver sim;

@@ -26,6 +26,7 @@
 #pragma once
 
 #include "dynamics/ContactInputsGather.h"
+#include "dynamics/OwnerStepFlags.h"
 #include "state/ContactTypeOf.h"
 #include "state/HistorySlot.h"
 #include "state/SphereLayout.h"
@@ -156,6 +157,11 @@ DEME_HD_INLINE bool contactStepWithHistory(S& s, const Model& model, size_t i, c
     }
     ContactInputs in;
     if (gather) gatherContactInputsOfType(s, ids.a, ids.b, type, time, dt, in);
+    // A sphere of a parked clump (the "remove" exit policy, dynamics/OwnerStep.h) touches nothing.
+    // It waits far beyond the domain, where no grain or mesh reaches -- but an analytical plane or
+    // infinite cylinder does, and the sphere's overlap with one would be about a domain's length: a
+    // load of meganewtons on the wall, in every step until the host takes the clump out.
+    if (type == SPHERE_ANALYTICAL && gather && (s.integrationScratch.flags[in.AOwner] & STEP_PARKED)) gather = false;
     const bool touching = gather && in.overlapDepth > 0.0;
     applied = Model::kSeesApartPairs ? gather : touching;
     if (!applied) {

@@ -3,6 +3,7 @@
 // StateView of device memory on the GPU). See backend/cpu/Integration.h for the sweeps.
 #pragma once
 
+#include "dynamics/OwnerStepFlags.h"
 #include "physics/CompactPosition.h"
 #include "physics/RigidBody.h"
 #include "state/FamilyStepMotion.h"
@@ -32,17 +33,6 @@ DEME_HD_INLINE float3 applyMask(const float3& free, const float3& prescribed, ui
     return make_float3((mask & 1) ? prescribed.x : free.x, (mask & 2) ? prescribed.y : free.y,
                        (mask & 4) ? prescribed.z : free.z);
 }
-
-// Bits of IntegrationScratch::flags.
-enum OwnerStepFlag : uint8_t {
-    STEP_NOT_FINITE = 1,
-    STEP_TOO_FAST = 2,
-    STEP_LEFT_DOMAIN = 4,
-    STEP_LARGE_ROTATION = 8,  // orientation still to be advanced by the exact (scalar) step
-    STEP_MOVED = 16,          // its geometry may have moved: cached vertices need refreshing
-    STEP_PARKED = 32,         // a clump that left under the "remove" exit policy, parked (parkingPosition)
-};
-constexpr uint8_t STEP_FAULTS = STEP_NOT_FINITE | STEP_TOO_FAST | STEP_LEFT_DOMAIN;
 
 inline OwnerFault faultFromFlags(uint8_t f) {
     return (f & STEP_NOT_FINITE)    ? OwnerFault::NOT_FINITE

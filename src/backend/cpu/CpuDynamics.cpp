@@ -29,6 +29,9 @@ void CpuDynamics::upload(const SimState& /*s: the host state the steps run on*/,
     // resumeContactSet, which keeps the checkpoint's.)
     releaseOrderBaseline();
     m_subsetStale = true;
+    // The steps' flags start clear: the force pass reads an owner's (a parked clump touches nothing,
+    // dynamics/ContactStep.h) before the first step has written any.
+    m_s.integrationScratch.flags.assign(m_s.owners.size(), 0);
 }
 
 StepBatchResult CpuDynamics::steps(const StepBatchRequest& batch, const Settings& settings,

@@ -16,7 +16,10 @@ struct Upload {
     void operator()(DeviceBuffer<T>& d, const std::vector<T>& h, FieldRole role) const {
         if (role == FieldRole::HOST) return;
         if (role == FieldRole::SCRATCH) {
+            // Cleared, not left as the memory was: the force pass reads an owner's step flags (a
+            // parked clump touches nothing, dynamics/ContactStep.h) before the first step writes them.
             d.resizeDiscarding(scratchSize);
+            if (scratchSize) d.zeroAsync(stream);
             return;
         }
         uploadResized(d, h, stream);
