@@ -161,7 +161,10 @@ DEME_HD_INLINE bool contactStepWithHistory(S& s, const Model& model, size_t i, c
     // It waits far beyond the domain, where no grain or mesh reaches -- but an analytical plane or
     // infinite cylinder does, and the sphere's overlap with one would be about a domain's length: a
     // load of meganewtons on the wall, in every step until the host takes the clump out.
-    if (type == SPHERE_ANALYTICAL && gather && (s.integrationScratch.flags[in.AOwner] & STEP_PARKED)) gather = false;
+    // (Read only where the model is to be called: one load more for a wall's real contacts alone.)
+    if (type == SPHERE_ANALYTICAL && gather && (Model::kSeesApartPairs || in.overlapDepth > 0.0) &&
+        (s.integrationScratch.flags[in.AOwner] & STEP_PARKED))
+        gather = false;
     const bool touching = gather && in.overlapDepth > 0.0;
     applied = Model::kSeesApartPairs ? gather : touching;
     if (!applied) {

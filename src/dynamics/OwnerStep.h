@@ -68,9 +68,11 @@ struct StepConstants {
 // batches (Simulation::removeParkedClumps) -- at the end of the DoDynamics call, or sooner once
 // many are parked -- so that an outflow costs one host round trip per call, not one per step with
 // an exit. Parked clumps lie along the first bounded axis (an exit crosses a bounded face, so there
-// is one), from 1000 domain lengths out, 4 domain lengths apart: no contact can form with one, the
+// is one), from 1000 domain lengths out, 4 domain lengths apart: no grain or mesh reaches one, the
 // contacts it had end at once (their spheres are placed there in the same step), and binning
-// clamps them into a border bin. A parked clump stays parked: its place is outside the domain, so
+// clamps them into a border bin. Analytical walls extend there (an infinite plane, a cylinder), so
+// the force pass skips a parked clump's contacts with them (its STEP_PARKED flag,
+// dynamics/ContactStep.h). A parked clump stays parked: its place is outside the domain, so
 // it leaves again every step, and its flags say so until the host removes it. The line is worked
 // out once per sweep (the backends' StepConstants), not per owner.
 DEME_HD_INLINE ParkingLine parkingLine(const DomainFrame& f, const double3& size) {
