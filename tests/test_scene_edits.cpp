@@ -285,7 +285,7 @@ DEME_BACKEND_TEST(SceneEdits, ClumpsLeavingInACallAreRemovedAtItsEndWithoutEndin
 // along x, at the domain's lowest z: 0.1 m below the floor's plane) from its exit at about 0.02 s to
 // the call's end, where it is removed. The floor carries the resting ball's weight in the call's
 // last step (to 1 %: it has come to rest in the 0.3 s before), not the parked one's overlap with the
-// infinite plane (0.11 m, some 10^5 N at E = 10^7 Pa), which a parked sphere once exerted on it.
+// infinite plane (0.11 m: 26,727 N at E = 10^7 Pa), which a parked sphere once exerted on it.
 DEME_BACKEND_TEST(SceneEdits, ParkedClumpExertsNothingOnAnInfinitePlane) {
     DEMSolver sim;
     sim.SetVerbosity("QUIET");
