@@ -265,6 +265,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
     s.owners.contactForce.assign(nOwners, make_float3(0.f));
     s.owners.contactTorque.assign(nOwners, make_float3(0.f));
     s.owners.travel.assign(nOwners, 0.f);
+    s.integrationScratch.flags.assign(nOwners, 0);  // read by the force pass (a parked clump's) before a step
     s.sphereUserToInternal.assign(s.spheres.size(), 0);
     for (size_t i = 0; i < s.spheres.size(); i++) s.sphereUserToInternal[s.sphereInternalToUser[i]] = (bodyID_t)i;
     // Owner and geometry wildcards start at 0.
