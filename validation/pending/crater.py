@@ -34,6 +34,14 @@ the paper (Uehara et al. use the tangent of the medium's angle of repose; for th
 drops (least squares of d = C x, x the right-hand side without C) within 15 % of 0.14, and R^2 of that
 fit at least 0.95; every ball at rest when measured.
 
+A run too large for one command (the grain-size study's beds, CRATER_GRAIN_SCALE < 1) runs in parts:
+CRATER_BED_CKPT=<path> keeps the settled bed's checkpoint there (the bed then holds every ball of the
+case, whichever the part drops) and a later part on the same machine reads it instead of settling;
+CRATER_DROPS gives each part its drops; each part writes its drops to <out>/crater-data.json as
+they come; CRATER_FROM=<out1>,<out2>,... judges and draws the parts' drops together without a
+simulation (parts of different beds, or one drop in two parts, are refused). The quick form split so
+gives the same depths bit for bit as in one run (CPU).
+
 --quick: a bed of 6 x 6 cm, 4 cm deep (about 5,800 grains) and three drops (2.2 g/cm^3 from 5 and
 20 cm, 3.8 g/cm^3 from 20 cm: the shallowest, 1.5-3 cm); its walls are 0.7 D from the ball's edge, so
 its depths are expected a few % to 10 % below the full bed's (Seguin et al.; 3 and 4 cm half-widths
@@ -49,11 +57,12 @@ measured project C at 0.118-0.125, at the edge of the tolerance. The full run on
 (2026-12-03, 145 s, 258,481 grains): C = 0.1190 (-14.97 %), R^2 = 0.980, every ball at rest: it passes,
 by 0.03 % of the tolerance, with d / x from 0.102 to 0.128.
 """
+import json
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from common import Case, import_deme  # noqa: E402
+from common import Case, commit, import_deme, write_json  # noqa: E402
 import crater_setup as cs  # noqa: E402
 
 case = Case("crater", __doc__)
@@ -68,6 +77,7 @@ if case.quick:
 else:
     half, depth = 0.10, 0.16
     drops = [(rho, h) for rho in (2200.0, 3800.0, 7800.0, 15000.0) for h in (0.05, 0.10, 0.20)]
+DENSITIES = sorted({rho for rho, _ in drops})  # the balls of the case's own drops
 # The grain-size study (README, "Ball impact crater law"): CRATER_GRAIN_SCALE multiplies every grain's
 # diameter (the balls unchanged), CRATER_BED="<half-width>,<depth>" (cm) and
 # CRATER_DROPS="<rho_b g/cm^3>:<h cm>,..." replace the bed and the drops.
@@ -77,27 +87,73 @@ if os.environ.get("CRATER_BED"):
 if os.environ.get("CRATER_DROPS"):
     pairs = (x.split(":") for x in os.environ["CRATER_DROPS"].split(","))
     drops = [(float(r) * 1000, float(h) / 100) for r, h in pairs]
-densities = sorted({rho for rho, _ in drops})
-bed = cs.Bed(deme, half, depth, densities, grain_scale=grain_scale)
-t_settle, v_settle = bed.settle()
-surface, rho_g = bed.measure()
-print(f"bed: {bed.n} grains (diameters times {grain_scale:g}), settled in {t_settle:.2f} s (fastest grain "
-      f"{v_settle:.3f} m/s), surface at {surface * 100:.2f} cm,\n  bulk density {rho_g / 1000:.3f} g/cm^3 "
-      f"inside ({rho_g / cs.RHO_GRAIN:.3f} solid), {bed.rho_whole / 1000:.3f} over the whole bed")
-ckpt = os.path.join(case.args.out, "crater_bed.ckpt")
-bed.sim.WriteCheckpoint(ckpt)
-results = []
-try:
-    for rho_b, h in drops:
-        bed.sim.ReadCheckpoint(ckpt)
-        d, t, path, rest = bed.drop(densities.index(rho_b), h)
-        x = cs.law_abscissa(rho_b, rho_g, h, d)
-        results.append((rho_b, h, d, x, rest, t, path))
-        print(f"rho_b {rho_b / 1000:4.1f} g/cm^3, h {h * 100:4.0f} cm: d = {d * 100:.2f} cm "
-              f"({'at rest' if rest else 'NOT at rest'} after {t[-1]:.3f} s), d / x = {d / x:.4f}", flush=True)
-finally:
-    if os.path.exists(ckpt):
-        os.remove(ckpt)
+# A run too large for one command runs in parts (the paper's bed with smaller grains,
+# CRATER_GRAIN_SCALE < 1): CRATER_BED_CKPT=<path> keeps the settled bed's checkpoint there and
+# reuses it where it exists (a later command on the same machine: the bed is settled once),
+# CRATER_DROPS gives each part its drops, and CRATER_FROM=<out1>,<out2>,... then judges and draws
+# the parts' drops together from their crater-data.json, without a simulation.
+earlier = os.environ.get("CRATER_FROM")
+origin = None
+if earlier:
+    parts = []
+    for folder in earlier.split(","):
+        with open(os.path.join(folder, "crater-data.json")) as f:
+            parts.append(json.load(f))
+    data = parts[0]
+    for key in ("grains", "grain_scale", "bed_cm", "rho_g", "surface_m"):
+        if any(p[key] != data[key] for p in parts):
+            raise ValueError(f"CRATER_FROM: the parts differ in {key} (not the same bed): {[p[key] for p in parts]}")
+    results, seen = [], set()
+    for p in parts:
+        for r in p["drops"]:
+            if (r["rho_b"], r["h"]) in seen:
+                raise ValueError(f"CRATER_FROM: the drop rho_b {r['rho_b']}, h {r['h']} is in more than one part")
+            seen.add((r["rho_b"], r["h"]))
+            results.append((r["rho_b"], r["h"], r["d"], r["x"], r["rest"], np.array(r["t"]), np.array(r["path"])))
+    n_grains, rho_g = data["grains"], data["rho_g"]
+    densities = sorted({r[0] for r in results})
+    origin = ",".join(sorted({f"{p['backend']}, {p['commit']}" for p in parts}))
+    print(f"the drops of {earlier}: {n_grains} grains, bulk density {rho_g / 1000:.3f} g/cm^3")
+else:
+    densities = sorted({rho for rho, _ in drops})
+    bed_ckpt = os.environ.get("CRATER_BED_CKPT")
+    # A bed kept for other parts holds every ball the case knows, whichever this part drops (a
+    # checkpoint restores the scene it was written from: the same balls in every part).
+    ball_densities = sorted({rho for rho, _ in drops} | set(DENSITIES)) if bed_ckpt else densities
+    bed = cs.Bed(deme, half, depth, ball_densities, grain_scale=grain_scale)
+    n_grains = bed.n
+    if bed_ckpt and os.path.exists(bed_ckpt):
+        bed.sim.ReadCheckpoint(bed_ckpt)
+        settled = f"read from {bed_ckpt}"
+    else:
+        t_settle, v_settle = bed.settle()
+        settled = f"settled in {t_settle:.2f} s (fastest grain {v_settle:.3f} m/s)"
+        if bed_ckpt:
+            bed.sim.WriteCheckpoint(bed_ckpt)
+    surface, rho_g = bed.measure()
+    print(f"bed: {bed.n} grains (diameters times {grain_scale:g}), {settled}, surface at {surface * 100:.2f} cm,\n"
+          f"  bulk density {rho_g / 1000:.3f} g/cm^3 inside ({rho_g / cs.RHO_GRAIN:.3f} solid), "
+          f"{bed.rho_whole / 1000:.3f} over the whole bed")
+    ckpt = os.path.join(case.args.out, "crater_bed.ckpt")
+    bed.sim.WriteCheckpoint(ckpt)
+    results = []
+    record = {"grains": bed.n, "grain_scale": grain_scale, "bed_cm": [half * 100, depth * 100], "rho_g": rho_g,
+              "surface_m": surface, "backend": case.backend, "commit": commit(), "drops": []}
+    try:
+        for rho_b, h in drops:
+            bed.sim.ReadCheckpoint(ckpt)
+            d, t, path, rest = bed.drop(ball_densities.index(rho_b), h)
+            x = cs.law_abscissa(rho_b, rho_g, h, d)
+            results.append((rho_b, h, d, x, rest, t, path))
+            print(f"rho_b {rho_b / 1000:4.1f} g/cm^3, h {h * 100:4.0f} cm: d = {d * 100:.2f} cm "
+                  f"({'at rest' if rest else 'NOT at rest'} after {t[-1]:.3f} s), d / x = {d / x:.4f}", flush=True)
+            # every drop's result as it comes (a part cut short keeps its drops for CRATER_FROM)
+            record["drops"].append({"rho_b": rho_b, "h": h, "d": float(d), "x": float(x), "rest": bool(rest),
+                                    "t": [float(v) for v in t], "path": [float(v) for v in path]})
+            write_json(os.path.join(case.args.out, "crater-data.json"), record)
+    finally:
+        if os.path.exists(ckpt):
+            os.remove(ckpt)
 
 x = np.array([r[3] for r in results])
 d = np.array([r[2] for r in results])
@@ -126,7 +182,7 @@ for h, m in markers.items():
     if any(r[1] == h for r in results):
         ax.plot([], [], m, color="gray", label=f"h = {h * 100:g} cm")
 ax.set(xlim=(0, None), ylim=(0, None), xlabel="(1/mu) (rho_b/rho_g)$^{1/2}$ D$^{2/3}$ H$^{1/3}$ (cm)",
-       ylabel="penetration depth d (cm)", title=f"ball impact, {bed.n} grains")
+       ylabel="penetration depth d (cm)", title=f"ball impact, {n_grains} grains")
 ax.legend(fontsize=6)
 for rho_b, h, dd, xx, rest, t, path in results:
     ax2.plot(1000 * t, 100 * path, color=f"C{densities.index(rho_b)}", lw=1,
@@ -134,5 +190,5 @@ for rho_b, h, dd, xx, rest, t, path in results:
 ax2.axhline(0, color="gray", lw=0.6)
 ax2.set(xlabel="time since release (ms)", ylabel="depth of the ball's bottom (cm)",
         title="penetration in time (h = 5 dotted, 10 dashed, 20 cm solid)")
-case.save(fig)
+case.save(fig, origin=origin)
 case.finish()
