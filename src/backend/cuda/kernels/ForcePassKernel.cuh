@@ -77,26 +77,14 @@ __device__ inline bool isZeroLoad(const ContactLoad& l) {
     return isZero(l.force) && isZero(l.torqueA) && isZero(l.torqueB);
 }
 
-// Brings the line holding p into the multiprocessor's L1 without waiting for it.
-__device__ inline void prefetchL1(const void* p) { asm volatile("prefetch.global.L1 [%0];" ::"l"(p)); }
-
 }  // namespace force_pass_detail
-
-// 1: lines the pass reads soon are prefetched into L1 where their reads would otherwise wait in turn:
-// the contact's history before the dependent launch's wait (no kernel that can run then writes it:
-// the force pass before had ended before the integration before this pass could let it start), the
-// pair's centres after it, while the stop flag is read (DEME_CUDA_DEFINES="DEME_FORCE_PASS_PREFETCH=1";
-// a switch for timing, not yet timed on a GPU).
-#ifndef DEME_FORCE_PASS_PREFETCH
-#define DEME_FORCE_PASS_PREFETCH 0
-#endif
 
 // The body of a force-pass kernel: one thread per contact, blocks of any size. The step's time and
 // size come from the batch's control block (dynamics/StepBatch.h), which also says whether the batch
 // has ended (then the pass does nothing).
 // `NoTriangles`: the scene has no meshes, so that no contact is a sphere and a triangle and that
-// branch of the per-contact step drops out (most of its registers: ptxas for sm_90 puts the pass at 68
-// registers uncapped and 64 without a spill, against 113 and 226 bytes spilled at 64).
+// branch of the per-contact step drops out (most of its registers: ptxas for sm_90 puts the pass at 70
+// registers uncapped and 4 bytes spilled at 64, against 113 and 202 bytes spilled at 64).
 template <class Model, bool NoTriangles = false>
 __device__ inline void forcePassKernel(const StateView& s, const Model& model, const StepBatchControl* ctl,
                                        unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red) {
@@ -110,14 +98,7 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, c
     const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
     ContactIds ids{0u, 0u, 0u};
     if (i < s.numContacts) ids = contactIds<kType>(s, i);
-    constexpr unsigned int W = Model::kNumContactWildcards;
-    if (DEME_FORCE_PASS_PREFETCH && W > 0 && i < s.numContacts)
-        force_pass_detail::prefetchL1(&s.contacts.wildcards[i * W]);
     beginDependentKernel();
-    if (DEME_FORCE_PASS_PREFETCH && i < s.numContacts) {
-        force_pass_detail::prefetchL1(&sphereCentres(s)[ids.a]);
-        if (ids.type == SPHERE_SPHERE) force_pass_detail::prefetchL1(&sphereCentres(s)[ids.b]);
-    }
     if (ctl->stop) return;  // the same for every thread: no barrier is left waiting
     const float time = (float)ctl->time, dt = (float)ctl->dt;
     __shared__ float3 blockForce[SHARED_LOAD_SLOTS], blockTorque[SHARED_LOAD_SLOTS];
