@@ -5,13 +5,11 @@ the test checks the bookkeeping (parts joined, mismatched beds and repeated drop
 physics, which the case's own runs check (its quick form split in parts gives the same depths bit for
 bit as in one run: validation/README.md).
 """
-import json
 import os
-import subprocess
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-RUN = os.path.join(os.path.dirname(HERE), "run.py")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import replay as rp  # noqa: E402
 
 
 def write_part(folder, drops, rho_g=1490.0, c=0.14, grains=5815):
@@ -22,17 +20,11 @@ def write_part(folder, drops, rho_g=1490.0, c=0.14, grains=5815):
         x = 0.05 * (rho_b / rho_g) ** 0.5 * (1.0 + h)
         record["drops"].append({"rho_b": rho_b, "h": h, "d": c * x, "x": x, "rest": True,
                                 "t": [0.0, 0.05, 0.1], "path": [0.0, -0.5 * c * x, -c * x]})
-    os.makedirs(folder, exist_ok=True)
-    with open(os.path.join(folder, "crater-data.json"), "w") as f:
-        json.dump(record, f)
+    rp.write_data(folder, "crater-data.json", record)
 
 
 def join(tmp_path, *folders):
-    out = tmp_path / "out"
-    env = dict(os.environ, CRATER_FROM=",".join(str(f) for f in folders))
-    r = subprocess.run([sys.executable, RUN, "pending/crater", "--out", str(out)], env=env, capture_output=True,
-                       text=True, timeout=300)
-    summary = json.loads((out / "summary.json").read_text()) if (out / "summary.json").exists() else []
+    r, summary, out = rp.replay(tmp_path, "pending/crater", "CRATER_FROM", folders)
     return r, {v["quantity"].split(" (")[0]: v for v in summary}, out
 
 

@@ -5,13 +5,12 @@ mismatched parts refused), not the physics, which the case's own runs check.
 """
 import json
 import os
-import subprocess
 import sys
 
 import pytest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-RUN = os.path.join(os.path.dirname(HERE), "run.py")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import replay as rp  # noqa: E402
 MUS, CRRS = [0.0, 0.45, 0.9], [0.0, 0.08]
 
 
@@ -33,17 +32,11 @@ def write_part(folder, mus, measure=3.0, shift=0.0):
             "backend": "cuda", "commit": "test", "runs": {"PS": {
                 "depth_m": 0.2, "E_Pa": 1e7, "dt_s": 2e-5, "steady_s": 6.0, "grains_per_drum": 13024,
                 "spheres": 13024 * len(points), "steps": 465000, "wall_s": 100.0, "points": points}}}
-    os.makedirs(folder, exist_ok=True)
-    with open(os.path.join(folder, "drum-data.json"), "w") as f:
-        json.dump(data, f)
+    rp.write_data(folder, "drum-data.json", data)
 
 
 def replay(tmp_path, *folders):
-    out = tmp_path / "out"
-    env = dict(os.environ, DRUM_FROM=",".join(str(f) for f in folders))
-    r = subprocess.run([sys.executable, RUN, "drum", "--out", str(out)], env=env, capture_output=True, text=True,
-                       timeout=300)
-    summary = json.loads((out / "summary.json").read_text()) if (out / "summary.json").exists() else []
+    r, summary, out = rp.replay(tmp_path, "drum", "DRUM_FROM", folders)
     return r, {v["quantity"]: v for v in summary}, out
 
 
