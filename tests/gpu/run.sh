@@ -61,10 +61,14 @@ for step in "${steps[@]}"; do
         # command (`MIXERS=".base/build-gpu/bench/mixer ./build-gpu/bench/mixer" tests/gpu/run.sh settled`).
         base="${BASE:-.base}"
         (cmake -S "$base" -B "$base/build-gpu" -DCMAKE_BUILD_TYPE=Release -DDEME_ENABLE_CUDA=ON -DDEME_BUILD_TESTS=OFF \
-            -DDEME_BUILD_DEMOS=OFF && cmake --build "$base/build-gpu" -j"$jobs" --target mixer small_systems) >"$OUT/baseline-build.log" 2>&1 || {
+            -DDEME_BUILD_DEMOS=OFF && cmake --build "$base/build-gpu" -j"$jobs" --target mixer) >"$OUT/baseline-build.log" 2>&1 || {
             tail -n 40 "$OUT/baseline-build.log"
             exit 1
         }
+        # SMALL-SYSTEMS exists from the issue "Small systems fast on the GPU" on: an older baseline
+        # (for MIXER-BENCH before that issue) goes without it.
+        cmake --build "$base/build-gpu" -j"$jobs" --target small_systems >>"$OUT/baseline-build.log" 2>&1 ||
+            echo "baseline: no small_systems target"
         # DISCHARGE exists from 354e84f on: an older baseline goes without it (or copy
         # bench/discharge.cpp and its CMake lines into the baseline's tree first).
         cmake --build "$base/build-gpu" -j"$jobs" --target discharge >>"$OUT/baseline-build.log" 2>&1 ||
