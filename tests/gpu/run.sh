@@ -60,6 +60,10 @@ for step in "${steps[@]}"; do
         # .base`, ignored and carried), its mixer benchmark built beside, for before/after runs in one
         # command (`MIXERS=".base/build-gpu/bench/mixer ./build-gpu/bench/mixer" tests/gpu/run.sh settled`).
         base="${BASE:-.base}"
+        # A tree carried as $base/tree.tar.xz (`git archive <commit> src include bench cmake
+        # CMakeLists.txt data | xz > .base/tree.tar.xz`: a few hundred kB, where the carried paths
+        # must stay under the device tool's 64 MiB) is unpacked in place first.
+        [ -f "$base/tree.tar.xz" ] && tar -xJf "$base/tree.tar.xz" -C "$base"
         (cmake -S "$base" -B "$base/build-gpu" -DCMAKE_BUILD_TYPE=Release -DDEME_ENABLE_CUDA=ON -DDEME_BUILD_TESTS=OFF -DDEME_BUILD_PYTHON=OFF \
             -DDEME_BUILD_DEMOS=OFF && cmake --build "$base/build-gpu" -j"$jobs" --target mixer) >"$OUT/baseline-build.log" 2>&1 || {
             tail -n 40 "$OUT/baseline-build.log"
