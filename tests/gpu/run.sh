@@ -55,6 +55,16 @@ for step in "${steps[@]}"; do
         }
         echo "build: ok"
         ;;
+    build-module)
+        # The Python module alone (what validation/run.py needs), without the tests and benchmarks:
+        # a validation run on a fresh machine starts a few minutes sooner.
+        cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=Release -DDEME_ENABLE_CUDA=ON "${PY_CMAKE_ARGS[@]}" >"$OUT/configure.log" 2>&1 &&
+            cmake --build build-gpu -j"$jobs" --target _deme >"$OUT/build.log" 2>&1 || {
+            tail -n 60 "$OUT/build.log"
+            exit 1
+        }
+        echo "build-module: ok"
+        ;;
     baseline)
         # An earlier commit's source in $BASE (default .base, e.g. `git archive <commit> | tar -x -C
         # .base`, ignored and carried), its mixer benchmark built beside, for before/after runs in one
@@ -332,10 +342,13 @@ for step in "${steps[@]}"; do
     profile-step)
         # Where a drum step's time goes: Nsight Compute's full sections (stall reasons, spills,
         # occupancy) for some force passes and fused owner steps after the warm-up, kernels launched
-        # one by one (PROFILE_CASE=impact the impact, PROFILE_LAUNCHES how many).
-        DEME_CUDA_GRAPHS=0 DEME_CUDA_PROFILE_FROM_STEP=20001 timeout 300 ncu --profile-from-start off --clock-control none \
+        # one by one (PROFILE_CASE=impact the impact, PROFILE_LAUNCHES how many; PROFILE_WARM and
+        # PROFILE_STEPS the benchmark's warm-up and timed steps, PROFILE_FROM the first step profiled:
+        # the impact's ball is released after its warm-up and reaches the bed about 2,000 steps on).
+        warm=${PROFILE_WARM:-20000}
+        DEME_CUDA_GRAPHS=0 DEME_CUDA_PROFILE_FROM_STEP=${PROFILE_FROM:-$((warm + 1))} timeout 300 ncu --profile-from-start off --clock-control none \
             -k regex:'deme_force_pass|deme_integrate' --launch-count ${PROFILE_LAUNCHES:-4} --set full --import-source no \
-            ./build-gpu/bench/small_systems ${PROFILE_CASE:-drum} 20000 300 cuda sync >"$OUT/ncu-step.txt" 2>"$OUT/ncu-step.err"
+            ./build-gpu/bench/small_systems ${PROFILE_CASE:-drum} "$warm" ${PROFILE_STEPS:-300} cuda sync >"$OUT/ncu-step.txt" 2>"$OUT/ncu-step.err"
         echo "profile-step ncu: rc $? ($(wc -l <"$OUT/ncu-step.txt") lines)"
         ;;
     profile-sass)
