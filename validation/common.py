@@ -88,6 +88,20 @@ def write_json(path, record):
     os.replace(path + ".tmp", path)
 
 
+def read_parts(variable, folders, name, same_keys, reason):
+    """The data files `name` of an earlier run's parts (a case's DRUM_FROM, CRATER_FROM: the folders
+    that `variable` names), as dicts, refused unless every one agrees with the first on `same_keys`
+    (`reason` says why they must)."""
+    parts = []
+    for folder in folders:
+        with open(os.path.join(folder, name)) as f:
+            parts.append(json.load(f))
+    for key in same_keys:
+        if any(p.get(key) != parts[0].get(key) for p in parts):
+            raise ValueError(f"{variable}: the runs differ in {key} ({reason}): {[p.get(key) for p in parts]}")
+    return parts
+
+
 class Case:
     """One case's command line (--quick, --backend, --out), verdicts and plot."""
 

@@ -75,14 +75,13 @@ single thin drum cannot tell Crr's rise from its own scatter every time. A repli
 packing of the next seed (DRUM_SEED, default 1, sets the first); a point's angle is the mean of its
 replicas' means, its se theirs combined (sqrt of the sum of squares, over their number).
 """
-import json
 import math
 import os
 import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from common import Case, commit, import_deme  # noqa: E402
+from common import Case, commit, import_deme, read_parts, write_json  # noqa: E402
 import drum_setup as ds  # noqa: E402
 
 case = Case("drum", __doc__)
@@ -195,14 +194,9 @@ if earlier:
     # earlier run had no LIGGGHTS drums, its verdicts and plot alone).
     import shutil
     folders = earlier.split(",")
-    parts = []
-    for folder in folders:
-        with open(os.path.join(folder, "drum-data.json")) as f:
-            parts.append(json.load(f))
+    parts = read_parts("DRUM_FROM", folders, "drum-data.json", ("settle_s", "steady_s", "measure_s", "samples",
+                                                                  "rolling"), "not measured alike")
     data = parts[0]
-    for key in ("settle_s", "steady_s", "measure_s", "samples", "rolling"):
-        if any(p.get(key) != data.get(key) for p in parts):
-            raise ValueError(f"DRUM_FROM: the runs differ in {key}: {[p.get(key) for p in parts]}")
     mus = sorted({m for p in parts for m in p["mu"]})
     crrs = sorted({c for p in parts for c in p["Crr"]})
     settle, steady, measure = data["settle_s"], data["steady_s"], data["measure_s"]
@@ -404,8 +398,7 @@ if peer_result is not None:
     data["liggghts"] = {"wall_s": round(l_wall, 1), "processes": l_np, "depth_m": peer["depth"], "points": [
         {"mu": p[0], "Crr": p[1], "angle_deg": round(mean_se(a)[0], 3), "se_deg": round(mean_se(a)[1], 3),
          "samples_deg": [round(float(v), 3) for v in a]} for p, a in zip(peer_points, l_angles)]}
-with open(os.path.join(case.args.out, "drum-data.json"), "w") as f:
-    json.dump(data, f, indent=1)
+write_json(os.path.join(case.args.out, "drum-data.json"), data)
 
 panels = len(maps) + (ps_peer is not None)  # the maps, and the LIGGGHTS drums' samples if they ran
 fig, axes = case.figure(1, panels, figsize=(4.8 * panels, 4.2))

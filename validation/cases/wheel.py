@@ -45,13 +45,12 @@ pull's means (over 5-7 grouser periods, while it is still settling) carry standa
 10-20 %, several times the tolerance: plotted, not judged. Also judged, in both: the wheel never
 reached a dormant grain. Reported: each run's stepping wall time and the ratio whole bed / box.
 """
-import json
 import os
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from common import Case, import_deme  # noqa: E402
+from common import Case, import_deme, write_json  # noqa: E402
 import wheel_setup as ws  # noqa: E402
 
 case = Case("wheel", __doc__)
@@ -124,8 +123,7 @@ gap = min(min(runs[s]["box"]["gap"]) for s in SLIPS)
 case.check("closest approach of the wheel's reach to a dormant grain (mm)", "> 0", "the active box's purpose "
            "(docs/active-box.md: the wheel's contacts with dormant grains are off)", round(gap * 1e3, 2), "positive",
            gap > 0)
-with open(os.path.join(case.args.out, "wheel-data.json"), "w") as f:
-    json.dump(record, f, indent=1)
+write_json(os.path.join(case.args.out, "wheel-data.json"), record)
 
 # The plot: drawbar pull and sinkage against slip, one drive's time series, the wall times.
 fig, axes = case.figure(2, 2, figsize=(11, 8))

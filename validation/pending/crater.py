@@ -60,12 +60,11 @@ times the paper's (CRATER_GRAIN_SCALE=0.7, 753,589 grains; one H100, 2026-12-06,
 joined by CRATER_FROM): C = 0.1276 (-8.9 %), R^2 = 0.987, every ball at rest, each drop 6-13 % deeper:
 the constant's deficit at the paper's grains is their size against the ball.
 """
-import json
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from common import Case, commit, import_deme, write_json  # noqa: E402
+from common import Case, commit, import_deme, read_parts, write_json  # noqa: E402
 import crater_setup as cs  # noqa: E402
 
 case = Case("crater", __doc__)
@@ -98,14 +97,9 @@ if os.environ.get("CRATER_DROPS"):
 earlier = os.environ.get("CRATER_FROM")
 origin = None
 if earlier:
-    parts = []
-    for folder in earlier.split(","):
-        with open(os.path.join(folder, "crater-data.json")) as f:
-            parts.append(json.load(f))
+    parts = read_parts("CRATER_FROM", earlier.split(","), "crater-data.json",
+                       ("grains", "grain_scale", "bed_cm", "rho_g", "surface_m"), "not the same bed")
     data = parts[0]
-    for key in ("grains", "grain_scale", "bed_cm", "rho_g", "surface_m"):
-        if any(p[key] != data[key] for p in parts):
-            raise ValueError(f"CRATER_FROM: the parts differ in {key} (not the same bed): {[p[key] for p in parts]}")
     results, seen = [], set()
     for p in parts:
         for r in p["drops"]:
@@ -122,7 +116,7 @@ else:
     bed_ckpt = os.environ.get("CRATER_BED_CKPT")
     # A bed kept for other parts holds every ball the case knows, whichever this part drops (a
     # checkpoint restores the scene it was written from: the same balls in every part).
-    ball_densities = sorted({rho for rho, _ in drops} | set(DENSITIES)) if bed_ckpt else densities
+    ball_densities = sorted(set(densities) | set(DENSITIES)) if bed_ckpt else densities
     bed = cs.Bed(deme, half, depth, ball_densities, grain_scale=grain_scale)
     n_grains = bed.n
     if bed_ckpt and os.path.exists(bed_ckpt):
