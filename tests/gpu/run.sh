@@ -44,25 +44,27 @@ WRAPPER
     PY_CMAKE_ARGS=(-DPython3_EXECUTABLE="$PY" -Dpybind11_DIR="$prefix/usr/lib/cmake/pybind11")
 fi
 
+# Configures build-gpu/ and builds it (the arguments go to `cmake --build`, e.g. a target); on a
+# failure the build log's end, and the script stops.
+build_gpu() {
+    cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=Release -DDEME_ENABLE_CUDA=ON "${PY_CMAKE_ARGS[@]}" >"$OUT/configure.log" 2>&1 &&
+        cmake --build build-gpu -j"$jobs" "$@" >"$OUT/build.log" 2>&1 || {
+        tail -n 60 "$OUT/build.log"
+        exit 1
+    }
+}
+
 for step in "${steps[@]}"; do
     case "$step" in
     build)
         nvidia-smi >"$OUT/nvidia-smi.txt" 2>&1
-        cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=Release -DDEME_ENABLE_CUDA=ON "${PY_CMAKE_ARGS[@]}" >"$OUT/configure.log" 2>&1 &&
-            cmake --build build-gpu -j"$jobs" >"$OUT/build.log" 2>&1 || {
-            tail -n 60 "$OUT/build.log"
-            exit 1
-        }
+        build_gpu
         echo "build: ok"
         ;;
     build-module)
         # The Python module alone (what validation/run.py needs), without the tests and benchmarks:
         # a validation run on a fresh machine starts a few minutes sooner.
-        cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=Release -DDEME_ENABLE_CUDA=ON "${PY_CMAKE_ARGS[@]}" >"$OUT/configure.log" 2>&1 &&
-            cmake --build build-gpu -j"$jobs" --target _deme >"$OUT/build.log" 2>&1 || {
-            tail -n 60 "$OUT/build.log"
-            exit 1
-        }
+        build_gpu --target _deme
         echo "build-module: ok"
         ;;
     baseline)
