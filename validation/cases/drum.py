@@ -37,7 +37,7 @@ same drums' uncertainty is 0.1-0.4 degrees (validation/README.md). It keeps the 
 (DRUM_DEPTH_PS); the PC
 map's drums are 0.05 m deep (DRUM_DEPTH_PC; 4,759 clumps, 23,795 spheres a drum: at 0.20 m its
 7 x 3 map alone would be 2 M spheres), end walls kept, so its angles include four times the end
-walls' share of the paper's drum, and it runs the grid's first and last Crr only (Crr is not judged
+walls' share of the paper's drum, and it runs the grid's first and last Crr only (DRUM_PC_CRR picks others; Crr is not judged
 for the cylinders; so that the map fits one 10-minute command; its drums turn the paper's 2 s). The LIGGGHTS points run on three more PS drums, 0.05 m deep
 (DRUM_DEPTH_PEER: 3,256 spheres each, so that LIGGGHTS on the CPU keeps pace with the GPU), from the
 engine's settled state (positions, velocities, spins) in both codes. DRUM_TIMES=settle,steady,measure; DRUM_TIMING=1
@@ -117,6 +117,13 @@ else:
         q = (min(mus, key=lambda m: abs(m - p[0])), min(crrs, key=lambda c: abs(c - p[1])))
         if q not in peer_points:
             peer_points.append(q)
+    # DRUM_PC_CRR=c1,c2,...: the PC map's Crr values (the grid's first and last by default; e.g. its
+    # middle ones as another command, joined with the first by DRUM_FROM)
+    pc_crrs = sorted({crrs[0], crrs[-1]})
+    if os.environ.get("DRUM_PC_CRR"):
+        pc_crrs = sorted({round(float(v), 4) for v in os.environ["DRUM_PC_CRR"].split(",")})
+        if any(c not in crrs for c in pc_crrs):
+            raise ValueError(f"DRUM_PC_CRR={os.environ['DRUM_PC_CRR']!r}: Crr values of the grid {crrs} only")
     # first the drums LIGGGHTS runs too (thinner than the map's, so that LIGGGHTS keeps pace with the GPU),
     # then the two maps
     runs = [dict(name="PS-peer", grain=ds.PS, depth=float(os.environ.get("DRUM_DEPTH_PEER", "0.05")), young=ds.E,
@@ -124,7 +131,7 @@ else:
             dict(name="PS", grain=ds.PS, depth=float(os.environ.get("DRUM_DEPTH_PS", "0.20")), young=ds.E, dt=2e-5,
                  map=True, peer=False, points=every),
             dict(name="PC", grain=ds.PC, depth=float(os.environ.get("DRUM_DEPTH_PC", "0.05")), young=ds.E, dt=2e-5,
-                 map=True, peer=False, points=[(m, c) for c in sorted({crrs[0], crrs[-1]}) for m in mus])]
+                 map=True, peer=False, points=[(m, c) for c in pc_crrs for m in mus])]
     chosen = os.environ.get("DRUM_RUNS")
     if chosen:
         names = chosen.split(",")
