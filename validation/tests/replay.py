@@ -16,12 +16,16 @@ def write_data(folder, name, record):
         json.dump(record, f)
 
 
+def run_case(tmp_path, case, env):
+    """Runs `case` through run.py with the environment `env`, its output in <tmp_path>/out."""
+    return subprocess.run([sys.executable, RUN, case, "--out", str(tmp_path / "out")], env=env, capture_output=True,
+                          text=True, timeout=300)
+
+
 def replay(tmp_path, case, variable, folders):
     """Runs `case` with `variable` naming the folders; returns the process, its verdicts (the
     summary's list) and its output folder."""
     out = tmp_path / "out"
-    env = dict(os.environ, **{variable: ",".join(str(f) for f in folders)})
-    r = subprocess.run([sys.executable, RUN, case, "--out", str(out)], env=env, capture_output=True, text=True,
-                       timeout=300)
+    r = run_case(tmp_path, case, dict(os.environ, **{variable: ",".join(str(f) for f in folders)}))
     summary = json.loads((out / "summary.json").read_text()) if (out / "summary.json").exists() else []
     return r, summary, out
