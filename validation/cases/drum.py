@@ -37,8 +37,9 @@ same drums' uncertainty is 0.1-0.4 degrees (validation/README.md). It keeps the 
 (DRUM_DEPTH_PS); the PC
 map's drums are 0.05 m deep (DRUM_DEPTH_PC; 4,759 clumps, 23,795 spheres a drum: at 0.20 m its
 7 x 3 map alone would be 2 M spheres), end walls kept, so its angles include four times the end
-walls' share of the paper's drum, and it runs the grid's first and last Crr only (DRUM_PC_CRR picks others; Crr is not judged
-for the cylinders; so that the map fits one 10-minute command; its drums turn the paper's 2 s). The LIGGGHTS points run on three more PS drums, 0.05 m deep
+walls' share of the paper's drum, and it runs the grid's first and last Crr only (Crr is not judged
+for the cylinders; so that the map fits one 10-minute command; its drums turn the paper's 2 s;
+DRUM_PC_CRR=c1,c2,... runs other Crr values of the grid, e.g. its middle ones as a second command). The LIGGGHTS points run on three more PS drums, 0.05 m deep
 (DRUM_DEPTH_PEER: 3,256 spheres each, so that LIGGGHTS on the CPU keeps pace with the GPU), from the
 engine's settled state (positions, velocities, spins) in both codes. DRUM_TIMES=settle,steady,measure; DRUM_TIMING=1
 prints each run's phase timings and detection statistics.

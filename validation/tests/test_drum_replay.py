@@ -79,10 +79,6 @@ def test_parts_measured_differently_are_refused(tmp_path):
     assert "the runs differ in measure_s" in r.stdout + r.stderr
 
 
-if __name__ == "__main__":
-    sys.exit(pytest.main([__file__, "-q"]))
-
-
 def test_pc_crr_values_off_the_grid_are_refused(tmp_path):
     # DRUM_PC_CRR picks the PC map's Crr values among the grid's (so that parts join on one grid):
     # 0.03 is not on the 13 x 5 grid's 0, 0.02, ..., 0.08, and the case stops before any drum is set up
@@ -90,3 +86,7 @@ def test_pc_crr_values_off_the_grid_are_refused(tmp_path):
     r = rp.run_case(tmp_path, "drum", env)
     assert r.returncode != 0
     assert "DRUM_PC_CRR='0.02,0.03': Crr values of the grid [0.0, 0.02, 0.04, 0.06, 0.08] only" in r.stdout + r.stderr
+
+
+if __name__ == "__main__":
+    sys.exit(pytest.main([__file__, "-q"]))
