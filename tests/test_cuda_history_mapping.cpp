@@ -3,7 +3,8 @@
 // the order DeviceHistoryMapping launches them, and the result compared with the CPU's
 // installDetectedContacts (backend/cpu/HistoryMapping.cpp) on random contact sets: the same pairs in
 // the same order, the same wildcards (carried over, initial values of new pairs), mesh states and
-// persistent flags. The kernels use nothing of CUDA but the thread index (tests/HostKernelEmulation.h).
+// persistent flags; and the pooled form's kernels (the GPU's history only for the pairs that have
+// one) against the same wildcards, read back per pair. The kernels use nothing of CUDA but the thread index (tests/HostKernelEmulation.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include "BackendFixture.h"
 #include "backend/cpu/HistoryForm.h"
 #include "backend/cpu/HistoryMapping.h"
+#include "state/HistoryPoolExpand.h"
 
 #include "HostKernelEmulation.h"
 #include "backend/cuda/kernels/HistoryMapping.cu"
@@ -46,6 +48,7 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
     std::mt19937 rng(11);
     const unsigned int spheres = 40;
     size_t newPairs = 0;  // pairs new to the set: 0, or 7 between families 0 and 1
+    size_t fromOldSide = 0;  // rounds whose pooled mapping was also checked from the old set's side
     for (int round = 0; round < 200; round++) {
         SCOPED_TRACE(round);
         // The CPU's history in either form (backend/cpu/HistoryForm.h), read back densified.
@@ -116,8 +119,83 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         EXPECT_EQ(meshState, c.meshState);
         densifyHistory(s);  // the CPU may keep it pooled (backend/cpu/HistoryForm.h)
         EXPECT_EQ(wildcards, c.wildcards);
+
+        // The GPU's pooled form (state/HistoryPool.h), from the old set kept dense and kept pooled
+        // (its nonzero histories in slots, in reverse order): slots only for the pairs whose history
+        // is not zero, and read back per pair the dense mapping's wildcards; the same flags.
+        std::vector<uint32_t> oldSlot(nOld, NO_HISTORY_SLOT);
+        std::vector<float> oldPool;
+        for (size_t j = nOld; j-- > 0;)
+            if (oldWildcards[j] != 0.f) {
+                oldSlot[j] = (uint32_t)oldPool.size();
+                oldPool.push_back(oldWildcards[j]);
+            }
+        for (const bool oldPooled : {false, true}) {
+            SCOPED_TRACE(oldPooled ? "old set pooled" : "old set dense");
+            OldContactHistory from = history;
+            if (oldPooled) {
+                from.wildcards = oldPool.data();
+                from.slot = oldSlot.data();
+            }
+            std::vector<uint32_t> slots(total + 1, 77u);
+            runThreads(total + 1, [&] { deme_mark_history_slots(view, mergedKeys, from, slots.data()); });
+            uint32_t sum = 0;
+            for (uint32_t& k : slots) {
+                const uint32_t mark = k;
+                k = sum;
+                sum += mark;
+            }
+            const uint32_t withSlot = slots[total];
+            std::vector<float> pool(withSlot, -9.f), expanded(total);
+            std::vector<uint8_t> pMesh(total, 9), pPersistent(total, 9);
+            runThreads(total, [&] {
+                deme_map_history_pooled(view, mergedKeys, from, slots.data(), pool.data(), pMesh.data(),
+                                        pPersistent.data());
+            });
+            expandPooledHistory(slots.data(), total, pool.data(), 1, expanded.data());
+            EXPECT_EQ(expanded, wildcards);
+            EXPECT_EQ(pMesh, c.meshState);
+            EXPECT_EQ(pPersistent, c.persistent);
+            EXPECT_EQ((size_t)withSlot, total - (size_t)std::count(wildcards.begin(), wildcards.end(), 0.f));
+            for (size_t i = 0; i < total; i++)
+                EXPECT_EQ(slots[i] == NO_HISTORY_SLOT, wildcards[i] == 0.f) << "pair " << i;
+
+            // From the old set's side (DeviceHistoryMapping: no contact-init rule, no old persistent
+            // pair), against the dense mapping without the rule.
+            if (any) continue;
+            OldContactHistory plain = from;
+            plain.rules = nullptr;
+            plain.numRules = 0;
+            std::vector<float> plainWildcards(total, -9.f);
+            std::vector<uint8_t> plainMesh(total, 9), plainPersistent(total, 9);
+            runThreads(total, [&] {
+                deme_map_history(view, mergedKeys, plain, plainWildcards.data(), plainMesh.data(), plainPersistent.data());
+            });
+            std::vector<uint8_t> marks(total, 9);
+            runThreads(total, [&] { deme_mark_mesh_pairs(view, mergedKeys, marks.data()); });
+            runThreads(nOld, [&] { deme_mark_carried_pairs(mergedKeys, plain, marks.data()); });
+            std::vector<uint32_t> marked(total, 77u);
+            uint32_t count = 0;
+            for (size_t i = 0; i < total; i++) {
+                marked[i] = count;
+                count += marks[i];
+            }
+            std::vector<float> markedPool(count, -9.f), markedExpanded(total);
+            std::vector<uint8_t> markedPersistent(total, 9);
+            runThreads(total, [&] {
+                deme_map_marked_history(view, mergedKeys, plain, marked.data(), markedPool.data(), marks.data(),
+                                        markedPersistent.data());
+            });
+            expandPooledHistory(marked.data(), total, markedPool.data(), 1, markedExpanded.data());
+            EXPECT_EQ(markedExpanded, plainWildcards);
+            EXPECT_EQ(marks, plainMesh);  // the marks became the mesh states
+            EXPECT_EQ(markedPersistent, plainPersistent);
+            EXPECT_EQ((size_t)count, total - (size_t)std::count(plainWildcards.begin(), plainWildcards.end(), 0.f));
+            fromOldSide++;
+        }
         newPairs +=
             std::count(wildcards.begin(), wildcards.end(), 7.f) + std::count(wildcards.begin(), wildcards.end(), 0.f);
     }
     EXPECT_GT(newPairs, 1000u);
+    EXPECT_GT(fromOldSide, 80u);
 }

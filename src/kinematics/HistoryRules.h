@@ -83,10 +83,17 @@ struct OldContactHistory {
     // NO_HISTORY_SLOT where it has none; none (slots.ranked null) where `wildcards` has W floats
     // per pair.
     RankedSlotsView slots = {};
+    // The GPU's pooled history (state/HistoryPool.h): each pair's slot in `wildcards`, or
+    // NO_HISTORY_SLOT; null where the GPU's set keeps W floats per pair.
+    const uint32_t* slot = nullptr;
 };
 
 // Old pair `at`'s W floats, or null where it has no history (all zeros).
 DEME_HD_INLINE const float* oldPairHistory(const OldContactHistory& old, unsigned int at) {
+    if (old.slot) {
+        const uint32_t k = old.slot[at];
+        return k == NO_HISTORY_SLOT ? nullptr : old.wildcards + (size_t)k * old.W;
+    }
     if (!old.slots.ranked) return old.wildcards + (size_t)at * old.W;
     const uint32_t k = slotOf(old.slots, at);
     return k == NO_HISTORY_SLOT ? nullptr : old.wildcards + (size_t)k * old.W;
@@ -123,6 +130,18 @@ DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const 
         const ContactInitRule& rule = old.rules[r];
         if ((rule.a == fa && rule.b == fb) || (rule.a == fb && rule.b == fa)) wildcards[rule.index] = rule.value;
     }
+}
+
+// The GPU's pooled form (state/HistoryPool.h): whether pair i of the new set, its history carried
+// over (`h`, W floats), keeps a slot: a history not all +0, or a sphere and a triangle, between
+// which the mesh rule hands history during the steps (dynamics/MeshContactRule.h).
+template <class S>
+DEME_HD_INLINE bool pairKeepsHistorySlot(const S& s, const ContactKeys& fresh, unsigned int i, const float* h,
+                                         unsigned int W) {
+    if (contactTypeOf(s, fresh.geomB[i]) == SPHERE_TRIANGLE) return true;
+    for (unsigned int w = 0; w < W; w++)
+        if (!isPositiveZero(h[w])) return true;
+    return false;
 }
 
 // 2. Both: the history of pair i of the new set.

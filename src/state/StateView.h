@@ -8,6 +8,7 @@
 #include <deme/VariableTypes.h>
 
 #include "physics/CompactPosition.h"
+#include "state/HistoryPool.h"
 #include "state/StateFields.h"
 
 namespace deme {
@@ -35,6 +36,7 @@ struct StateView {
     AnalyticalView analytical;
     TriangleView triangles;
     ContactView contacts;
+    HistoryPoolView historyPool;  // the GPU's pooled history (state/HistoryPool.h); slot null: none
     CacheView cache;
     IntegrationScratchView integrationScratch;
     unsigned int numWildcards;

@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|python|output|bench|small|sweep|graphsteps|smallab|discharge|mixerab|profile-small|profile-step|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|pooled|python|output|bench|small|sweep|graphsteps|smallab|discharge|mixerab|profile-small|profile-step|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -107,6 +107,14 @@ for step in "${steps[@]}"; do
             --timeout 400 --output-on-failure >"$OUT/suite.log" 2>&1
         echo "suite (cuda instances and demos): rc $?"
         grep -E 'tests passed|\(Failed\)|\(Timeout\)|\(SEGFAULT\)|Exception' "$OUT/suite.log" | head -40
+        ;;
+    pooled)
+        # The suite's step with every contact set's history pooled and no spare slot in any pool
+        # (state/HistoryPool.h): each pair that begins to touch pauses its step for the pool to grow.
+        DEME_POOLED_HISTORY=1 DEME_HISTORY_POOL_SPARE=0 DEME_BACKEND=cuda ctest --test-dir build-gpu -j"${SUITE_JOBS:-8}" \
+            -R '/cuda$|^demo_' ${SUITE_EXCLUDE:+-E "$SUITE_EXCLUDE"} --timeout 400 --output-on-failure >"$OUT/pooled.log" 2>&1
+        echo "pooled suite (cuda instances and demos, every history pooled, no spare slot): rc $?"
+        grep -E 'tests passed|\(Failed\)|\(Timeout\)|\(SEGFAULT\)|Exception' "$OUT/pooled.log" | head -40
         ;;
     python)
         # The Python module built in build-gpu (the build step builds it where pybind11 and numpy

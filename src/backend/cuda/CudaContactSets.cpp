@@ -45,6 +45,13 @@ double CudaDynamics::maxTravelSinceOrder() {
 // the model keeps at least three wildcards a pair (Hertz-Mindlin keeps four).
 void CudaDynamics::lendIdleMemoryToForces() {
     DeviceContacts& inUse = m_contacts[m_current];
+    if (historyPooled()) {
+        // A pooled set keeps its forces per slot (state/HistoryPool.h), in memory of their own: the
+        // idle set's pool is small, and gone once mapped.
+        inUse.force.resizeDiscarding(m_pools[m_current].capacity);
+        refreshView();
+        return;
+    }
     if (!m_forcesInIdleMemory) {
         inUse.force.release();  // forces uploaded with the set: a storing step rewrites them all
         inUse.force.tradeMemory(m_contacts[1 - m_current].wildcards);
@@ -79,8 +86,12 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     out.geomB.release();
     // Persistent pairs the detection missed stay in the set; every pair takes its history over.
     const MemoryGroupScope group(MemoryGroup::CONTACTS);  // history mapping's scratch
+    HistoryPoolPolicy policy = m_poolPolicy;
+    policy.W = m_W;
+    uint32_t slotsUsed = 0;
     const unsigned int total =
-        m_history.install(fresh, (unsigned int)r.numPairs, old, m_numContacts, m_W, m_view, m_prim, m_stream);
+        m_history.install(fresh, m_pools[1 - m_current], (unsigned int)r.numPairs, old, m_pools[m_current],
+                          m_numContacts, m_W, policy, m_view, m_prim, m_stream, slotsUsed);
     // Per-contact forces are written by a storing step of the set in use only (nothing carries them
     // from one set to the next), in memory lent for it then.
     old.force.release();
@@ -96,8 +107,14 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     std::swap(out.geomB, old.geomB);
     old.persistent.release();
     old.meshState.release();
+    m_pools[m_current].release();  // a pooled old set's slots and pool are read; no forces live there
     m_current = 1 - m_current;
     m_numContacts = total;
+    m_installs++;
+    if (historyPooled()) {
+        m_pooledInstalls++;
+        resetHistoryPoolControl(slotsUsed);
+    }
     refreshView();
     // The set's snapshot is the order's: travel counts from there.
     launch(kTravelSinceOrder, blocksFor(m_view.numOwners, THREADS), THREADS, 0, m_stream,

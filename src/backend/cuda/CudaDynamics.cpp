@@ -13,6 +13,9 @@ namespace deme::cuda {
 void CudaDynamics::refreshView() {
     m_state.viewInto(m_view);
     viewContacts(m_contacts[m_current], m_numContacts, m_view);
+    DeviceHistoryPool& p = m_pools[m_current];
+    m_view.historyPool =
+        p.active ? HistoryPoolView{p.slot.data(), p.pool.data(), m_poolControl.data(), p.capacity} : HistoryPoolView{};
 }
 
 void CudaDynamics::upload(const SimState& s, bool withContacts) {
@@ -28,6 +31,9 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
         m_numContacts = (uint32_t)s.contacts.size();
         uploadContacts(s.contacts, m_W, m_contacts[0], st);
         m_contacts[1].force.release();  // only the set in use has per-contact forces
+        // The host's set keeps W floats per pair: so does the uploaded one, until the next install.
+        m_pools[0].release();
+        m_pools[1].release();
     }
     m_motion.resizeDiscarding((size_t)MAX_BATCH_STEPS * NUM_FAMILIES);  // a batch's table (CudaStepBatch.cpp)
     m_reduction.resizeDiscarding(1);
@@ -77,6 +83,7 @@ void CudaDynamics::downloadContacts(SimState& s) {
     select();
     cuda::downloadContacts(m_contacts[m_current], m_numContacts, m_W, s.contacts, m_stream);
     synchronize(m_stream);
+    if (historyPooled()) downloadPooledHistory(s.contacts);
 }
 
 void CudaDynamics::uploadTrackerLoads(const SimState& s) {

@@ -17,6 +17,7 @@
 
 #include "backend/cuda/CudaModule.h"
 #include "backend/cuda/DeviceForceModel.h"
+#include "backend/cuda/DeviceHistoryPool.h"
 #include "backend/cuda/DeviceHistoryMapping.h"
 #include "backend/cuda/DevicePrimitives.h"
 #include "backend/cuda/DeviceState.h"
@@ -86,8 +87,21 @@ class CudaDynamics : public DynamicsBackend {
     // an upload overwrites either set.
     void lendIdleMemoryToForces();
     void returnForceMemory();
-    // Writes one step's launches into `list` (CudaStepBatch.cpp): per-contact forces stored or not.
-    void recordStep(LaunchList& list, const Settings& settings, bool storeContactForces);
+    // Writes one step's launches into `list` (CudaStepBatch.cpp): per-contact forces stored or not;
+    // `afterPass`: only the kernels after the force pass (a paused step's rest).
+    void recordStep(LaunchList& list, const Settings& settings, bool storeContactForces, bool afterPass = false);
+    // The pooled history of the set in use (CudaHistoryPool.cpp): whether it is pooled; its pool
+    // grown to `capacity` slots, contents kept (forces too where a storing step keeps them, or
+    // `withForces`: a storing step paused in its pass); grown
+    // before a batch where it is nearly full; and a step paused for room (the pool's counters read
+    // back after the batch) finished: the pool grown, the pending pairs' histories made, the step's
+    // rest run. The host's copy of a pooled set's history and forces, per pair.
+    bool historyPooled() const { return m_pools[m_current].active; }
+    void growHistoryPool(size_t capacity, bool withForces);
+    void makeHistoryRoomBeforeBatch();
+    void finishPausedStep(const Settings& settings, bool storing);
+    void downloadPooledHistory(ContactArrays& c);
+    void resetHistoryPoolControl(uint32_t used);
     // The owners and spheres a step integrates and places (CudaStepSubset.cpp).
     void updateStepSubset();
     void updateLoadOwners(bool flagStepped);
@@ -141,6 +155,13 @@ class CudaDynamics : public DynamicsBackend {
     int m_current = 0;
     uint32_t m_numContacts = 0;
     bool m_forcesInIdleMemory = false;  // the set in use's forces hold the idle set's wildcards' memory
+    // Each set's pooled history (DeviceHistoryPool.h), the pool's counters (on the device and as
+    // last read back) and the rule that chooses the form.
+    DeviceHistoryPool m_pools[2];
+    DeviceBuffer<HistoryPoolControl> m_poolControl;
+    HistoryPoolControl m_poolControlHost{};
+    HistoryPoolPolicy m_poolPolicy;
+    unsigned long long m_installs = 0, m_pooledInstalls = 0, m_historyPauses = 0;  // for launchReport()
     // Owners' travel (since the set in use's snapshot: the state's) at the snapshot of the order in
     // flight.
     DeviceBuffer<float> m_orderBaseline;

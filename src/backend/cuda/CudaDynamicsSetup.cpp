@@ -25,6 +25,12 @@ CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(devi
     // Both contact sets' fields, their per-contact wildcards (the history) included.
     for (DeviceContacts& set : m_contacts)
         forEachContactField(set, set, [](auto& field, auto&, FieldRole) { field.setGroup(MemoryGroup::CONTACTS); });
+    for (DeviceHistoryPool& p : m_pools) {
+        p.slot.setGroup(MemoryGroup::CONTACTS);
+        p.pool.setGroup(MemoryGroup::CONTACTS);
+    }
+    m_poolPolicy = HistoryPoolPolicy::fromEnvironment();
+    m_poolPolicy.modelPools = m_model.poolsHistory();
     m_ownerSphereStart.setGroup(MemoryGroup::GEOMETRY);
     m_orderBaseline.setGroup(MemoryGroup::OWNER_STATE);
 }
@@ -77,6 +83,8 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     m_control.resizeDiscarding(1);
     m_blocksDone.resizeDiscarding(1);
     m_blocksDone.zeroAsync(nullptr);
+    m_poolControl.resizeDiscarding(1);
+    m_poolControl.zeroAsync(nullptr);
     synchronize(nullptr);
 }
 

@@ -24,7 +24,7 @@ double now() { return std::chrono::duration<double>(std::chrono::steady_clock::n
 
 }  // namespace
 
-void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool storeContactForces) {
+void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool storeContactForces, bool afterPass) {
     list.clear();
     list.overlapLaunches(m_overlapLaunches);
     const unsigned int nO = m_view.numOwners, nT = m_view.numTriangles;
@@ -56,7 +56,7 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     // box and in large scenes (loadsClearedByIntegration) the step's first kernel clears them, and
     // the phase starts there.
     const bool clearedByIntegration = m_subsetAll && loadsClearedByIntegration(nO);
-    if (!clearedByIntegration) {
+    if (!clearedByIntegration && !afterPass) {
         const bodyID_t* clearIds = m_subsetAll ? nullptr : m_loadOwners.data();
         const unsigned int nCleared = m_subsetAll ? nO : m_numLoadOwners;
         const unsigned int tCleared = stepThreadsFor(nCleared);
@@ -67,15 +67,17 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     // clears them.
     const unsigned int clearLoads = clearedByIntegration && !storeContactForces ? 1u : 0u;
     const unsigned int tMesh = stepThreadsFor(m_numContacts);
-    if (nT && m_numContacts) list.kernel(kResolveMesh, blocksFor(m_numContacts, tMesh), tMesh, 0, m_view, ctl, red);
-    const unsigned int tForce = settings.threadsPerBlock ? settings.threadsPerBlock : stepThreadsFor(m_numContacts);
-    m_model.record(list, stepView, ctl, m_numClumps, nO - m_numClumps, red, tForce);
+    if (!afterPass) {
+        if (nT && m_numContacts) list.kernel(kResolveMesh, blocksFor(m_numContacts, tMesh), tMesh, 0, m_view, ctl, red);
+        const unsigned int tForce = settings.threadsPerBlock ? settings.threadsPerBlock : stepThreadsFor(m_numContacts);
+        m_model.record(list, stepView, ctl, m_numClumps, nO - m_numClumps, red, tForce);
+    }
     // Contact forces were summed onto every owner (dormant ones too: trackers read them); only the
     // stepped owners are integrated and placed. Right after a force pass, which writes none of an
     // owner step's inputs but its loads, the integration reads them before it waits for the pass
     // (kernels/Dynamics.cu, startOwnerStep).
     const unsigned int tStepped = stepThreadsFor(nStepped);
-    const unsigned int inputsBeforeWait = m_inputsBeforeWait && stepView.numContacts > 0 ? 1u : 0u;
+    const unsigned int inputsBeforeWait = m_inputsBeforeWait && stepView.numContacts > 0 && !afterPass ? 1u : 0u;
     if (m_fusedStep && nT == 0) {
         // At least one block: it also ends the step. Where every owner is stepped, owner o is
         // thread o, so the analytical owners (after the clumps) are one block's where their ids
@@ -129,6 +131,7 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
     } else if (m_loadOwnersStale) {
         updateLoadOwners(true);
     }
+    if (historyPooled()) makeHistoryRoomBeforeBatch();
     if (batch.storeContactForcesAtEnd) lendIdleMemoryToForces();
     recordStep(m_plainStep, settings, false);
     if (batch.storeContactForcesAtEnd) recordStep(m_storingStep, settings, true);
@@ -145,7 +148,11 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
         for (unsigned long long k = 0; k < n; k++) (k < plain ? m_plainStep : m_storingStep).enqueue(st);
     }
     m_control.downloadAsync(m_controlHost, 1, st);
+    if (historyPooled()) m_poolControl.downloadAsync(&m_poolControlHost, 1, st);
     synchronize(st);
+    // A step whose force pass found the pool full stopped before its integration: finished here.
+    if (historyPooled() && m_poolControlHost.paused)
+        finishPausedStep(settings, batch.storeContactForcesAtEnd && m_controlHost->stepsDone + 1 == n);
     const StepBatchControl c = *m_controlHost;
 
     // The force phases' device time, summed over the batch's steps by the kernels themselves.
@@ -167,18 +174,21 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
 }
 
 std::string CudaDynamics::launchReport() const {
+    const std::string history = "; contact history pooled in " + std::to_string(m_pooledInstalls) + " of " +
+                                std::to_string(m_installs) + " installed sets, " + std::to_string(m_historyPauses) +
+                                " steps paused to grow a pool";
     const std::string overlap =
         std::string(m_overlapLaunches ? ", each kernel overlapping the drain of the one before"
                                       : ", each kernel after the one before has ended") +
         (m_fusedStep && m_view.numTriangles == 0 ? ", integration and placement in one kernel" : "") +
         (m_subsetAll && loadsClearedByIntegration(m_view.numOwners) ? ", loads cleared by integration"
                                                                      : ", loads cleared by a kernel a step");
-    if (!m_useGraphs) return "steps launched kernel by kernel (DEME_CUDA_GRAPHS=0)" + overlap;
+    if (!m_useGraphs) return "steps launched kernel by kernel (DEME_CUDA_GRAPHS=0)" + overlap + history;
     const unsigned long long made = m_plainGraph.captures() + m_plainGraphs.captures() + m_storingGraph.captures();
     const unsigned long long updated = m_plainGraph.updates() + m_plainGraphs.updates() + m_storingGraph.updates();
     return "steps replayed from CUDA graphs of up to " + std::to_string(m_graphSteps) +
            " steps: " + std::to_string(made) + " captured (" + std::to_string(updated) + " of them updated in place, " +
-           std::to_string(made - updated) + " instantiated)" + overlap;
+           std::to_string(made - updated) + " instantiated)" + overlap + history;
 }
 
 }  // namespace deme::cuda

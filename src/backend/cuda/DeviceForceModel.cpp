@@ -58,6 +58,13 @@ void DeviceForceModel::load(const std::string& call, const ModelLayout& layout, 
     if (!name.empty()) {
         m_kernel = dynamics.kernel(name + variant);
         if (withNoMesh) m_noMeshKernel = dynamics.kernel(name + "_no_mesh" + variant);
+        // The frictional model's passes over a pooled history (state/HistoryPool.h). The frictionless
+        // model keeps no history; a custom model may write more than its pair's history and loads
+        // (its `persistent` flag, owner wildcards), which a pending pair's second step would repeat.
+        if (layout.kind == DEMForceModel::Kind::FRICTIONAL_HERTZIAN) {
+            m_pooledKernel = dynamics.kernel(name + "_pooled" + variant);
+            if (withNoMesh) m_pooledNoMeshKernel = dynamics.kernel(name + "_pooled_no_mesh" + variant);
+        }
         return;
     }
     const CudaCompileResult r =
@@ -126,7 +133,10 @@ void DeviceForceModel::record(LaunchList& list, const StateView& view, const Ste
                               unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red,
                               unsigned int threadsPerBlock) const {
     if (view.numContacts == 0) return;
-    const CudaKernel& pass = view.numTriangles == 0 && m_noMeshKernel.handle ? m_noMeshKernel : m_kernel;
+    const bool noMesh = view.numTriangles == 0 && m_noMeshKernel.handle;
+    const CudaKernel& pass = view.historyPool.slot ? (noMesh ? m_pooledNoMeshKernel : m_pooledKernel)
+                                                   : (noMesh ? m_noMeshKernel : m_kernel);
+    if (!pass.handle) throwError("DoDynamics", "internal: the contact set's history is pooled, but the model has no pooled pass");
     list.kernel(pass, blocksFor(view.numContacts, threadsPerBlock), threadsPerBlock, 0, view, ctl, m_params,
                 firstNonClump, numNonClump, red);
 }

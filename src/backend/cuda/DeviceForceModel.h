@@ -40,6 +40,9 @@ class DeviceForceModel {
     void record(LaunchList& list, const StateView& view, const StepBatchControl* ctl, unsigned int firstNonClump,
                 unsigned int numNonClump, StepReduction* red, unsigned int threadsPerBlock) const;
 
+    // Whether the model's pass can serve a set whose history is pooled (state/HistoryPool.h).
+    bool poolsHistory() const { return m_pooledKernel.handle != nullptr; }
+
     double compileSeconds() const { return m_compileSeconds; }
     bool fromCache() const { return m_fromCache; }
 
@@ -47,6 +50,7 @@ class DeviceForceModel {
     CudaModule m_module;  // a custom model's; built-in kernels live in the dynamics module
     CudaKernel m_kernel;
     CudaKernel m_noMeshKernel;  // a built-in model's pass for scenes without meshes (no handle: none)
+    CudaKernel m_pooledKernel, m_pooledNoMeshKernel;  // over a pooled history (no handle: none)
     DeviceBuffer<float> m_mu, m_Crr, m_E_eff, m_G_eff, m_beta_CoR, m_props, m_pairProps, m_ownerWildcards,
         m_geometryWildcards;
     ForceModelParams m_params{};

@@ -1,5 +1,6 @@
 #include "backend/cuda/DeviceHistoryMapping.h"
 
+#include <string>
 #include <utility>
 
 #include <deme/Error.h>
@@ -25,6 +26,11 @@ void DeviceHistoryMapping::load(const std::string& call, const CudaCompileOption
     m_missing = m_module.kernel("deme_persistent_missing");
     m_merge = m_module.kernel("deme_persistent_merge");
     m_map = m_module.kernel("deme_map_history");
+    m_markSlots = m_module.kernel("deme_mark_history_slots");
+    m_mapPooled = m_module.kernel("deme_map_history_pooled");
+    m_markMesh = m_module.kernel("deme_mark_mesh_pairs");
+    m_markCarried = m_module.kernel("deme_mark_carried_pairs");
+    m_mapMarked = m_module.kernel("deme_map_marked_history");
 }
 
 void DeviceHistoryMapping::uploadRules(const std::vector<ContactInitRule>& rules) {
@@ -76,21 +82,76 @@ unsigned int DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, uns
     return total;
 }
 
-unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, unsigned int nFresh, const DeviceContacts& old,
-                                           unsigned int nOld, unsigned int W, const StateView& view,
-                                           DevicePrimitives& prim, Stream stream) {
+unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryPool& freshPool, unsigned int nFresh,
+                                           const DeviceContacts& old, const DeviceHistoryPool& oldPool,
+                                           unsigned int nOld, unsigned int W, const HistoryPoolPolicy& policy,
+                                           const StateView& view, DevicePrimitives& prim, Stream stream,
+                                           uint32_t& slotsUsed) {
     const unsigned int total = mergePersistent(fresh, nFresh, old, nOld, prim, stream);
-    resizeContactState(fresh, total, W);
-    if (total == 0) return 0;
-    const OldContactHistory history{keysOf(old, nOld),
-                                    old.wildcards.data(),
-                                    old.meshState.data(),
-                                    m_oldHadPersistent ? old.persistent.data() : nullptr,
-                                    W,
-                                    m_rules.data(),
-                                    m_numRules};
-    launch(m_map, blocksFor(total, THREADS), THREADS, 0, stream, view, keysOf(fresh, total), history,
-           fresh.wildcards.data(), fresh.meshState.data(), fresh.persistent.data());
+    slotsUsed = 0;
+    fresh.meshState.resizeDiscarding(total);
+    fresh.persistent.resizeDiscarding(total);
+    freshPool.release();
+    // Not the per-contact forces: only the set in use holds them (CudaDynamics::install).
+    if (total == 0) {
+        fresh.wildcards.resizeDiscarding(0);
+        return 0;
+    }
+    OldContactHistory history{keysOf(old, nOld),
+                              oldPool.active ? oldPool.pool.data() : old.wildcards.data(),
+                              old.meshState.data(),
+                              m_oldHadPersistent ? old.persistent.data() : nullptr,
+                              W,
+                              m_rules.data(),
+                              m_numRules};
+    if (oldPool.active) history.slot = oldPool.slot.data();
+    const ContactKeys keys = keysOf(fresh, total);
+    if (policy.considers(total)) {
+        // Which pairs keep a slot, and each one's slot: the marks' exclusive sum. Where no new pair
+        // takes an initial value and no old pair is persistent, from the old set's side (the
+        // marks in the new set's mesh state; kernels/HistoryMapping.cu), else every new pair is
+        // searched for (the marks in the slots, summed in place).
+        const bool fromOldSide = m_numRules == 0 && !m_oldHadPersistent;
+        freshPool.slot.resizeDiscarding((size_t)total + 1);
+        uint32_t* slots = freshPool.slot.data();
+        uint32_t withSlot = 0;
+        if (fromOldSide) {
+            uint8_t* marks = fresh.meshState.data();
+            launch(m_markMesh, blocksFor(total, THREADS), THREADS, 0, stream, view, keys, marks);
+            if (nOld) launch(m_markCarried, blocksFor(nOld, THREADS), THREADS, 0, stream, keys, history, marks);
+            prim.exclusiveSum(marks, slots, total, stream);
+            uint32_t lastSlot = 0;
+            uint8_t lastMark = 0;
+            freshPool.slot.downloadAsync(&lastSlot, 1, stream, total - 1);
+            fresh.meshState.downloadAsync(&lastMark, 1, stream, total - 1);
+            synchronize(stream);
+            withSlot = lastSlot + lastMark;
+        } else {
+            launch(m_markSlots, blocksFor((size_t)total + 1, THREADS), THREADS, 0, stream, view, keys, history, slots);
+            prim.exclusiveSum(slots, slots, (size_t)total + 1, stream);
+            freshPool.slot.downloadAsync(&withSlot, 1, stream, total);
+            synchronize(stream);
+        }
+        if (policy.chooses(total, withSlot)) {
+            const size_t capacity = policy.capacityFor(withSlot, total);
+            if (capacity >= PENDING_HISTORY_SLOT)
+                throwError("DoDynamics", "a contact set of " + std::to_string(total) + " pairs needs " +
+                                             std::to_string(capacity) + " history slots; at most " +
+                                             std::to_string(PENDING_HISTORY_SLOT - 1) + " fit a slot's 31 bits");
+            fresh.wildcards.release();
+            freshPool.pool.resizeDiscarding(capacity * W);
+            freshPool.capacity = (uint32_t)capacity;
+            freshPool.active = true;
+            launch(fromOldSide ? m_mapMarked : m_mapPooled, blocksFor(total, THREADS), THREADS, 0, stream, view, keys,
+                   history, slots, freshPool.pool.data(), fresh.meshState.data(), fresh.persistent.data());
+            slotsUsed = withSlot;
+            return total;
+        }
+        freshPool.release();
+    }
+    fresh.wildcards.resizeDiscarding((size_t)total * W);
+    launch(m_map, blocksFor(total, THREADS), THREADS, 0, stream, view, keys, history, fresh.wildcards.data(),
+           fresh.meshState.data(), fresh.persistent.data());
     return total;
 }
 

@@ -9,6 +9,7 @@
 
 #include "backend/cuda/CudaModule.h"
 #include "backend/cuda/DeviceBuffer.h"
+#include "backend/cuda/DeviceHistoryPool.h"
 #include "backend/cuda/DevicePrimitives.h"
 #include "backend/cuda/DeviceState.h"
 #include "backend/cuda/NvrtcCompiler.h"
@@ -30,10 +31,13 @@ class DeviceHistoryMapping {
 
     // Makes `fresh` (its first nFresh pairs set by detection, sorted) the new set: adds the
     // persistent pairs of `old` (nOld pairs) it lacks, in key order, sizes its per-contact state and
-    // carries every pair's history over. Returns the new set's size. `view` gives the geometries'
-    // owners and families.
-    unsigned int install(DeviceContacts& fresh, unsigned int nFresh, const DeviceContacts& old, unsigned int nOld,
-                         unsigned int W, const StateView& view, DevicePrimitives& prim, Stream stream);
+    // carries every pair's history over, from `old`'s wildcards or pool (`oldPool.active`), into
+    // fresh's wildcards or a pool (freshPool, where `policy` chooses it; its `used` slots are then
+    // `slotsUsed`). Returns the new set's size. `view` gives the geometries' owners and families.
+    unsigned int install(DeviceContacts& fresh, DeviceHistoryPool& freshPool, unsigned int nFresh,
+                         const DeviceContacts& old, const DeviceHistoryPool& oldPool, unsigned int nOld, unsigned int W,
+                         const HistoryPoolPolicy& policy, const StateView& view, DevicePrimitives& prim, Stream stream,
+                         uint32_t& slotsUsed);
 
   private:
     // Adds the missing persistent pairs to fresh's pair arrays; returns the new count. Sets
@@ -42,7 +46,7 @@ class DeviceHistoryMapping {
                                  unsigned int nOld, DevicePrimitives& prim, Stream stream);
 
     CudaModule m_module;
-    CudaKernel m_missing, m_merge, m_map;
+    CudaKernel m_missing, m_merge, m_map, m_markSlots, m_mapPooled, m_markMesh, m_markCarried, m_mapMarked;
     DeviceBuffer<unsigned int> m_isMissing, m_missingBefore, m_any;
     DeviceBuffer<bodyID_t> m_mergedA, m_mergedB;
     DeviceBuffer<ContactInitRule> m_rules;

@@ -7,6 +7,7 @@
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_reduce.cuh>
 #include <cub/device/device_scan.cuh>
+#include <cuda/std/functional>
 
 #include <algorithm>
 #include <limits>
@@ -80,6 +81,16 @@ void DevicePrimitives::exclusiveSum(const uint32_t* in, uint32_t* out, size_t n,
 
 void DevicePrimitives::exclusiveSum(const uint64_t* in, uint64_t* out, size_t n, Stream stream) {
     exclusiveSumImpl(scratch_, in, out, n, stream);
+}
+
+void DevicePrimitives::exclusiveSum(const uint8_t* in, uint32_t* out, size_t n, Stream stream) {
+    const char* call = "DevicePrimitives::exclusiveSum";
+    const uint32_t count = itemCount(call, n);
+    if (count == 0) return;
+    withScratch(scratch_, call, stream, [&](void* temp, size_t& bytes) {
+        return cub::DeviceScan::ExclusiveScan(temp, bytes, in, out, ::cuda::std::plus<uint32_t>{}, uint32_t(0), count,
+                                              toCuda(stream));
+    });
 }
 
 void DevicePrimitives::reduceMax(const float* in, float* out, size_t n, Stream stream) {

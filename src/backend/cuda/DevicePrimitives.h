@@ -28,6 +28,8 @@ class DevicePrimitives {
     // out[i] = in[0] + ... + in[i-1], out[0] = 0 (in place allowed). Wraps around on overflow.
     void exclusiveSum(const uint32_t* in, uint32_t* out, size_t n, Stream stream);
     void exclusiveSum(const uint64_t* in, uint64_t* out, size_t n, Stream stream);
+    // The same of bytes, summed in 32 bits (marks 0 or 1 into indices).
+    void exclusiveSum(const uint8_t* in, uint32_t* out, size_t n, Stream stream);
 
     // *out = the largest (smallest) of in[0..n); for n = 0 the lowest (highest) value of the type.
     // A NaN among floats is not reliably reported: check for NaN separately.

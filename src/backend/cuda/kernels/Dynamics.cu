@@ -122,8 +122,13 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
     size_t n = 1;
     while (i + n < s.numContacts && c.geomB[i + n] >= firstTriangle && c.geomA[i + n] == c.geomA[i]) n++;
     MeshCandidate cand[MAX_MESH_CANDIDATES];
-    if (!resolveSphereMeshContacts(s, i, n, cand, MAX_MESH_CANDIDATES))
-        raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, c.geomA[i]);
+    // In the pooled form every sphere-triangle pair has a slot (DeviceHistoryMapping).
+    const HistoryPoolView& hp = s.historyPool;
+    const bool resolved =
+        hp.slot ? resolveSphereMeshContactsWith(s, c.geomA[i], i, n, cand, MAX_MESH_CANDIDATES,
+                                                HistoryInPool{hp.slot, hp.pool, s.numWildcards})
+                : resolveSphereMeshContacts(s, i, n, cand, MAX_MESH_CANDIDATES);
+    if (!resolved) raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, c.geomA[i]);
 }
 
 // Force passes of the built-in models (kernels/ForcePassKernel.cuh); a custom model's pass is
@@ -147,11 +152,26 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
         const FrictionlessHertzModel model{PairTable{p.E_eff, n}, PairTable{p.beta_CoR, n}};                  \
         forcePassKernel<FrictionlessHertzModel, NO_TRIANGLES>(s, model, ctl, firstNonClump, numNonClump, red); \
     }
+// The frictional model's passes over a set whose history is pooled (dynamics/PooledContactStep.h).
+#define DEME_POOLED_FORCE_PASS(SUFFIX, ATTR, NO_TRIANGLES)                                                     \
+    extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                 \
+        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,             \
+        unsigned int numNonClump, StepReduction* red) {                                                        \
+        const unsigned int n = p.numMaterials;                                                                 \
+        const FrictionalHertzModel model{PairTable{p.mu, n}, PairTable{p.Crr, n}, PairTable{p.E_eff, n},      \
+                                         PairTable{p.G_eff, n}, PairTable{p.beta_CoR, n}};                    \
+        forcePassKernel<FrictionalHertzModel, NO_TRIANGLES, true>(s, model, ctl, firstNonClump, numNonClump,  \
+                                                                  red);                                        \
+    }
 DEME_BUILT_IN_FORCE_PASSES(, , false)
 DEME_BUILT_IN_FORCE_PASSES(_r64, __maxnreg__(64), false)
 // Scenes without meshes (DeviceForceModel::record).
 DEME_BUILT_IN_FORCE_PASSES(_no_mesh, , true)
 DEME_BUILT_IN_FORCE_PASSES(_no_mesh_r64, __maxnreg__(64), true)
+DEME_POOLED_FORCE_PASS(_pooled, , false)
+DEME_POOLED_FORCE_PASS(_pooled_r64, __maxnreg__(64), false)
+DEME_POOLED_FORCE_PASS(_pooled_no_mesh, , true)
+DEME_POOLED_FORCE_PASS(_pooled_no_mesh_r64, __maxnreg__(64), true)
 
 // What thread k of an owner step reads before its owner's contact loads: the owner ids[k] (k if ids
 // is null; the active box leaves fixed owners at rest out, deme_stepped_flags) and its step's inputs
@@ -185,7 +205,7 @@ __device__ inline OwnerStepStart loadOwnerStepStart(const StateView& s, const St
 // that the loads' wait after the wait is one round trip, not two in a row. Anything else before (no
 // force pass where there are no contacts: then the kernel before may be the last step's
 // integration) and they are read after it. Returns false where the batch has stopped.
-__device__ inline bool startOwnerStep(const StateView& s, const StepBatchControl* ctl, const FamilyStepMotion* motion,
+__device__ inline bool startOwnerStep(const StateView& s, StepBatchControl* ctl, const FamilyStepMotion* motion,
                                       const StepConstants& consts, const bodyID_t* ids, unsigned int n,
                                       unsigned int inputsBeforeWait, OwnerStepStart& st) {
     unsigned int stop = 0u;
@@ -194,6 +214,12 @@ __device__ inline bool startOwnerStep(const StateView& s, const StepBatchControl
         stop = ctl->stop;
     }
     beginDependentKernel();
+    // A pass that left pairs pending (the pooled history, dynamics/PooledContactStep.h) stops the
+    // batch before integration: the host grows the pool and runs the step's rest (CudaStepBatch.cpp).
+    if (historyPoolPaused(s.historyPool)) {
+        if (blockIdx.x == 0 && threadIdx.x == 0) ctl->stop = 1u;
+        return false;
+    }
     if (inputsBeforeWait) return stop == 0u;
     if (ctl->stop) return false;
     st = loadOwnerStepStart(s, ctl, motion, consts, ids, n);

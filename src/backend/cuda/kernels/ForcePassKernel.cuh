@@ -10,6 +10,7 @@
 #include "backend/cuda/kernels/DependentLaunch.cuh"
 #include "backend/cuda/kernels/KernelArgs.cuh"
 #include "dynamics/ContactStep.h"
+#include "dynamics/PooledContactStep.h"
 #include "state/StateView.h"
 
 namespace deme {
@@ -85,7 +86,9 @@ __device__ inline bool isZeroLoad(const ContactLoad& l) {
 // `NoTriangles`: the scene has no meshes, so that no contact is a sphere and a triangle and that
 // branch of the per-contact step drops out (most of its registers: ptxas for sm_90 puts the pass at 70
 // registers uncapped and 4 bytes spilled at 64, against 113 and 202 bytes spilled at 64).
-template <class Model, bool NoTriangles = false>
+// `Pooled`: the set keeps its history pooled (state/HistoryPool.h, dynamics/PooledContactStep.h);
+// a launch while the pool's `filling` is set makes the pending pairs' histories and nothing else.
+template <class Model, bool NoTriangles = false, bool Pooled = false>
 __device__ inline void forcePassKernel(const StateView& s, const Model& model, const StepBatchControl* ctl,
                                        unsigned int firstNonClump, unsigned int numNonClump, StepReduction* red) {
     using force_pass_detail::atomicAdd3;
@@ -99,6 +102,13 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, c
     ContactIds ids{0u, 0u, 0u};
     if (i < s.numContacts) ids = contactIds<kType>(s, i);
     beginDependentKernel();
+    if constexpr (Pooled) {
+        if (s.historyPool.control->filling) {  // between a paused step's pass and its integration
+            if (i < s.numContacts)
+                fillPendingHistory<Model, kType>(s, model, i, ids, (float)ctl->time, (float)ctl->dt);
+            return;
+        }
+    }
     if (ctl->stop) return;  // the same for every thread: no barrier is left waiting
     const float time = (float)ctl->time, dt = (float)ctl->dt;
     __shared__ float3 blockForce[SHARED_LOAD_SLOTS], blockTorque[SHARED_LOAD_SLOTS];
@@ -115,8 +125,13 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, c
         const ContactView& c = s.contacts;
         bool applied;
         ContactLoad load;
-        const bool touching = contactStepOfType<Model, kType>(s, model, i, ids, time, dt, applied, load);
-        if (c.force) c.force[i] = applied ? load.force : make_float3(0.f);
+        bool touching;
+        if constexpr (Pooled) {
+            touching = pooledContactStep<Model, kType>(s, model, i, ids, time, dt, applied, load);
+        } else {
+            touching = contactStepOfType<Model, kType>(s, model, i, ids, time, dt, applied, load);
+            if (c.force) c.force[i] = applied ? load.force : make_float3(0.f);
+        }
         // A load of zeros adds nothing (an owner's sum starts at +0 and so never is -0, which a +0
         // or -0 added would change): a custom model, called for every pair, exerts zeros on most.
         if (applied && !isZeroLoad(load)) {

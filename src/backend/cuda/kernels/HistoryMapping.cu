@@ -2,9 +2,18 @@
 // one thread per pair (DeviceHistoryMapping runs them on dT's stream when dT installs a set).
 //   1. deme_persistent_missing: which persistent pairs of the old set the new detection lacks;
 //   2. deme_persistent_merge: the new set with those pairs merged in, still in key order;
-//   3. deme_map_history: wildcards, mesh state and persistent flag of every pair of the new set.
+//   3. deme_map_history: wildcards, mesh state and persistent flag of every pair of the new set;
+//      or, where the new set keeps its history pooled (state/HistoryPool.h), deme_mark_history_slots
+//      (which pairs keep a slot), an exclusive sum of the marks (each such pair's slot), then
+//      deme_map_history_pooled (the slots, the pool, mesh state and persistent flags). Where no
+//      contact-init rule gives new pairs values and no old pair is persistent, only the pairs that
+//      carry a history (and the sphere-triangle pairs) keep a slot, and they are found from the old
+//      set's side: deme_mark_mesh_pairs, deme_mark_carried_pairs (a search per old pair with a
+//      history, not one per new pair), a sum of the marks, deme_map_marked_history (a search per
+//      marked pair). The marks live in the new set's mesh state until the last kernel writes it.
 // Compiled at run time by NVRTC.
 #include "kinematics/HistoryRules.h"
+#include "state/HistoryPool.h"
 #include "state/StateView.h"
 
 namespace deme {
@@ -53,6 +62,86 @@ extern "C" __global__ void deme_map_history(StateView s, ContactKeys fresh, OldC
     if (t >= fresh.n) return;
     const unsigned int i = (unsigned int)t;
     carryPairHistory(s, fresh, old, i, freshWildcards + (size_t)i * old.W, freshMeshState[i], freshPersistent[i]);
+}
+
+// Pooled form, 1: marks[i] = 1 where pair i of the new set keeps a slot (pairKeepsHistorySlot), for
+// i < fresh.n; marks[fresh.n] = 0, so that the marks' exclusive sum ends with the slots' count.
+// old.W is at most MAX_POOLED_HISTORY.
+extern "C" __global__ void deme_mark_history_slots(StateView s, ContactKeys fresh, OldContactHistory old,
+                                                   uint32_t* marks) {
+    const size_t t = globalIndex();
+    if (t > fresh.n) return;
+    if (t == fresh.n) {
+        marks[t] = 0u;
+        return;
+    }
+    const unsigned int i = (unsigned int)t;
+    float h[MAX_POOLED_HISTORY];
+    uint8_t meshState, persistent;
+    carryPairHistory(s, fresh, old, i, h, meshState, persistent);
+    marks[i] = pairKeepsHistorySlot(s, fresh, i, h, old.W) ? 1u : 0u;
+}
+
+// Pooled form, 2: `slots` holds the marks' exclusive sum; each pair that keeps a slot takes its
+// entry as its slot and puts its history there, the others get NO_HISTORY_SLOT.
+extern "C" __global__ void deme_map_history_pooled(StateView s, ContactKeys fresh, OldContactHistory old,
+                                                   uint32_t* slots, float* pool, uint8_t* freshMeshState,
+                                                   uint8_t* freshPersistent) {
+    const size_t t = globalIndex();
+    if (t >= fresh.n) return;
+    const unsigned int i = (unsigned int)t;
+    float h[MAX_POOLED_HISTORY];
+    carryPairHistory(s, fresh, old, i, h, freshMeshState[i], freshPersistent[i]);
+    if (!pairKeepsHistorySlot(s, fresh, i, h, old.W)) {
+        slots[i] = NO_HISTORY_SLOT;
+        return;
+    }
+    const uint32_t k = slots[i];
+    for (unsigned int w = 0; w < old.W; w++) pool[(size_t)k * old.W + w] = h[w];
+}
+
+// Pooled form, from the old set's side, 1: marks[i] = 1 for the new set's sphere-triangle pairs,
+// else 0.
+extern "C" __global__ void deme_mark_mesh_pairs(StateView s, ContactKeys fresh, uint8_t* marks) {
+    const size_t t = globalIndex();
+    if (t >= fresh.n) return;
+    marks[t] = contactTypeOf(s, fresh.geomB[t]) == SPHERE_TRIANGLE ? 1u : 0u;
+}
+
+// 2: the new set's pair of old pair j's key, where j has a history that is not all +0 and the new
+// set has the pair, is marked.
+extern "C" __global__ void deme_mark_carried_pairs(ContactKeys fresh, OldContactHistory old, uint8_t* marks) {
+    const size_t j = globalIndex();
+    if (j >= old.keys.n) return;
+    const float* h = oldPairHistory(old, (unsigned int)j);
+    if (!h) return;
+    bool any = false;
+    for (unsigned int w = 0; w < old.W; w++) any = any || !isPositiveZero(h[w]);
+    if (!any) return;
+    const uint64_t key = pairKey(old.keys.geomA[j], old.keys.geomB[j]);
+    const unsigned int at = keyLowerBound(fresh, key);
+    if (keyAt(fresh, at, key)) marks[at] = 1u;
+}
+
+// 3: `slots` holds the marks' exclusive sum, `meshState` the marks. A marked pair takes its entry
+// as its slot and its history, mesh state and flag from the old set; the others keep no slot, no
+// mesh state (only sphere-triangle pairs have one, and they are marked) and no flag (no old pair
+// is persistent on this path).
+extern "C" __global__ void deme_map_marked_history(StateView s, ContactKeys fresh, OldContactHistory old,
+                                                   uint32_t* slots, float* pool, uint8_t* meshState,
+                                                   uint8_t* freshPersistent) {
+    const size_t t = globalIndex();
+    if (t >= fresh.n) return;
+    const unsigned int i = (unsigned int)t;
+    if (!meshState[i]) {
+        slots[i] = NO_HISTORY_SLOT;
+        freshPersistent[i] = 0u;
+        return;
+    }
+    float h[MAX_POOLED_HISTORY];
+    carryPairHistory(s, fresh, old, i, h, meshState[i], freshPersistent[i]);
+    const uint32_t k = slots[i];
+    for (unsigned int w = 0; w < old.W; w++) pool[(size_t)k * old.W + w] = h[w];
 }
 
 }  // namespace deme
