@@ -35,9 +35,11 @@ struct HistoryPoolPolicy {
     bool modelPools = false;  // the force model has a pooled pass (DeviceForceModel::poolsHistory)
     unsigned int W = 0;
 
-    // A set whose dense history is at most this (bytes) stays dense under AUTO: small sets cost
-    // little memory, and a dense set's steps read no slot.
-    static constexpr size_t AUTO_MIN_DENSE_BYTES = size_t(32) << 20;
+    // A set whose dense history is at most this (bytes) stays dense under AUTO: such a set costs
+    // little of a GPU's memory, and the pooled pass of a scene with meshes spills more registers
+    // than the dense one (the settled mixer's 4 M pairs, 64 MB of dense history, 8 % slower pooled
+    // on one H100; docs/memory.md). The early mixer's 275 M pairs (4.4 GB) ran as fast pooled.
+    static constexpr size_t AUTO_MIN_DENSE_BYTES = size_t(256) << 20;
 
     // From the environment (a value that is neither "auto", "0" nor "1" is a deme::Error).
     static HistoryPoolPolicy fromEnvironment();
