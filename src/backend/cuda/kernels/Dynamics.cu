@@ -131,37 +131,41 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
     if (!resolved) raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, c.geomA[i]);
 }
 
+// The built-in models from the material tables.
+__device__ inline FrictionalHertzModel frictionalHertzModel(const ForceModelParams& p) {
+    const unsigned int n = p.numMaterials;
+    return FrictionalHertzModel{PairTable{p.mu, n}, PairTable{p.Crr, n}, PairTable{p.E_eff, n}, PairTable{p.G_eff, n},
+                                PairTable{p.beta_CoR, n}};
+}
+__device__ inline FrictionlessHertzModel frictionlessHertzModel(const ForceModelParams& p) {
+    return FrictionlessHertzModel{PairTable{p.E_eff, p.numMaterials}, PairTable{p.beta_CoR, p.numMaterials}};
+}
+
 // Force passes of the built-in models (kernels/ForcePassKernel.cuh); a custom model's pass is
 // generated and compiled at Initialize (forcemodel/CudaCodeGen.cpp). All take the same arguments.
 // The _r64 variants, the ones used (DeviceForceModel.cpp), cap the registers at 64: four blocks of 256
 // threads fit a multiprocessor instead of two, for 48 bytes spilled (to L1). Measured on one H200:
 // +5 % steps per second on both SMALL-SYSTEMS cases (BENCHMARKS.md).
-#define DEME_BUILT_IN_FORCE_PASSES(SUFFIX, ATTR, NO_TRIANGLES)                                                 \
-    extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                 \
-        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,             \
-        unsigned int numNonClump, StepReduction* red) {                                                        \
-        const unsigned int n = p.numMaterials;                                                                 \
-        const FrictionalHertzModel model{PairTable{p.mu, n}, PairTable{p.Crr, n}, PairTable{p.E_eff, n},      \
-                                         PairTable{p.G_eff, n}, PairTable{p.beta_CoR, n}};                    \
-        forcePassKernel<FrictionalHertzModel, NO_TRIANGLES>(s, model, ctl, firstNonClump, numNonClump, red);  \
-    }                                                                                                          \
-    extern "C" __global__ void ATTR deme_force_pass_frictionless_hertz##SUFFIX(                               \
-        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,             \
-        unsigned int numNonClump, StepReduction* red) {                                                        \
-        const unsigned int n = p.numMaterials;                                                                 \
-        const FrictionlessHertzModel model{PairTable{p.E_eff, n}, PairTable{p.beta_CoR, n}};                  \
-        forcePassKernel<FrictionlessHertzModel, NO_TRIANGLES>(s, model, ctl, firstNonClump, numNonClump, red); \
+#define DEME_BUILT_IN_FORCE_PASSES(SUFFIX, ATTR, NO_TRIANGLES)                                                \
+    extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                \
+        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,            \
+        unsigned int numNonClump, StepReduction* red) {                                                       \
+        forcePassKernel<FrictionalHertzModel, NO_TRIANGLES>(s, frictionalHertzModel(p), ctl, firstNonClump,  \
+                                                            numNonClump, red);                                \
+    }                                                                                                         \
+    extern "C" __global__ void ATTR deme_force_pass_frictionless_hertz##SUFFIX(                              \
+        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,            \
+        unsigned int numNonClump, StepReduction* red) {                                                       \
+        forcePassKernel<FrictionlessHertzModel, NO_TRIANGLES>(s, frictionlessHertzModel(p), ctl, firstNonClump, \
+                                                              numNonClump, red);                              \
     }
 // The frictional model's passes over a set whose history is pooled (dynamics/PooledContactStep.h).
-#define DEME_POOLED_FORCE_PASS(SUFFIX, ATTR, NO_TRIANGLES)                                                     \
-    extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                 \
-        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,             \
-        unsigned int numNonClump, StepReduction* red) {                                                        \
-        const unsigned int n = p.numMaterials;                                                                 \
-        const FrictionalHertzModel model{PairTable{p.mu, n}, PairTable{p.Crr, n}, PairTable{p.E_eff, n},      \
-                                         PairTable{p.G_eff, n}, PairTable{p.beta_CoR, n}};                    \
-        forcePassKernel<FrictionalHertzModel, NO_TRIANGLES, true>(s, model, ctl, firstNonClump, numNonClump,  \
-                                                                  red);                                        \
+#define DEME_POOLED_FORCE_PASS(SUFFIX, ATTR, NO_TRIANGLES)                                                    \
+    extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                \
+        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,            \
+        unsigned int numNonClump, StepReduction* red) {                                                       \
+        forcePassKernel<FrictionalHertzModel, NO_TRIANGLES, true>(s, frictionalHertzModel(p), ctl,           \
+                                                                  firstNonClump, numNonClump, red);           \
     }
 DEME_BUILT_IN_FORCE_PASSES(, , false)
 DEME_BUILT_IN_FORCE_PASSES(_r64, __maxnreg__(64), false)
