@@ -4,7 +4,8 @@
 // installDetectedContacts (backend/cpu/HistoryMapping.cpp) on random contact sets: the same pairs in
 // the same order, the same wildcards (carried over, initial values of new pairs), mesh states and
 // persistent flags; and the pooled form's kernels (the GPU's history only for the pairs that have
-// one) against the same wildcards, read back per pair. The kernels use nothing of CUDA but the thread index (tests/HostKernelEmulation.h).
+// one) against the same wildcards, read back per pair. The kernels use nothing of CUDA but the thread index
+// (tests/HostKernelEmulation.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -169,7 +170,8 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
             std::vector<float> plainWildcards(total, -9.f);
             std::vector<uint8_t> plainMesh(total, 9), plainPersistent(total, 9);
             runThreads(total, [&] {
-                deme_map_history(view, mergedKeys, plain, plainWildcards.data(), plainMesh.data(), plainPersistent.data());
+                deme_map_history(view, mergedKeys, plain, plainWildcards.data(), plainMesh.data(),
+                                 plainPersistent.data());
             });
             std::vector<uint8_t> marks(total, 9);
             runThreads(total, [&] { deme_mark_mesh_pairs(view, mergedKeys, marks.data()); });

@@ -46,9 +46,9 @@ TEST(HistoryPoolPolicy, ChoosesByModeSizeAndShareOfPairsWithAHistory) {
 TEST(HistoryPoolPolicy, SpareSlotsAreAQuarterASixtyFourthOfTheSetOrTheLeastAsked) {
     HistoryPoolPolicy p;  // the least: 4096
     EXPECT_EQ(p.capacityFor(0, 1000), 4096u);
-    EXPECT_EQ(p.capacityFor(40000, 100000), 50000u);       // a quarter of the used
-    EXPECT_EQ(p.capacityFor(40000, 64000000), 1040000u);   // a 64th of the set
-    p.minSpare = 0;                                        // DEME_HISTORY_POOL_SPARE=0: none
+    EXPECT_EQ(p.capacityFor(40000, 100000), 50000u);      // a quarter of the used
+    EXPECT_EQ(p.capacityFor(40000, 64000000), 1040000u);  // a 64th of the set
+    p.minSpare = 0;                                       // DEME_HISTORY_POOL_SPARE=0: none
     EXPECT_EQ(p.capacityFor(40000, 64000000), 40000u);
 }
 

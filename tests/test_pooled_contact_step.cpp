@@ -1,10 +1,10 @@
 // The GPU's pooled contact history (state/HistoryPool.h, dynamics/PooledContactStep.h) checked
 // without a GPU: the per-pair step the pooled force pass runs, called here on the host over a view
 // of a CPU state, against the step over W floats per pair (the dense form) that both backends run.
-// Pass after pass (time advancing, the spheres' radii changing so that pairs begin and stop touching), every pair's load is the same to the bit, and
-// the pool read back per pair (state/HistoryPoolExpand.h) is the dense history, to the bit; a pool
-// too small for the pairs that take a history leaves them pending, and growing it and filling the
-// pending pairs (what CudaDynamics::finishPausedStep runs) gives the same histories and forces.
+// Pass after pass (time advancing, the spheres' radii changing so that pairs begin and stop touching), every pair's
+// load is the same to the bit, and the pool read back per pair (state/HistoryPoolExpand.h) is the dense history, to the
+// bit; a pool too small for the pairs that take a history leaves them pending, and growing it and filling the pending
+// pairs (what CudaDynamics::finishPausedStep runs) gives the same histories and forces.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -54,7 +54,8 @@ Scene overlappingGrid() {
             for (int i = 0; i < 6; i++) {
                 pos.push_back(make_float3(1.96f * r * (float)i, 2.3f * r * (float)j, 1.97f * r * (float)k + r));
                 const float n = (float)pos.size();
-                vel.push_back(make_float3(0.01f * std::sin(n), 0.02f * std::cos(1.7f * n), -0.01f * std::sin(0.3f * n)));
+                vel.push_back(
+                    make_float3(0.01f * std::sin(n), 0.02f * std::cos(1.7f * n), -0.01f * std::sin(0.3f * n)));
             }
     auto batch = std::make_shared<DEMClumpBatch>(std::vector<std::shared_ptr<DEMClumpTemplate>>(pos.size(), t), pos);
     batch->SetVel(vel);
@@ -119,7 +120,8 @@ struct HostPool {
 TEST(PooledContactStep, SameLoadsAndHistoriesAsTheDenseFormThroughPausesAndFills) {
     const deme_test::ScopedEnvironmentVariable dense("DEME_CONTACT_HISTORY", "dense");
     const Scene scene = overlappingGrid();
-    const ModelLayout layout = resolveModelLayout(DEMForceModel(DEMForceModel::Kind::FRICTIONAL_HERTZIAN), scene, "test");
+    const ModelLayout layout =
+        resolveModelLayout(DEMForceModel(DEMForceModel::Kind::FRICTIONAL_HERTZIAN), scene, "test");
     SimState s = assembleScene(scene, layout);
     detectAndInstallContacts(s, 0.6e-3);
     s.contacts.restoreA();
@@ -161,8 +163,8 @@ TEST(PooledContactStep, SameLoadsAndHistoriesAsTheDenseFormThroughPausesAndFills
         for (size_t i = 0; i < n; i++) {
             bool applied = false;
             const ContactIds ids = contactIds<ANY_CONTACT_TYPE>(dv, i);
-            const bool t = contactStepOfType<FrictionalHertzModel, ANY_CONTACT_TYPE>(dv, model, i, ids, time, dt,
-                                                                                     applied, dl[i]);
+            const bool t =
+                contactStepOfType<FrictionalHertzModel, ANY_CONTACT_TYPE>(dv, model, i, ids, time, dt, applied, dl[i]);
             denseForce[i] = applied ? dl[i].force : make_float3(0.f);
             da[i] = applied;
             if (pass == 0) (t ? touching : apart)++;
@@ -187,8 +189,8 @@ TEST(PooledContactStep, SameLoadsAndHistoriesAsTheDenseFormThroughPausesAndFills
             hp.control.filling = 1;
             hp.into(pv);
             for (size_t i = 0; i < n; i++)
-                fillPendingHistory<FrictionalHertzModel, ANY_CONTACT_TYPE>(pv, model, i,
-                                                                           contactIds<ANY_CONTACT_TYPE>(pv, i), time, dt);
+                fillPendingHistory<FrictionalHertzModel, ANY_CONTACT_TYPE>(
+                    pv, model, i, contactIds<ANY_CONTACT_TYPE>(pv, i), time, dt);
             hp.control.filling = 0;
         }
         for (size_t i = 0; i < n; i++) ASSERT_TRUE(hp.slot[i] == NO_HISTORY_SLOT || hp.slot[i] < hp.capacity);

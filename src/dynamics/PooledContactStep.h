@@ -28,13 +28,14 @@ template <class Model, uint8_t KnownType, class S>
 DEME_HD_INLINE bool pooledContactStep(S& s, const Model& model, size_t i, const ContactIds& ids, float time, float dt,
                                       bool& applied, ContactLoad& load) {
     constexpr unsigned int W = Model::kNumContactWildcards;
-    static_assert(W > 0 && W <= MAX_POOLED_HISTORY && W <= MAX_COPIED_HISTORY, "the pooled form holds histories of 1 to 8 floats");
+    static_assert(W > 0 && W <= MAX_POOLED_HISTORY && W <= MAX_COPIED_HISTORY,
+                  "the pooled form holds histories of 1 to 8 floats");
     const HistoryPoolView& hp = s.historyPool;
     float3* force = s.contacts.force;
     const uint32_t slot = hp.slot[i];
     if (slot < hp.capacity) {
-        const bool touching =
-            contactStepWithHistory<Model, KnownType>(s, model, i, ids, hp.pool + (size_t)slot * W, time, dt, applied, load);
+        const bool touching = contactStepWithHistory<Model, KnownType>(s, model, i, ids, hp.pool + (size_t)slot * W,
+                                                                       time, dt, applied, load);
         if (force) force[slot] = applied ? load.force : make_float3(0.f);
         return touching;
     }
@@ -57,7 +58,8 @@ DEME_HD_INLINE bool pooledContactStep(S& s, const Model& model, size_t i, const 
 // After the pool has grown past every claimed slot: pending pair i's history (and its force, in a
 // storing step) made again and put in its slot. Nothing else is written: its load is in its owners'.
 template <class Model, uint8_t KnownType, class S>
-DEME_HD_INLINE void fillPendingHistory(S& s, const Model& model, size_t i, const ContactIds& ids, float time, float dt) {
+DEME_HD_INLINE void fillPendingHistory(S& s, const Model& model, size_t i, const ContactIds& ids, float time,
+                                       float dt) {
     constexpr unsigned int W = Model::kNumContactWildcards;
     const HistoryPoolView& hp = s.historyPool;
     const uint32_t slot = hp.slot[i];

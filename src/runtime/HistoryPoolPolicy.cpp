@@ -23,7 +23,8 @@ HistoryPoolPolicy HistoryPoolPolicy::fromEnvironment() {
     if (const char* m = std::getenv("DEME_HISTORY_POOL_SPARE")) {
         char* end = nullptr;
         const unsigned long long v = std::strtoull(m, &end, 10);
-        if (!*m || *end || *m == '-' || *m == '+') throwError("Initialize", std::string("DEME_HISTORY_POOL_SPARE is \"") + m + "\"; use a number of slots");
+        if (!*m || *end || *m == '-' || *m == '+')
+            throwError("Initialize", std::string("DEME_HISTORY_POOL_SPARE is \"") + m + "\"; use a number of slots");
         p.minSpare = (size_t)v;
     }
     return p;

@@ -22,7 +22,8 @@ void CudaDynamics::growHistoryPool(size_t capacity, bool withForces) {
     if (capacity <= p.capacity) return;
     if (capacity >= PENDING_HISTORY_SLOT)
         throwError("DoDynamics", "the contact set's pooled history needs " + std::to_string(capacity) +
-                                     " slots; at most " + std::to_string(PENDING_HISTORY_SLOT - 1) + " fit a slot's 31 bits");
+                                     " slots; at most " + std::to_string(PENDING_HISTORY_SLOT - 1) +
+                                     " fit a slot's 31 bits");
     const MemoryGroupScope group(MemoryGroup::CONTACTS);
     // Kept: the slots' histories, and the forces a storing step paused in its pass has written.
     p.pool.resize(capacity * m_W, m_stream);

@@ -124,10 +124,9 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
     MeshCandidate cand[MAX_MESH_CANDIDATES];
     // In the pooled form every sphere-triangle pair has a slot (DeviceHistoryMapping).
     const HistoryPoolView& hp = s.historyPool;
-    const bool resolved =
-        hp.slot ? resolveSphereMeshContactsWith(s, c.geomA[i], i, n, cand, MAX_MESH_CANDIDATES,
-                                                HistoryInPool{hp.slot, hp.pool, s.numWildcards})
-                : resolveSphereMeshContacts(s, i, n, cand, MAX_MESH_CANDIDATES);
+    const bool resolved = hp.slot ? resolveSphereMeshContactsWith(s, c.geomA[i], i, n, cand, MAX_MESH_CANDIDATES,
+                                                                  HistoryInPool{hp.slot, hp.pool, s.numWildcards})
+                                  : resolveSphereMeshContacts(s, i, n, cand, MAX_MESH_CANDIDATES);
     if (!resolved) raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, c.geomA[i]);
 }
 
@@ -146,26 +145,26 @@ __device__ inline FrictionlessHertzModel frictionlessHertzModel(const ForceModel
 // The _r64 variants, the ones used (DeviceForceModel.cpp), cap the registers at 64: four blocks of 256
 // threads fit a multiprocessor instead of two, for 48 bytes spilled (to L1). Measured on one H200:
 // +5 % steps per second on both SMALL-SYSTEMS cases (BENCHMARKS.md).
-#define DEME_BUILT_IN_FORCE_PASSES(SUFFIX, ATTR, NO_TRIANGLES)                                                \
-    extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                \
-        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,            \
-        unsigned int numNonClump, StepReduction* red) {                                                       \
-        forcePassKernel<FrictionalHertzModel, NO_TRIANGLES>(s, frictionalHertzModel(p), ctl, firstNonClump,  \
-                                                            numNonClump, red);                                \
-    }                                                                                                         \
-    extern "C" __global__ void ATTR deme_force_pass_frictionless_hertz##SUFFIX(                              \
-        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,            \
-        unsigned int numNonClump, StepReduction* red) {                                                       \
+#define DEME_BUILT_IN_FORCE_PASSES(SUFFIX, ATTR, NO_TRIANGLES)                                                  \
+    extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                   \
+        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,               \
+        unsigned int numNonClump, StepReduction* red) {                                                         \
+        forcePassKernel<FrictionalHertzModel, NO_TRIANGLES>(s, frictionalHertzModel(p), ctl, firstNonClump,     \
+                                                            numNonClump, red);                                  \
+    }                                                                                                           \
+    extern "C" __global__ void ATTR deme_force_pass_frictionless_hertz##SUFFIX(                                 \
+        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,               \
+        unsigned int numNonClump, StepReduction* red) {                                                         \
         forcePassKernel<FrictionlessHertzModel, NO_TRIANGLES>(s, frictionlessHertzModel(p), ctl, firstNonClump, \
-                                                              numNonClump, red);                              \
+                                                              numNonClump, red);                                \
     }
 // The frictional model's passes over a set whose history is pooled (dynamics/PooledContactStep.h).
-#define DEME_POOLED_FORCE_PASS(SUFFIX, ATTR, NO_TRIANGLES)                                                    \
-    extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                \
-        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,            \
-        unsigned int numNonClump, StepReduction* red) {                                                       \
-        forcePassKernel<FrictionalHertzModel, NO_TRIANGLES, true>(s, frictionalHertzModel(p), ctl,           \
-                                                                  firstNonClump, numNonClump, red);           \
+#define DEME_POOLED_FORCE_PASS(SUFFIX, ATTR, NO_TRIANGLES)                                                        \
+    extern "C" __global__ void ATTR deme_force_pass_frictional_hertz##SUFFIX(                                     \
+        StateView s, const StepBatchControl* ctl, ForceModelParams p, unsigned int firstNonClump,                 \
+        unsigned int numNonClump, StepReduction* red) {                                                           \
+        forcePassKernel<FrictionalHertzModel, NO_TRIANGLES, true>(s, frictionalHertzModel(p), ctl, firstNonClump, \
+                                                                  numNonClump, red);                              \
     }
 DEME_BUILT_IN_FORCE_PASSES(, , false)
 DEME_BUILT_IN_FORCE_PASSES(_r64, __maxnreg__(64), false)

@@ -104,8 +104,7 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, c
     beginDependentKernel();
     if constexpr (Pooled) {
         if (s.historyPool.control->filling) {  // between a paused step's pass and its integration
-            if (i < s.numContacts)
-                fillPendingHistory<Model, kType>(s, model, i, ids, (float)ctl->time, (float)ctl->dt);
+            if (i < s.numContacts) fillPendingHistory<Model, kType>(s, model, i, ids, (float)ctl->time, (float)ctl->dt);
             return;
         }
     }
