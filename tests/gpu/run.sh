@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|pooled|python|output|bench|small|sweep|graphsteps|smallab|discharge|mixerab|profile-small|profile-step|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|pooled|pooledab|python|output|bench|small|sweep|graphsteps|smallab|discharge|mixerab|profile-small|profile-step|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -115,6 +115,20 @@ for step in "${steps[@]}"; do
             -R '/cuda$|^demo_' ${SUITE_EXCLUDE:+-E "$SUITE_EXCLUDE"} --timeout 400 --output-on-failure >"$OUT/pooled.log" 2>&1
         echo "pooled suite (cuda instances and demos, every history pooled, no spare slot): rc $?"
         grep -E 'tests passed|\(Failed\)|\(Timeout\)|\(SEGFAULT\)|Exception' "$OUT/pooled.log" | head -40
+        ;;
+    pooledab)
+        # The settled mixer (the `settled` step's command, r = POOLED_R, default 0.004) with every
+        # contact set dense and with every set pooled (DEME_POOLED_HISTORY=0 and 1), alternating,
+        # POOLED_ROUNDS times (default 2): the pooled pass's speed against the dense one's.
+        for k in $(seq "${POOLED_ROUNDS:-2}"); do
+            for m in 0 1; do
+                DEME_BENCH_TIMING=1 DEME_POOLED_HISTORY=$m timeout "${SETTLED_TIMEOUT:-200}" ./build-gpu/bench/mixer \
+                    .benchdata/internal_mixer.obj "${POOLED_R:-0.004}" spheres 125000 2000 2e-6 1 auto >"$OUT/pooledab-$m-$k.txt" 2>&1
+                echo "pooled $m round $k: $(grep -o '"sphere_steps_per_s": [0-9.e+]*' "$OUT/pooledab-$m-$k.txt")" \
+                    "$(grep -o '"device_bytes_per_sphere": [0-9.e+]*' "$OUT/pooledab-$m-$k.txt")" \
+                    "$(grep -o 'pooled in [0-9]* of [0-9]* installed sets, [0-9]* steps' "$OUT/pooledab-$m-$k.txt" | tail -1)"
+            done
+        done
         ;;
     python)
         # The Python module built in build-gpu (the build step builds it where pybind11 and numpy
