@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "BackendFixture.h"
+#include "MeshBuilders.h"
 #include "TestHelpers.h"
 
 using namespace deme;
@@ -27,8 +28,10 @@ struct Pose {
 // Spheres dropped onto a frictional floor with sideways velocities and spins, at staggered heights
 // (they land at different steps), and pairs of spheres that hit each other obliquely on the way
 // down; all far apart from the rest. `pooled`: the history forms that keep the pairs with a
-// history only; `report`: the timing report (its launch line says how the GPU kept the history).
-Pose run(bool pooled, std::string* report = nullptr) {
+// history only; `meshFloor`: the floor a tessellated mesh (its cells 2.5 cm across, so that rolling
+// spheres cross edges and the mesh rule hands their history on) instead of a plane; `report`: the
+// timing report (its launch line says how the GPU kept the history).
+Pose run(bool pooled, bool meshFloor, std::string* report = nullptr) {
     const ScopedEnvironmentVariable cpuForm("DEME_CONTACT_HISTORY", pooled ? "pooled" : "dense");
     const ScopedEnvironmentVariable gpuForm("DEME_POOLED_HISTORY", pooled ? "1" : "0");
     const ScopedEnvironmentVariable spare("DEME_HISTORY_POOL_SPARE", "0");
@@ -37,7 +40,10 @@ Pose run(bool pooled, std::string* report = nullptr) {
     sim.SetVerbosity("QUIET");
     sim.InstructBoxDomainDimension(0.6, 0.6, 0.4);
     auto mat = sim.LoadMaterial(material(1e7, 0.3, 0.5, 0.4, 0.02));
-    sim.AddBCPlane(make_float3(0, 0, -0.15f), make_float3(0, 0, 1), mat);
+    if (meshFloor)
+        sim.AddWavefrontMeshObject(gridFloor(-0.3f, -0.3f, -0.15f, 24, 0.025f, mat));
+    else
+        sim.AddBCPlane(make_float3(0, 0, -0.15f), make_float3(0, 0, 1), mat);
     auto type = sim.LoadSphereType(0.004f, R, mat);
     std::vector<float3> pos, vel, spin;
     for (int i = 0; i < 6; i++)
@@ -54,7 +60,7 @@ Pose run(bool pooled, std::string* report = nullptr) {
                 spin.push_back(make_float3(-10.f, 0, 15.f));
             } else {
                 pos.push_back(make_float3(x, y, -0.15f + R + 0.0004f * (float)(k % 7)));
-                vel.push_back(make_float3(0.2f * std::sin((float)k), 0.2f * std::cos((float)k), -0.3f));
+                vel.push_back(make_float3(0.5f * std::sin((float)k), 0.5f * std::cos((float)k), -0.3f));
                 spin.push_back(make_float3(30.f * std::cos((float)k), 0, -40.f * std::sin((float)k)));
             }
         }
@@ -81,13 +87,10 @@ Pose run(bool pooled, std::string* report = nullptr) {
     return p;
 }
 
-}  // namespace
-
-DEME_BACKEND_TEST_SUITE(HistoryForms);
-
-DEME_BACKEND_TEST(HistoryForms, PooledAndDenseHistoriesGiveTheSameRunToTheBit) {
+// `gpu`: the run is the GPU's, whose report must say that it pooled and paused.
+void expectTheSameRun(bool meshFloor, bool gpu) {
     std::string report;
-    const Pose dense = run(false), pooled = run(true, &report);
+    const Pose dense = run(false, meshFloor), pooled = run(true, meshFloor, &report);
     size_t moved = 0;
     for (size_t i = 0; i < dense.pos.size(); i++) {
         SCOPED_TRACE(i);
@@ -104,9 +107,20 @@ DEME_BACKEND_TEST(HistoryForms, PooledAndDenseHistoriesGiveTheSameRunToTheBit) {
         moved += std::fabs(dense.angVel[i].x) + std::fabs(dense.angVel[i].y) > 1.f;
     }
     EXPECT_GT(moved, dense.pos.size() / 2);
-    if (onGpu()) {
-        // The pooled run kept every set's history pooled and paused for room (spare 0).
+    if (gpu) {
+        // The GPU's pooled run kept every set's history pooled and paused for room (spare 0).
+        EXPECT_NE(report.find("history pooled in"), std::string::npos) << report;
         EXPECT_EQ(report.find("history pooled in 0 of"), std::string::npos) << report;
         EXPECT_EQ(report.find(", 0 steps paused"), std::string::npos) << report;
     }
 }
+
+}  // namespace
+
+DEME_BACKEND_TEST_SUITE(HistoryForms);
+
+DEME_BACKEND_TEST(HistoryForms, PooledAndDenseHistoriesGiveTheSameRunToTheBit) { expectTheSameRun(false, onGpu()); }
+
+// The same on a tessellated floor: sphere-triangle pairs always keep a slot in the GPU's pool, and
+// the mesh rule hands a sphere's history from triangle to triangle through it.
+DEME_BACKEND_TEST(HistoryForms, PooledAndDenseHistoriesGiveTheSameRunOnAMeshFloor) { expectTheSameRun(true, onGpu()); }
