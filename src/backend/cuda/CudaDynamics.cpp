@@ -81,9 +81,9 @@ void CudaDynamics::download(SimState& s) {
 
 void CudaDynamics::downloadContacts(SimState& s) {
     select();
-    cuda::downloadContacts(m_contacts[m_current], m_numContacts, m_W, s.contacts, m_stream);
+    cuda::downloadContacts(m_contacts[m_current], m_numContacts, m_W, s.contacts, m_stream, !historyPooled());
+    if (historyPooled()) downloadPooledHistory(s.contacts);  // synchronises
     synchronize(m_stream);
-    if (historyPooled()) downloadPooledHistory(s.contacts);
 }
 
 void CudaDynamics::uploadTrackerLoads(const SimState& s) {

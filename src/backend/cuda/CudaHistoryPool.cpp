@@ -13,8 +13,8 @@ namespace deme::cuda {
 
 void CudaDynamics::resetHistoryPoolControl(uint32_t used) {
     m_poolControlHost = HistoryPoolControl{used, 0u, 0u, 0u};
+    // From pageable memory: copied out before the call returns, so the host copy may change after.
     m_poolControl.uploadAsync(&m_poolControlHost, 1, m_stream);
-    synchronize(m_stream);  // the host copy may change before the stream reads it
 }
 
 void CudaDynamics::growHistoryPool(size_t capacity, bool withForces) {

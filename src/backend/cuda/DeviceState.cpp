@@ -112,11 +112,15 @@ void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, S
     });
 }
 
-void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, ContactArrays& c, Stream stream) {
+void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, ContactArrays& c, Stream stream,
+                      bool historyAndForces) {
     forEachContactField(d, c, [&](const auto& dev, auto& host, FieldRole role) {
         // The CPU's bookkeeping (its per-owner index, per-contact torques) has no device copy: the
         // GPU adds loads to the owners directly. Left empty, it costs the host nothing.
         if (role == FieldRole::HOST) return;
+        if (!historyAndForces &&
+            (static_cast<const void*>(&host) == &c.wildcards || static_cast<const void*>(&host) == &c.force))
+            return;
         const size_t count = contactFieldCount(c, host, n, W);
         host.resize(count);
         // Per-contact forces exist only after a storing step of the set in use (CudaDynamics::
@@ -133,13 +137,6 @@ void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, Contact
 void viewContacts(DeviceContacts& d, uint32_t n, StateView& v) {
     forEachContactField(v.contacts, d, Point{});
     v.numContacts = n;
-}
-
-void resizeContactState(DeviceContacts& d, size_t n, unsigned int W) {
-    d.meshState.resizeDiscarding(n);
-    d.wildcards.resizeDiscarding(n * W);
-    d.persistent.resizeDiscarding(n);
-    // Not the per-contact forces: only the set in use holds them (CudaDynamics::install).
 }
 
 }  // namespace deme::cuda

@@ -38,11 +38,11 @@ struct DeviceState {
 
 // The contact set `c` of the host (n pairs, W wildcards each) onto the device, and back.
 void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, Stream stream);
-void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, ContactArrays& c, Stream stream);
+// `historyAndForces` false: the wildcards and per-contact forces are left to the caller (a pooled
+// history keeps them per slot: CudaDynamics::downloadPooledHistory).
+void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, ContactArrays& c, Stream stream,
+                      bool historyAndForces = true);
 // Points the view's contact arrays at `d`'s (n pairs).
 void viewContacts(DeviceContacts& d, uint32_t n, StateView& v);
-// Sizes the per-contact state of `d` for n pairs of W wildcards each (the pairs themselves are set by
-// whoever fills geomA and geomB; the per-contact forces by CudaDynamics::install).
-void resizeContactState(DeviceContacts& d, size_t n, unsigned int W);
 
 }  // namespace deme::cuda
