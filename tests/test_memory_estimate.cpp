@@ -141,3 +141,55 @@ DEME_BACKEND_TEST(MemoryEstimate, ContactSetOutgrowingTheMemoryIsANamedErrorAndT
         EXPECT_EQ(read[i].z, saved[i].z) << i;
     }
 }
+
+// Initialize counts the first contact set in the form its history will take: none of the bed's
+// pairs touch yet, so where the history is pooled (state/PooledHistory.h on the CPU by default;
+// state/HistoryPool.h on the GPU, here for every set and without spare slots) the set holds no W
+// floats per pair. A machine between the pooled estimate and the dense one starts and steps the
+// pooled run and refuses the dense one, saying what it assumed.
+DEME_BACKEND_TEST(MemoryEstimate, PooledHistoryIsCountedInItsForm) {
+    const char* form = onGpu() ? "DEME_POOLED_HISTORY" : "DEME_CONTACT_HISTORY";
+    const std::string pooled = onGpu() ? "1" : "auto", dense = onGpu() ? "0" : "dense";
+    const ScopedEnvironmentVariable noSpare("DEME_HISTORY_POOL_SPARE", "0");
+    auto estimate = [&](const std::string& value) {
+        const ScopedEnvironmentVariable v(form, value);
+        DEMSolver sim;
+        addThousandSphereBed(sim);
+        sim.Initialize();
+        return sim.GetMemoryStats();
+    };
+    const MemoryStats p = estimate(pooled), d = estimate(dense);
+    const int contacts = (int)MemoryGroup::CONTACTS;
+    EXPECT_EQ(p.estimatedPairs, d.estimatedPairs);
+    // Without its four floats of history per pair (Hertz-Mindlin's): 16 of the dense form's 20-30
+    // bytes a pair on the CPU, 32 (two sets) of 52 on the GPU, which keeps a 4-byte slot per pair.
+    EXPECT_LT((double)p.estimatedBytes[contacts], 0.75 * (double)d.estimatedBytes[contacts]);
+    EXPECT_EQ(p.estimatedTotal() - p.estimatedBytes[contacts], d.estimatedTotal() - d.estimatedBytes[contacts]);
+
+    const size_t between = (p.estimatedTotal() + d.estimatedTotal()) / 2;
+    const ScopedEnvironmentVariable limit("DEME_MEMORY_LIMIT", std::to_string(between));
+    {
+        const ScopedEnvironmentVariable v(form, pooled);
+        DEMSolver sim;
+        addThousandSphereBed(sim);
+        sim.Initialize();
+        sim.DoDynamics(2e-3);
+        EXPECT_NEAR(sim.GetSimTime(), 2e-3, 1e-9);
+    }
+    {
+        const ScopedEnvironmentVariable v(form, dense);
+        DEMSolver sim;
+        addThousandSphereBed(sim);
+        const std::string msg = demeErrorMessage([&] { sim.Initialize(); });
+        EXPECT_NE(msg.find("needs about " + std::to_string(d.estimatedTotal()) + " bytes"), std::string::npos) << msg;
+        EXPECT_EQ(msg.find("history pooled"), std::string::npos) << msg;
+    }
+    {
+        const ScopedEnvironmentVariable v(form, pooled);
+        const ScopedEnvironmentVariable small("DEME_MEMORY_LIMIT", std::to_string(p.estimatedTotal() / 2));
+        DEMSolver sim;
+        addThousandSphereBed(sim);
+        const std::string msg = demeErrorMessage([&] { sim.Initialize(); });
+        EXPECT_NE(msg.find("and their history pooled in 0 slots"), std::string::npos) << msg;
+    }
+}

@@ -84,10 +84,11 @@ std::string gib(size_t bytes) {
 }  // namespace
 
 MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre,
-                                 size_t pairs) {
+                                 size_t pairs, const std::function<size_t(size_t)>& slotsFor) {
     MemoryEstimate e;
     const size_t nO = s.owners.size(), nS = s.spheres.size();
     e.pairs = pairs ? pairs : (size_t)(ESTIMATED_PAIRS_PER_SPHERE * (double)nS);
+    if (slotsFor) e.historySlots = slotsFor(e.pairs);
     auto& b = e.bytes;
     size_t& owner = b[(int)MemoryGroup::OWNER_STATE];
     size_t& geometry = b[(int)MemoryGroup::GEOMETRY];
@@ -122,7 +123,7 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     const float largest = nS ? *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end()) : 0.f;
     const bool byCentre = mayBinByCentre && centreReachFor(grid, (double)largest) > 0.0;
     if (onGpu) {
-        contacts = contactSetBytes(s, true, e.pairs);
+        contacts = contactSetBytes(s, true, e.pairs, e.historySlots);
         // kT's snapshot (sphere centres, owner families), pair offsets; the bins' entries (an item
         // id each) and starts, from the counting sort (backend/cuda/CudaKinematics.cpp,
         // Work::detect; the bins an item covers are computed from its box, not stored). (kT on a
@@ -136,7 +137,7 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         // CudaStepSubset.cpp; not counted.)
         b[(int)MemoryGroup::STEP_SCRATCH] = MAX_BATCH_STEPS * NUM_FAMILIES * sizeof(FamilyStepMotion);
     } else {
-        contacts = contactSetBytes(s, false, e.pairs);
+        contacts = contactSetBytes(s, false, e.pairs, e.historySlots);
         // The registry's entries and bins' starts, for spheres and for triangles (whose global
         // boxes, 2 double3, are kept too) (backend/cpu/ContactDetector).
         detection = (size_t)(4.0 * (byCentre ? (double)nS : entries)) + 4 * bins;
@@ -145,23 +146,34 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     return e;
 }
 
-size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs) {
+size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, size_t historySlots) {
     const unsigned int W = s.numWildcards;
+    const bool pooled = historySlots != DENSE_HISTORY && W > 0;
+    // A pooled set holds no W floats per pair; the pool holds them for its slots.
+    const size_t historyPerPair = pooled ? 4 * (size_t)W : 0;
     if (!onGpu) {
         // One set with the crossing pairs' 2-byte slots; per owner its two starts, its bit of
         // ownerBInBlock and its window slots (a force, a torque and the owner's entry each;
-        // backend/cpu/ForcePassLoop.h).
+        // backend/cpu/ForcePassLoop.h). Pooled (state/PooledHistory.h): a bit per pair and a
+        // 4-byte base per 64 pairs, and the pool.
         const size_t slots = (size_t)(ESTIMATED_WINDOW_SLOTS_PER_OWNER * (double)s.owners.size());
         const size_t crossing = (size_t)(ESTIMATED_CROSSING_PAIR_SHARE * (double)pairs);
-        return pairs * bytesPerPair(s.contacts, W, true) + crossing * sizeof(uint16_t) + 8 * (s.owners.size() + 1) +
-               (s.owners.size() + 63) / 64 * 8 + slots * (2 * sizeof(float3) + sizeof(uint32_t));
+        const size_t pool = pooled ? (pairs + 63) / 64 * 12 + historySlots * 4 * (size_t)W : 0;
+        return pairs * (bytesPerPair(s.contacts, W, true) - historyPerPair) + pool + crossing * sizeof(uint16_t) +
+               8 * (s.owners.size() + 1) + (s.owners.size() + 63) / 64 * 8 +
+               slots * (2 * sizeof(float3) + sizeof(uint32_t));
     }
     // Two sets at an installation (the one history mapping reads from and the fresh one, whose
     // pairs were the outbox kT filled); between installations the set in use, the outbox's pairs
     // (the old set's buffers) and the idle set's wildcards, which hold the per-contact forces
     // (grown to hold them where a pair has fewer than three wildcards): at most as much
-    // (backend/cuda/CudaContactSets.cpp, DeviceHistoryMapping).
+    // (backend/cuda/CudaContactSets.cpp, DeviceHistoryMapping). Pooled (state/HistoryPool.h):
+    // a 4-byte slot per pair in each set, and at an installation the old pool and the fresh one;
+    // the forces are kept per slot.
     const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
+    if (pooled)
+        return pairs * 2 * (bytesPerPair(s.contacts, W, false) - historyPerPair + sizeof(uint32_t)) +
+               historySlots * (2 * 4 * (size_t)W + forceBytes);
     const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;
     return pairs * (2 * bytesPerPair(s.contacts, W, false) + forceGrowth);
 }
@@ -188,8 +200,9 @@ void requireMemoryFor(const MemoryEstimate& e, size_t available, const std::stri
         msg << (first ? "" : ", ") << memoryGroupName((MemoryGroup)g) << " " << gib(e.bytes[g]);
         first = false;
     }
-    msg << ", with " << e.pairs << " contact pairs assumed (" << ESTIMATED_PAIRS_PER_SPHERE
-        << " per sphere); use fewer or larger grains, or a device with more memory";
+    msg << ", with " << e.pairs << " contact pairs assumed (" << ESTIMATED_PAIRS_PER_SPHERE << " per sphere)";
+    if (e.historySlots != DENSE_HISTORY) msg << " and their history pooled in " << e.historySlots << " slots";
+    msg << "; use fewer or larger grains, or a device with more memory";
     throwError(call, msg.str());
 }
 

@@ -56,7 +56,8 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     // A scene too large for the memory its steps use fails here, not in its first detection.
     const DynamicsBackend& dynamics = *m_backends.dynamics;
     m_memoryEstimate = estimateRunMemory(m_state, m_grid, dynamics.onGpu(),
-                                         m_backends.kinematics->mayBinSpheresByCentre(m_state.spheres.size()));
+                                         m_backends.kinematics->mayBinSpheresByCentre(m_state.spheres.size()), 0,
+                                         [&dynamics](size_t pairs) { return dynamics.expectedHistorySlots(pairs); });
     requireMemoryFor(m_memoryEstimate, dynamics.memoryAvailable(), memoryPlace(dynamics), "Initialize");
     m_contacts.start(settings, *m_backends.dynamics, *m_backends.kinematics);
     m_contacts.period = &m_state.frame.periodic;
@@ -65,7 +66,7 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
         const DynamicsBackend& d = *m_backends.dynamics;
         size_t held[NUM_MEMORY_GROUPS] = {};
         d.countRunMemory(held);
-        requireRoomForContactSet(pairs, contactSetBytes(m_state, d.onGpu(), pairs), held,
+        requireRoomForContactSet(pairs, contactSetBytes(m_state, d.onGpu(), pairs, d.expectedHistorySlots(pairs)), held,
                                  [&d] { return d.memoryFree(); }, memoryPlace(d), "DoDynamics");
     };
     // ChangeFamilyWhen is checked at each detection (docs/active-box.md says why).

@@ -212,6 +212,19 @@ void CpuDynamics::countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const {
 
 size_t CpuDynamics::memoryFree() const { return hostMemoryAvailable(); }
 
+size_t CpuDynamics::expectedHistorySlots(size_t pairs) const {
+    const unsigned int W = m_s.numWildcards;
+    const ContactArrays& c = m_s.contacts;
+    size_t withHistory = 0;
+    if (W == 0) return DENSE_HISTORY;
+    if (c.size() > 0) {
+        // A dense set is mapped dense (HistoryMapping.cpp): the installation's peak holds it so.
+        if (!c.historyPooled(W)) return DENSE_HISTORY;
+        withHistory = (size_t)((double)(c.pooled.values.size() / W) * (double)pairs / (double)c.size() + 0.5);
+    }
+    return poolsHistory(pairs, withHistory) ? withHistory : DENSE_HISTORY;
+}
+
 size_t CpuDynamics::memoryAvailable() const {
     const size_t free = memoryFree();
     if (free == 0) return 0;
