@@ -9,13 +9,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 #include <vector>
 
 #include "BackendFixture.h"
+#include "backend/cpu/CarriedPairs.h"
 #include "backend/cpu/HistoryForm.h"
 #include "backend/cpu/HistoryMapping.h"
+#include "kinematics/CarriedPairsRule.h"
 #include "state/HistoryPoolExpand.h"
 
 #include "HostKernelEmulation.h"
@@ -200,4 +203,100 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
     }
     EXPECT_GT(newPairs, 1000u);
     EXPECT_GT(fromOldSide, 80u);
+}
+
+// Before a synchronous detection the GPU's set in use keeps the pairs the CPU's keeps
+// (backend/cpu/CarriedPairs.h): deme_mark_pairs_handed_on, the marks' exclusive sum and
+// deme_keep_pairs_handed_on against keepOnlyCarriedPairs, with the set's history dense and
+// pooled (each kept pair's slot then reads back the CPU's kept history).
+TEST(CudaHistoryMapping, PairsHandedOnAreThoseTheCpuKeeps) {
+    std::mt19937 rng(5);
+    const unsigned int spheres = 60, W = 2;
+    size_t trimmedRounds = 0;
+    for (int round = 0; round < 100; round++) {
+        SCOPED_TRACE(round);
+        const deme_test::ScopedEnvironmentVariable form("DEME_CONTACT_HISTORY", "dense");
+        const Pairs p = randomPairs(rng, spheres, std::uniform_int_distribution<size_t>(1, 120)(rng));
+        const size_t n = p.a.size();
+        SimState s;
+        s.numWildcards = W;
+        ContactArrays& c = s.contacts;
+        c.geomA = p.a;
+        c.geomB = p.b;
+        c.wildcards.assign(n * W, 0.f);
+        c.meshState.assign(n, 0);
+        c.persistent.assign(n, 0);
+        // About a fifth with a history (one of its two floats, or a -0), a few with a mesh state or
+        // the flag; every pair in some rounds (then nothing is trimmed).
+        const bool all = round % 10 == 0;
+        for (size_t i = 0; i < n; i++) {
+            const unsigned int r = rng() % 20;
+            if (all || r < 3) c.wildcards[i * W + rng() % W] = r == 2 ? -0.f : (float)(rng() % 100) + 0.25f;
+            if (r == 3) c.meshState[i] = (uint8_t)(1 + rng() % 3);
+            if (r == 4) c.persistent[i] = 1;
+        }
+        const std::vector<bodyID_t> a = c.geomA, b = c.geomB;
+        const std::vector<float> wildcards = c.wildcards;
+        const std::vector<uint8_t> meshState = c.meshState, persistent = c.persistent;
+        const bool cpuTrimmed = keepOnlyCarriedPairs(s);
+
+        // Dense, then pooled (the nonzero histories in slots, in reverse order).
+        std::vector<uint32_t> slot(n, NO_HISTORY_SLOT);
+        std::vector<float> pool;
+        for (size_t j = n; j-- > 0;)
+            if (!isPositiveZero(wildcards[j * W]) || !isPositiveZero(wildcards[j * W + 1])) {
+                slot[j] = (uint32_t)(pool.size() / W);
+                pool.insert(pool.end(), wildcards.begin() + j * W, wildcards.begin() + (j + 1) * W);
+            }
+        for (const bool pooled : {false, true}) {
+            SCOPED_TRACE(pooled ? "pooled" : "dense");
+            OldContactHistory set{ContactKeys{a.data(), b.data(), (unsigned int)n},
+                                  pooled ? pool.data() : wildcards.data(),
+                                  meshState.data(),
+                                  persistent.data(),
+                                  W,
+                                  nullptr,
+                                  0u};
+            if (pooled) set.slot = slot.data();
+            std::vector<uint32_t> at(n + 1, 99u);
+            runThreads(n + 1, [&] { deme_mark_pairs_handed_on(set, at.data()); });
+            uint32_t sum = 0;
+            for (uint32_t& v : at) {
+                const uint32_t mark = v;
+                ASSERT_LE(mark, 1u);
+                v = sum;
+                sum += mark;
+            }
+            const size_t kept = at[n];
+            ASSERT_EQ(keepingOnlyPairsHandedOnPays(n, kept), cpuTrimmed);
+            if (!cpuTrimmed) continue;
+            ASSERT_EQ(kept, c.size());
+            std::vector<bodyID_t> ka(kept), kb(kept);
+            std::vector<uint8_t> km(kept), kp(kept);
+            std::vector<float> kw(pooled ? 0 : kept * W);
+            std::vector<uint32_t> ks(pooled ? kept : 0);
+            runThreads(n, [&] {
+                deme_keep_pairs_handed_on(set, at.data(), ka.data(), kb.data(), km.data(), kp.data(), kw.data(),
+                                          ks.data());
+            });
+            EXPECT_EQ(ka, c.geomA);
+            EXPECT_EQ(kb, c.geomB);
+            EXPECT_EQ(km, c.meshState);
+            EXPECT_EQ(kp, c.persistent);
+            if (pooled)
+                for (size_t k = 0; k < kept; k++)
+                    for (unsigned int w = 0; w < W; w++) {
+                        const float v = ks[k] == NO_HISTORY_SLOT ? 0.f : pool[(size_t)ks[k] * W + w];
+                        EXPECT_EQ(std::signbit(v), std::signbit(c.wildcards[k * W + w])) << k;
+                        EXPECT_EQ(v, c.wildcards[k * W + w]) << k;
+                    }
+            else
+                for (size_t k = 0; k < kept * W; k++) {
+                    EXPECT_EQ(std::signbit(kw[k]), std::signbit(c.wildcards[k])) << k;
+                    EXPECT_EQ(kw[k], c.wildcards[k]) << k;
+                }
+        }
+        trimmedRounds += cpuTrimmed;
+    }
+    EXPECT_GT(trimmedRounds, 50u);
 }

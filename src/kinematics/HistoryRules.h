@@ -99,6 +99,13 @@ DEME_HD_INLINE const float* oldPairHistory(const OldContactHistory& old, unsigne
     return k == NO_HISTORY_SLOT ? nullptr : old.wildcards + (size_t)k * old.W;
 }
 
+// Whether pair j of a set (read as history mapping reads an old set) hands anything to the next set.
+DEME_HD_INLINE bool pairHandsOn(const OldContactHistory& set, unsigned int j) {
+    const float* h = oldPairHistory(set, j);
+    return pairCarriesHistory(h, h ? set.W : 0u, set.meshState ? set.meshState[j] : (uint8_t)0,
+                              set.persistent ? set.persistent[j] : (uint8_t)0);
+}
+
 // 2a. Where pair i of the new set (keys `fresh`) was in the old set, or old.keys.n where it is new.
 DEME_HD_INLINE unsigned int oldIndexOfPair(const ContactKeys& fresh, const OldContactHistory& old, unsigned int i) {
     const uint64_t key = pairKey(fresh.geomA[i], fresh.geomB[i]);

@@ -1,10 +1,9 @@
 #include "backend/cpu/CarriedPairs.h"
 
-#include <cstdlib>
-#include <cstring>
 #include <vector>
 
 #include "backend/cpu/HistoryForm.h"
+#include "kinematics/CarriedPairsRule.h"
 #include "kinematics/HistoryRules.h"
 #include "runtime/MemoryAccounting.h"
 
@@ -55,9 +54,7 @@ bool keepOnlyCarriedPairs(SimState& s) {
     ContactArrays& c = s.contacts;
     const size_t n = c.size();
     const unsigned int W = s.numWildcards;
-    if (n == 0 || !s.wildcards.contactInit.empty()) return false;
-    // DEME_KEEP_WHOLE_SET=1 keeps every pair (tests compare the two; the trajectory is the same).
-    if (const char* v = std::getenv("DEME_KEEP_WHOLE_SET"); v && std::strcmp(v, "1") == 0) return false;
+    if (n == 0 || !mayKeepOnlyPairsHandedOn(!s.wildcards.contactInit.empty())) return false;
     const bool pooled = c.historyPooled(W);
     const bool hasMeshState = c.meshState.size() == n, hasPersistent = c.persistent.size() == n;
     // Each pair's mark, a word (64 pairs) at a time so that no two threads write one; a pooled
@@ -74,8 +71,7 @@ bool keepOnlyCarriedPairs(SimState& s) {
     });
     size_t kept = 0;
     for (uint64_t w : keep) kept += popcount64(w);
-    // Where most pairs carry something (a settled bed), the copies would cost a pass for little.
-    if (2 * kept > n) return false;
+    if (!keepingOnlyPairsHandedOnPays(n, kept)) return false;
     // One array at a time, the largest first (B), so that each copy is made beside the set less
     // the arrays already trimmed: a detection's peak is here, with the whole set held (A last,
     // made from the runs where the set keeps it so).
@@ -98,7 +94,7 @@ bool keepOnlyCarriedPairs(SimState& s) {
     } else {
         keepMarked(c.geomA, keep, n, kept, 1);
     }
-    return kept < n;
+    return true;
 }
 
 }  // namespace deme

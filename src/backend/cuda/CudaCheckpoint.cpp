@@ -5,7 +5,7 @@
 
 namespace deme::cuda {
 
-bool CudaDynamics::contactSetResumable() const { return true; }
+bool CudaDynamics::contactSetResumable() const { return !m_setTrimmed; }
 
 bool CudaDynamics::resumeContactSet(const SimState& s) {
     return s.owners.travel.size() == s.owners.size() && m_numContacts == s.contacts.size();

@@ -39,6 +39,24 @@ double CudaDynamics::maxTravelSinceOrder() {
     return t;
 }
 
+// Before a synchronous detection the set in use keeps only the pairs that hand something to the
+// next set (DeviceHistoryMapping::keepOnlyPairsHandedOn): the installation's peak then holds the
+// fresh set and those, not two whole sets. The set's per-contact forces (which follow its pairs)
+// are let go first: nothing reads them before the installation replaces them.
+bool CudaDynamics::beforeDetectNow() {
+    select();
+    returnForceMemory();
+    m_contacts[m_current].force.release();
+    unsigned int n = m_numContacts;
+    if (m_history.keepOnlyPairsHandedOn(m_contacts[m_current], m_pools[m_current], n, m_W, m_prim, m_stream)) {
+        m_numContacts = n;
+        m_setTrimmed = true;
+        m_loadOwnersStale = true;
+        refreshView();
+    }
+    return m_setTrimmed;
+}
+
 // The idle set's wildcards hold the history of the set before the one in use: dead until the next
 // install maps into them. Per-contact forces (12 B a pair), written by a storing step and read by
 // the host before the next install, live there meanwhile, so they take no memory of their own where
@@ -105,11 +123,19 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     synchronize(m_stream);  // the mapping has read them
     std::swap(out.geomA, old.geomA);
     std::swap(out.geomB, old.geomB);
+    // Where detection is synchronous, nobody writes the outbox before the next detection, which
+    // sizes it anew: a large one is let go (8 B a pair between installations; a small one is kept,
+    // as allocating it at every detection would slow a lab-scale run).
+    if (!m_asyncDetection && out.geomA.capacity() * sizeof(bodyID_t) > m_keepOutboxUpTo) {
+        out.geomA.release();
+        out.geomB.release();
+    }
     old.persistent.release();
     old.meshState.release();
     m_pools[m_current].release();  // a pooled old set's slots and pool are read; no forces live there
     m_current = 1 - m_current;
     m_numContacts = total;
+    m_setTrimmed = false;
     m_installs++;
     if (historyPooled()) {
         m_pooledInstalls++;

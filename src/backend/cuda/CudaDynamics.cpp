@@ -29,6 +29,7 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
         m_W = s.numWildcards;
         m_current = 0;
         m_numContacts = (uint32_t)s.contacts.size();
+        m_setTrimmed = false;
         uploadContacts(s.contacts, m_W, m_contacts[0], st);
         m_contacts[1].force.release();  // only the set in use has per-contact forces
         // The host's set keeps W floats per pair: so does the uploaded one, until the next install.
@@ -101,9 +102,10 @@ void CudaDynamics::downloadStepFlags(std::vector<uint8_t>& flags) {
     synchronize(m_stream);
 }
 
-void CudaDynamics::beginRun(const Settings&, const FamilyRules& families) {
+void CudaDynamics::beginRun(const Settings& settings, const FamilyRules& families) {
     // dT's GPU stays current for the call's steps (and the contact-set work between them).
     select();
+    m_asyncDetection = settings.asyncDetection;
     prepareFamilyMotion(families);
     m_anyFamilyFixed = families.anyFixed();
     m_subsetStale = true;

@@ -54,6 +54,7 @@ class CudaDynamics : public DynamicsBackend {
     void markOrderBaseline(bool installedBeforeNextStep) override;
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;
+    bool beforeDetectNow() override;
     size_t numContacts() const override { return m_numContacts; }
     // Checkpoint and restart (CudaCheckpoint.cpp).
     bool contactSetResumable() const override;
@@ -156,6 +157,13 @@ class CudaDynamics : public DynamicsBackend {
     int m_current = 0;
     uint32_t m_numContacts = 0;
     bool m_forcesInIdleMemory = false;  // the set in use's forces hold the idle set's wildcards' memory
+    // The set in use holds only the pairs it hands to the next set (beforeDetectNow), until an
+    // installation or an upload replaces it: it serves no step, and no checkpoint resumes it.
+    bool m_setTrimmed = false;
+    bool m_asyncDetection = true;  // the call's detection mode (beginRun): the outbox is kept where it is
+    // The largest outbox (bytes of one id array) kept between synchronous detections:
+    // KEEP_REBUILT_ARRAYS_UP_TO, or DEME_KEEP_OUTBOX_UP_TO (bytes; tests).
+    size_t m_keepOutboxUpTo = KEEP_REBUILT_ARRAYS_UP_TO;
     // Each set's pooled history (DeviceHistoryPool.h), the pool's counters (on the device and as
     // last read back) and the rule that chooses the form.
     DeviceHistoryPool m_pools[2];

@@ -6,6 +6,7 @@
 #include <deme/Error.h>
 
 #include "backend/cuda/EmbeddedKernel.h"
+#include "kinematics/CarriedPairsRule.h"
 
 namespace deme::cuda {
 
@@ -31,11 +32,62 @@ void DeviceHistoryMapping::load(const std::string& call, const CudaCompileOption
     m_markMesh = m_module.kernel("deme_mark_mesh_pairs");
     m_markCarried = m_module.kernel("deme_mark_carried_pairs");
     m_mapMarked = m_module.kernel("deme_map_marked_history");
+    m_markHandedOn = m_module.kernel("deme_mark_pairs_handed_on");
+    m_keepHandedOn = m_module.kernel("deme_keep_pairs_handed_on");
 }
 
 void DeviceHistoryMapping::uploadRules(const std::vector<ContactInitRule>& rules) {
     m_rules.upload(rules);
     m_numRules = (unsigned int)rules.size();
+}
+
+bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHistoryPool& pool, unsigned int& n,
+                                                 unsigned int W, DevicePrimitives& prim, Stream stream) {
+    if (n == 0 || !mayKeepOnlyPairsHandedOn(m_numRules > 0)) return false;
+    const MemoryGroupScope group(MemoryGroup::CONTACTS);  // the marks
+    OldContactHistory h{keysOf(set, n), pool.active ? pool.pool.data() : set.wildcards.data(), set.meshState.data(),
+                        set.persistent.data(), W, nullptr, 0u};
+    if (pool.active) h.slot = pool.slot.data();
+    // The marks and their exclusive sum in one array (4 B a pair, beside the whole set: this is
+    // the detection's peak, without the outbox that an installation in this mode lets go).
+    DeviceBuffer<uint32_t> at((size_t)n + 1, stream);
+    launch(m_markHandedOn, blocksFor((size_t)n + 1, THREADS), THREADS, 0, stream, h, at.data());
+    prim.exclusiveSum(at.data(), at.data(), (size_t)n + 1, stream);
+    uint32_t kept = 0;
+    at.downloadAsync(&kept, 1, stream, n);
+    synchronize(stream);
+    if (!keepingOnlyPairsHandedOnPays(n, kept)) return false;
+    // The trimmed arrays, of the contact sets' group for good (they become the set's).
+    auto sized = [stream](auto& buffer, size_t count) {
+        buffer.setGroup(MemoryGroup::CONTACTS);
+        buffer.resize(count, stream);
+    };
+    DeviceBuffer<bodyID_t> a, b;
+    DeviceBuffer<uint8_t> meshState, persistent;
+    DeviceBuffer<float> wildcards;
+    DeviceBuffer<uint32_t> slot;
+    sized(a, kept);
+    sized(b, kept);
+    sized(meshState, kept);
+    sized(persistent, kept);
+    if (pool.active)
+        sized(slot, kept);
+    else
+        sized(wildcards, (size_t)kept * W);
+    if (kept)
+        launch(m_keepHandedOn, blocksFor(n, THREADS), THREADS, 0, stream, h, (const uint32_t*)at.data(), a.data(),
+               b.data(), meshState.data(), persistent.data(), wildcards.data(), slot.data());
+    synchronize(stream);  // the whole set's buffers are read; they go as the trimmed ones take their place
+    std::swap(set.geomA, a);
+    std::swap(set.geomB, b);
+    std::swap(set.meshState, meshState);
+    std::swap(set.persistent, persistent);
+    if (pool.active)
+        std::swap(pool.slot, slot);
+    else
+        std::swap(set.wildcards, wildcards);
+    n = kept;
+    return true;
 }
 
 unsigned int DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, unsigned int nFresh,

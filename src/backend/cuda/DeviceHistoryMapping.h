@@ -39,6 +39,14 @@ class DeviceHistoryMapping {
                          const HistoryPoolPolicy& policy, const StateView& view, DevicePrimitives& prim, Stream stream,
                          uint32_t& slotsUsed);
 
+    // Before a synchronous detection: `set` (n pairs, its history in its wildcards or in `pool`)
+    // keeps only the pairs that hand something to the next set (pairHandsOn), where the rules of
+    // kinematics/CarriedPairsRule.h allow it and it pays; n becomes the count kept. Returns whether
+    // it trimmed: the set then serves no step, only the next installation (the pool keeps its
+    // slots, and the trimmed pairs theirs).
+    bool keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHistoryPool& pool, unsigned int& n, unsigned int W,
+                               DevicePrimitives& prim, Stream stream);
+
   private:
     // Adds the missing persistent pairs to fresh's pair arrays; returns the new count. Sets
     // m_oldHadPersistent.
@@ -46,7 +54,8 @@ class DeviceHistoryMapping {
                                  unsigned int nOld, DevicePrimitives& prim, Stream stream);
 
     CudaModule m_module;
-    CudaKernel m_missing, m_merge, m_map, m_markSlots, m_mapPooled, m_markMesh, m_markCarried, m_mapMarked;
+    CudaKernel m_missing, m_merge, m_map, m_markSlots, m_mapPooled, m_markMesh, m_markCarried, m_mapMarked,
+        m_markHandedOn, m_keepHandedOn;
     DeviceBuffer<unsigned int> m_isMissing, m_missingBefore, m_any;
     DeviceBuffer<bodyID_t> m_mergedA, m_mergedB;
     DeviceBuffer<ContactInitRule> m_rules;

@@ -11,6 +11,9 @@
 //      set's side: deme_mark_mesh_pairs, deme_mark_carried_pairs (a search per old pair with a
 //      history, not one per new pair), a sum of the marks, deme_map_marked_history (a search per
 //      marked pair). The marks live in the new set's mesh state until the last kernel writes it.
+// Before a synchronous detection, the set in use may keep only the pairs that hand something to
+// the next set (CudaDynamics::beforeDetectNow, as the CPU's backend/cpu/CarriedPairs.h):
+// deme_mark_pairs_handed_on, an exclusive sum of the marks, deme_keep_pairs_handed_on.
 // Compiled at run time by NVRTC.
 #include "kinematics/HistoryRules.h"
 #include "state/HistoryPool.h"
@@ -142,6 +145,39 @@ extern "C" __global__ void deme_map_marked_history(StateView s, ContactKeys fres
     carryPairHistory(s, fresh, old, i, h, meshState[i], freshPersistent[i]);
     const uint32_t k = slots[i];
     for (unsigned int w = 0; w < old.W; w++) pool[(size_t)k * old.W + w] = h[w];
+}
+
+// Before a synchronous detection, 1: keep[j] = 1 where pair j of the set in use (`set`, its keys,
+// history, mesh state and flags as history mapping reads them) hands something to the next set
+// (pairCarriesHistory), else 0, for j < n; keep[n] = 0, so that the exclusive sum ends with the
+// count kept.
+extern "C" __global__ void deme_mark_pairs_handed_on(OldContactHistory set, uint32_t* keep) {
+    const size_t j = globalIndex();
+    const unsigned int n = set.keys.n;
+    if (j > n) return;
+    keep[j] = j < n && pairHandsOn(set, (unsigned int)j) ? 1u : 0u;
+}
+
+// 2: `at` holds the marks' exclusive sum (a pair is kept where at[j + 1] > at[j]); each kept pair's
+// ids, mesh state and flag (where the set has flags), and its W floats of history (a dense set,
+// `wildcards` given) or its slot in the pool (a pooled set, `slot` given), go to entry at[j] of the
+// trimmed arrays.
+extern "C" __global__ void deme_keep_pairs_handed_on(OldContactHistory set, const uint32_t* at, bodyID_t* keptA,
+                                                    bodyID_t* keptB, uint8_t* keptMeshState,
+                                                    uint8_t* keptPersistent, float* keptWildcards,
+                                                    uint32_t* keptSlot) {
+    const size_t j = globalIndex();
+    if (j >= set.keys.n || at[j + 1] == at[j]) return;
+    const uint32_t k = at[j];
+    keptA[k] = set.keys.geomA[j];
+    keptB[k] = set.keys.geomB[j];
+    keptMeshState[k] = set.meshState[j];
+    if (set.persistent) keptPersistent[k] = set.persistent[j];
+    if (set.slot) {
+        keptSlot[k] = set.slot[j];
+    } else {
+        for (unsigned int w = 0; w < set.W; w++) keptWildcards[(size_t)k * set.W + w] = set.wildcards[(size_t)j * set.W + w];
+    }
 }
 
 }  // namespace deme
