@@ -208,12 +208,13 @@ class DynamicsBackend {
     // (runtime/MemoryEstimate.h, requireRoomForContactSet).
     virtual void countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const = 0;
     virtual size_t memoryFree() const = 0;
-    // The form the next contact set of `pairs` pairs is expected to keep its history in, for the
+    // The form the next contact set of `pairs` pairs (W wildcards a pair) is expected to keep its
+    // history in, for the
     // memory checks (contactSetBytes): the slots of its pool where it will be pooled, DENSE_HISTORY
     // where it will hold W floats per pair. A first set has no history yet (a pool with its spare
     // slots only); a later one is expected to have as large a share of its pairs with one as the
     // set in use, and a dense set in use is expected to stay dense.
-    virtual size_t expectedHistorySlots(size_t pairs) const = 0;
+    virtual size_t expectedHistorySlots(size_t pairs, unsigned int W) const = 0;
 };
 
 // A backend's two sides, made together (each side knows its partner).

@@ -212,8 +212,7 @@ void CpuDynamics::countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const {
 
 size_t CpuDynamics::memoryFree() const { return hostMemoryAvailable(); }
 
-size_t CpuDynamics::expectedHistorySlots(size_t pairs) const {
-    const unsigned int W = m_s.numWildcards;
+size_t CpuDynamics::expectedHistorySlots(size_t pairs, unsigned int W) const {
     const ContactArrays& c = m_s.contacts;
     size_t withHistory = 0;
     if (W == 0) return DENSE_HISTORY;

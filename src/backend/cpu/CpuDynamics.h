@@ -44,7 +44,7 @@ class CpuDynamics : public DynamicsBackend {
     size_t memoryAvailable() const override;
     void countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const override;
     size_t memoryFree() const override;
-    size_t expectedHistorySlots(size_t pairs) const override;
+    size_t expectedHistorySlots(size_t pairs, unsigned int W) const override;
 
     const CpuForceModel& model() const { return m_model; }
 

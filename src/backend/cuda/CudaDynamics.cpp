@@ -117,15 +117,17 @@ void CudaDynamics::countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const {
     for (int g = 0; g < NUM_MEMORY_GROUPS; g++) bytes[g] = deviceBytesInGroup((MemoryGroup)g);
 }
 
-size_t CudaDynamics::expectedHistorySlots(size_t pairs) const {
-    if (!m_poolPolicy.considers(pairs)) return DENSE_HISTORY;
+size_t CudaDynamics::expectedHistorySlots(size_t pairs, unsigned int W) const {
+    HistoryPoolPolicy policy = m_poolPolicy;
+    policy.W = W;  // (the set's, known before the first upload)
+    if (!policy.considers(pairs)) return DENSE_HISTORY;
     size_t withSlot = 0;
     if (m_numContacts > 0) {
         if (!historyPooled()) return DENSE_HISTORY;
         // The pool's slots in use as last read back (CudaHistoryPool.cpp), at the new set's size.
         withSlot = (size_t)((double)m_poolControlHost.used * (double)pairs / (double)m_numContacts + 0.5);
     }
-    return m_poolPolicy.chooses(pairs, withSlot) ? m_poolPolicy.capacityFor(withSlot, pairs) : DENSE_HISTORY;
+    return policy.chooses(pairs, withSlot) ? policy.capacityFor(withSlot, pairs) : DENSE_HISTORY;
 }
 
 size_t CudaDynamics::memoryAvailable() const {

@@ -65,7 +65,7 @@ class CudaDynamics : public DynamicsBackend {
     size_t memoryAvailable() const override;
     void countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const override;
     size_t memoryFree() const override { return memoryAvailable(); }
-    size_t expectedHistorySlots(size_t pairs) const override;
+    size_t expectedHistorySlots(size_t pairs, unsigned int W) const override;
 
     // What kinematics orders snapshot, on this stream.
     const DeviceState& state() const { return m_state; }
