@@ -83,8 +83,8 @@ std::string gib(size_t bytes) {
 
 }  // namespace
 
-MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre,
-                                 size_t pairs, const std::function<size_t(size_t)>& slotsFor) {
+MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre, size_t pairs,
+                                 const std::function<size_t(size_t)>& slotsFor) {
     MemoryEstimate e;
     const size_t nO = s.owners.size(), nS = s.spheres.size();
     e.pairs = pairs ? pairs : (size_t)(ESTIMATED_PAIRS_PER_SPHERE * (double)nS);

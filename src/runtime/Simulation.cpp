@@ -55,9 +55,9 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     m_backends = makeBackends(m_state, m_model, settings, [this](Verbosity v, const std::string& msg) { log(v, msg); });
     // A scene too large for the memory its steps use fails here, not in its first detection.
     const DynamicsBackend& dynamics = *m_backends.dynamics;
-    m_memoryEstimate = estimateRunMemory(m_state, m_grid, dynamics.onGpu(),
-                                         m_backends.kinematics->mayBinSpheresByCentre(m_state.spheres.size()), 0,
-                                         [&](size_t pairs) { return dynamics.expectedHistorySlots(pairs, m_state.numWildcards); });
+    m_memoryEstimate = estimateRunMemory(
+        m_state, m_grid, dynamics.onGpu(), m_backends.kinematics->mayBinSpheresByCentre(m_state.spheres.size()), 0,
+        [&](size_t pairs) { return dynamics.expectedHistorySlots(pairs, m_state.numWildcards); });
     requireMemoryFor(m_memoryEstimate, dynamics.memoryAvailable(), memoryPlace(dynamics), "Initialize");
     m_contacts.start(settings, *m_backends.dynamics, *m_backends.kinematics);
     m_contacts.period = &m_state.frame.periodic;
@@ -66,8 +66,9 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
         const DynamicsBackend& d = *m_backends.dynamics;
         size_t held[NUM_MEMORY_GROUPS] = {};
         d.countRunMemory(held);
-        requireRoomForContactSet(pairs, contactSetBytes(m_state, d.onGpu(), pairs, d.expectedHistorySlots(pairs, m_state.numWildcards)), held,
-                                 [&d] { return d.memoryFree(); }, memoryPlace(d), "DoDynamics");
+        requireRoomForContactSet(
+            pairs, contactSetBytes(m_state, d.onGpu(), pairs, d.expectedHistorySlots(pairs, m_state.numWildcards)),
+            held, [&d] { return d.memoryFree(); }, memoryPlace(d), "DoDynamics");
     };
     // ChangeFamilyWhen is checked at each detection (docs/active-box.md says why).
     m_contacts.beforeDetection = [this] {

@@ -45,8 +45,13 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
                                                  unsigned int W, DevicePrimitives& prim, Stream stream) {
     if (n == 0 || !mayKeepOnlyPairsHandedOn(m_numRules > 0)) return false;
     const MemoryGroupScope group(MemoryGroup::CONTACTS);  // the marks
-    OldContactHistory h{keysOf(set, n), pool.active ? pool.pool.data() : set.wildcards.data(), set.meshState.data(),
-                        set.persistent.data(), W, nullptr, 0u};
+    OldContactHistory h{keysOf(set, n),
+                        pool.active ? pool.pool.data() : set.wildcards.data(),
+                        set.meshState.data(),
+                        set.persistent.data(),
+                        W,
+                        nullptr,
+                        0u};
     if (pool.active) h.slot = pool.slot.data();
     // The marks and their exclusive sum in one array (4 B a pair, beside the whole set: this is
     // the detection's peak, without the outbox that an installation in this mode lets go).

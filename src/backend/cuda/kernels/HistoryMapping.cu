@@ -163,9 +163,8 @@ extern "C" __global__ void deme_mark_pairs_handed_on(OldContactHistory set, uint
 // `wildcards` given) or its slot in the pool (a pooled set, `slot` given), go to entry at[j] of the
 // trimmed arrays.
 extern "C" __global__ void deme_keep_pairs_handed_on(OldContactHistory set, const uint32_t* at, bodyID_t* keptA,
-                                                    bodyID_t* keptB, uint8_t* keptMeshState,
-                                                    uint8_t* keptPersistent, float* keptWildcards,
-                                                    uint32_t* keptSlot) {
+                                                     bodyID_t* keptB, uint8_t* keptMeshState, uint8_t* keptPersistent,
+                                                     float* keptWildcards, uint32_t* keptSlot) {
     const size_t j = globalIndex();
     if (j >= set.keys.n || at[j + 1] == at[j]) return;
     const uint32_t k = at[j];
@@ -176,7 +175,8 @@ extern "C" __global__ void deme_keep_pairs_handed_on(OldContactHistory set, cons
     if (set.slot) {
         keptSlot[k] = set.slot[j];
     } else {
-        for (unsigned int w = 0; w < set.W; w++) keptWildcards[(size_t)k * set.W + w] = set.wildcards[(size_t)j * set.W + w];
+        for (unsigned int w = 0; w < set.W; w++)
+            keptWildcards[(size_t)k * set.W + w] = set.wildcards[(size_t)j * set.W + w];
     }
 }
 
