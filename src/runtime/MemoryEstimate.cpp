@@ -84,11 +84,11 @@ std::string gib(size_t bytes) {
 }  // namespace
 
 MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre, size_t pairs,
-                                 const std::function<size_t(size_t)>& slotsFor) {
+                                 const std::function<ContactSetForm(size_t)>& formFor) {
     MemoryEstimate e;
     const size_t nO = s.owners.size(), nS = s.spheres.size();
     e.pairs = pairs ? pairs : (size_t)(ESTIMATED_PAIRS_PER_SPHERE * (double)nS);
-    if (slotsFor) e.historySlots = slotsFor(e.pairs);
+    if (formFor) e.form = formFor(e.pairs);
     auto& b = e.bytes;
     size_t& owner = b[(int)MemoryGroup::OWNER_STATE];
     size_t& geometry = b[(int)MemoryGroup::GEOMETRY];
@@ -123,7 +123,7 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     const float largest = nS ? *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end()) : 0.f;
     const bool byCentre = mayBinByCentre && centreReachFor(grid, (double)largest) > 0.0;
     if (onGpu) {
-        contacts = contactSetBytes(s, true, e.pairs, e.historySlots);
+        contacts = contactSetBytes(s, true, e.pairs, e.form);
         // kT's snapshot (sphere centres, owner families), pair offsets; the bins' entries (an item
         // id each) and starts, from the counting sort (backend/cuda/CudaKinematics.cpp,
         // Work::detect; the bins an item covers are computed from its box, not stored). (kT on a
@@ -137,7 +137,7 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         // CudaStepSubset.cpp; not counted.)
         b[(int)MemoryGroup::STEP_SCRATCH] = MAX_BATCH_STEPS * NUM_FAMILIES * sizeof(FamilyStepMotion);
     } else {
-        contacts = contactSetBytes(s, false, e.pairs, e.historySlots);
+        contacts = contactSetBytes(s, false, e.pairs, e.form);
         // The registry's entries and bins' starts, for spheres and for triangles (whose global
         // boxes, 2 double3, are kept too) (backend/cpu/ContactDetector).
         detection = (size_t)(4.0 * (byCentre ? (double)nS : entries)) + 4 * bins;
@@ -146,8 +146,9 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     return e;
 }
 
-size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, size_t historySlots) {
+size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const ContactSetForm& form) {
     const unsigned int W = s.numWildcards;
+    const size_t historySlots = form.historySlots;
     const bool pooled = historySlots != DENSE_HISTORY && W > 0;
     // A pooled set holds no W floats per pair; the pool holds them for its slots.
     const size_t historyPerPair = pooled ? 4 * (size_t)W : 0;
@@ -171,9 +172,16 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, size_t histo
     // a 4-byte slot per pair in each set, and at an installation the old pool and the fresh one;
     // the forces are kept per slot.
     const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
-    if (pooled)
-        return pairs * 2 * (bytesPerPair(s.contacts, W, false) - historyPerPair + sizeof(uint32_t)) +
-               historySlots * (2 * 4 * (size_t)W + forceBytes);
+    if (pooled) {
+        const size_t perPair = bytesPerPair(s.contacts, W, false) - historyPerPair + sizeof(uint32_t);
+        const size_t pools = historySlots * (2 * 4 * (size_t)W + forceBytes);
+        // Trimmed before a synchronous detection (CudaDynamics::beforeDetectNow), where at most half
+        // of the pairs have a slot and so at most about half are kept: the whole set and the trim's
+        // marks (4 B a pair), then an installation's fresh set beside the pairs kept.
+        if (form.trimmedBeforeDetection && 2 * historySlots <= pairs)
+            return pairs * (perPair + sizeof(uint32_t)) + historySlots * perPair + pools;
+        return pairs * 2 * perPair + pools;
+    }
     const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;
     return pairs * (2 * bytesPerPair(s.contacts, W, false) + forceGrowth);
 }
@@ -201,7 +209,8 @@ void requireMemoryFor(const MemoryEstimate& e, size_t available, const std::stri
         first = false;
     }
     msg << ", with " << e.pairs << " contact pairs assumed (" << ESTIMATED_PAIRS_PER_SPHERE << " per sphere)";
-    if (e.historySlots != DENSE_HISTORY) msg << " and their history pooled in " << e.historySlots << " slots";
+    if (e.form.historySlots != DENSE_HISTORY) msg << " and their history pooled in " << e.form.historySlots << " slots";
+    if (e.form.trimmedBeforeDetection) msg << ", trimmed to the pairs that hand something on before each detection";
     msg << "; use fewer or larger grains, or a device with more memory";
     throwError(call, msg.str());
 }

@@ -34,10 +34,18 @@ constexpr double ESTIMATED_CROSSING_PAIR_SHARE = 0.3;
 // pairs that have one: state/HistoryPool.h on the GPU, state/PooledHistory.h on the CPU).
 constexpr size_t DENSE_HISTORY = SIZE_MAX;
 
+// The form a contact set takes, which the bytes it needs depend on (contactSetBytes).
+struct ContactSetForm {
+    size_t historySlots = DENSE_HISTORY;  // its history dense, or pooled in this many slots
+    // Detection is synchronous and the set in use keeps only the pairs that hand something on
+    // before it (kinematics/CarriedPairsRule.h): a GPU installation then holds one whole set, not two.
+    bool trimmedBeforeDetection = false;
+};
+
 struct MemoryEstimate {
     size_t bytes[NUM_MEMORY_GROUPS] = {};
-    size_t pairs = 0;                     // the contact pairs assumed
-    size_t historySlots = DENSE_HISTORY;  // the history form assumed for them (contactSetBytes)
+    size_t pairs = 0;      // the contact pairs assumed
+    ContactSetForm form;  // the form assumed for them
     size_t total() const {
         size_t t = 0;
         for (size_t b : bytes) t += b;
@@ -47,10 +55,10 @@ struct MemoryEstimate {
 
 // onGpu: the CUDA backend's device buffers (two contact sets, history mapping's scratch, detection's
 // sorted bin entries); otherwise the CPU backend's host arrays. pairs: the contact set's size, or
-// ESTIMATED_PAIRS_PER_SPHERE per sphere where 0. slotsFor: the history form of a first set of that
-// many pairs (DynamicsBackend::expectedHistorySlots; dense where empty).
+// ESTIMATED_PAIRS_PER_SPHERE per sphere where 0. formFor: the form of a first set of that many pairs
+// (its history's from DynamicsBackend::expectedHistorySlots; dense and untrimmed where empty).
 MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre,
-                                 size_t pairs = 0, const std::function<size_t(size_t)>& slotsFor = {});
+                                 size_t pairs = 0, const std::function<ContactSetForm(size_t)>& formFor = {});
 
 // Throws a deme::Error from `call` when the estimate exceeds `available` bytes (0: not known, no
 // check) of `where` ("GPU 0 (NVIDIA H200)", "host memory"), naming both and the groups. `available`
@@ -59,9 +67,8 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
 void requireMemoryFor(const MemoryEstimate& e, size_t available, const std::string& where, const char* call);
 
 // The bytes of the contacts-and-history group (the table's) for a contact set of `pairs` pairs on
-// the backend whose steps keep their arrays on the GPU (onGpu) or on the host, its history dense or
-// pooled with `historySlots` slots.
-size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, size_t historySlots = DENSE_HISTORY);
+// the backend whose steps keep their arrays on the GPU (onGpu) or on the host, in `form`.
+size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const ContactSetForm& form = {});
 
 // `available` capped by DEME_MEMORY_LIMIT where set (a deme::Error from `call` if it is not a
 // number of bytes); 0 (not known) becomes the limit.

@@ -13,6 +13,7 @@
 #include "dynamics/MeshContactRule.h"
 #include "dynamics/OwnerStep.h"
 #include "kinematics/BinGridSizing.h"
+#include "kinematics/CarriedPairsRule.h"
 #include "parallel/Parallel.h"
 #include "runtime/MemoryAccounting.h"
 #include "runtime/PeriodicLimits.h"
@@ -57,7 +58,7 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     const DynamicsBackend& dynamics = *m_backends.dynamics;
     m_memoryEstimate = estimateRunMemory(
         m_state, m_grid, dynamics.onGpu(), m_backends.kinematics->mayBinSpheresByCentre(m_state.spheres.size()), 0,
-        [&](size_t pairs) { return dynamics.expectedHistorySlots(pairs, m_state.numWildcards); });
+        [this](size_t pairs) { return contactSetForm(pairs); });
     requireMemoryFor(m_memoryEstimate, dynamics.memoryAvailable(), memoryPlace(dynamics), "Initialize");
     m_contacts.start(settings, *m_backends.dynamics, *m_backends.kinematics);
     m_contacts.period = &m_state.frame.periodic;
@@ -67,7 +68,7 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
         size_t held[NUM_MEMORY_GROUPS] = {};
         d.countRunMemory(held);
         requireRoomForContactSet(
-            pairs, contactSetBytes(m_state, d.onGpu(), pairs, d.expectedHistorySlots(pairs, m_state.numWildcards)),
+            pairs, contactSetBytes(m_state, d.onGpu(), pairs, contactSetForm(pairs)),
             held, [&d] { return d.memoryFree(); }, memoryPlace(d), "DoDynamics");
     };
     // ChangeFamilyWhen is checked at each detection (docs/active-box.md says why).
@@ -83,6 +84,14 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
                              std::to_string(m_grid.size) + " (" + std::to_string(m_grid.numBins()) +
                              " bins); dynamics on " + backendDescription() + ", contact detection " +
                              (settings.asyncDetection ? "beside it (asynchronous)" : "on the dynamics side"));
+}
+
+ContactSetForm Simulation::contactSetForm(size_t pairs) const {
+    ContactSetForm f;
+    f.historySlots = m_backends.dynamics->expectedHistorySlots(pairs, m_state.numWildcards);
+    f.trimmedBeforeDetection =
+        !settings.asyncDetection && mayKeepOnlyPairsHandedOn(!m_state.wildcards.contactInit.empty());
+    return f;
 }
 
 void Simulation::applyDetectionMode() {

@@ -74,6 +74,9 @@ class Simulation {
     // Resolves settings.detectionMode into settings.asyncDetection and sizes the dynamics thread
     // team accordingly.
     void applyDetectionMode();
+    // The form a contact set of `pairs` pairs will take (its history's, and whether synchronous
+    // detection trims the set before each detection), for the memory checks.
+    ContactSetForm contactSetForm(size_t pairs) const;
     // Lets the kinematics side finish its order and installs the result.
     void syncContactDetection();
     const BinGrid& binGrid() const { return m_grid; }
