@@ -178,8 +178,13 @@ void CpuDynamics::install(const DetectionReport&, TimingStats& timing) {
 
 bool CpuDynamics::beforeDetectNow() {
     // Trimmed while the index gives A (runs), then the index emptied (restoring A only where the
-    // set was not trimmed).
-    m_setTrimmed = keepOnlyCarriedPairs(m_s) || m_setTrimmed;
+    // set was not trimmed). The share of the whole set's pairs with a history is kept for the
+    // memory check before the installation (expectedHistorySlots).
+    const double share = historyShare();
+    if (keepOnlyCarriedPairs(m_s)) {
+        m_historyShareBeforeTrim = share;
+        m_setTrimmed = true;
+    }
     m_s.contacts.resetIndex();
     return m_setTrimmed;
 }
@@ -212,15 +217,20 @@ void CpuDynamics::countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const {
 
 size_t CpuDynamics::memoryFree() const { return hostMemoryAvailable(); }
 
-size_t CpuDynamics::expectedHistorySlots(size_t pairs, unsigned int W) const {
+double CpuDynamics::historyShare() const {
     const ContactArrays& c = m_s.contacts;
-    size_t withHistory = 0;
+    const unsigned int W = m_s.numWildcards;
+    if (c.size() == 0) return 0.0;
+    // A dense set is mapped dense (HistoryMapping.cpp): the installation's peak holds it so.
+    if (W == 0 || !c.historyPooled(W)) return -1.0;
+    return (double)(c.pooled.values.size() / W) / (double)c.size();
+}
+
+size_t CpuDynamics::expectedHistorySlots(size_t pairs, unsigned int W) const {
     if (W == 0) return DENSE_HISTORY;
-    if (c.size() > 0) {
-        // A dense set is mapped dense (HistoryMapping.cpp): the installation's peak holds it so.
-        if (!c.historyPooled(W)) return DENSE_HISTORY;
-        withHistory = (size_t)((double)(c.pooled.values.size() / W) * (double)pairs / (double)c.size() + 0.5);
-    }
+    const double share = m_setTrimmed ? m_historyShareBeforeTrim : historyShare();
+    if (share < 0.0) return DENSE_HISTORY;
+    const size_t withHistory = (size_t)(share * (double)pairs + 0.5);
     return poolsHistory(pairs, withHistory) ? withHistory : DENSE_HISTORY;
 }
 

@@ -45,6 +45,8 @@ class CpuDynamics : public DynamicsBackend {
     void countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const override;
     size_t memoryFree() const override;
     size_t expectedHistorySlots(size_t pairs, unsigned int W) const override;
+    // The share of the set in use's pairs with a history where it is pooled; -1 where it is dense.
+    double historyShare() const;
 
     const CpuForceModel& model() const { return m_model; }
 
@@ -70,6 +72,7 @@ class CpuDynamics : public DynamicsBackend {
     // Whether the set holds only the pairs it hands to the next one (beforeDetectNow), until an
     // installation or an upload replaces it: then it serves no step and no restart.
     bool m_setTrimmed = false;
+    double m_historyShareBeforeTrim = 0.0;  // its pairs' share with a history before the trim (-1: dense)
     // Owners' travel (since the set in use's snapshot) at the snapshot of the order in flight: empty
     // while there is none, and for a synchronous detection's order, whose snapshot is the travel at
     // its installation (m_orderAtInstall).

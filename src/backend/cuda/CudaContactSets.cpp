@@ -41,14 +41,19 @@ double CudaDynamics::maxTravelSinceOrder() {
 
 // Before a synchronous detection the set in use keeps only the pairs that hand something to the
 // next set (DeviceHistoryMapping::keepOnlyPairsHandedOn): the installation's peak then holds the
-// fresh set and those, not two whole sets. The set's per-contact forces (which follow its pairs)
-// are let go first: nothing reads them before the installation replaces them.
+// fresh set and those, not two whole sets. A trimmed set's per-contact forces (which follow its
+// pairs) are let go first: nothing reads them before the installation replaces them. The share of
+// its pairs with a slot is kept for the memory check before that installation.
 bool CudaDynamics::beforeDetectNow() {
     select();
-    returnForceMemory();
-    m_contacts[m_current].force.release();
     unsigned int n = m_numContacts;
-    if (m_history.keepOnlyPairsHandedOn(m_contacts[m_current], m_pools[m_current], n, m_W, m_prim, m_stream)) {
+    const auto releaseForces = [this] {
+        m_pairsForSlotShare = m_numContacts;
+        returnForceMemory();
+        m_contacts[m_current].force.release();
+    };
+    if (m_history.keepOnlyPairsHandedOn(m_contacts[m_current], m_pools[m_current], n, m_W, m_prim, m_stream,
+                                        releaseForces)) {
         m_numContacts = n;
         m_setTrimmed = true;
         m_loadOwnersStale = true;
@@ -135,6 +140,7 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     m_pools[m_current].release();  // a pooled old set's slots and pool are read; no forces live there
     m_current = 1 - m_current;
     m_numContacts = total;
+    m_pairsForSlotShare = total;
     m_setTrimmed = false;
     m_installs++;
     if (historyPooled()) {

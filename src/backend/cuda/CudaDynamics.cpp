@@ -29,6 +29,7 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
         m_W = s.numWildcards;
         m_current = 0;
         m_numContacts = (uint32_t)s.contacts.size();
+        m_pairsForSlotShare = m_numContacts;
         m_setTrimmed = false;
         uploadContacts(s.contacts, m_W, m_contacts[0], st);
         m_contacts[1].force.release();  // only the set in use has per-contact forces
@@ -122,10 +123,11 @@ size_t CudaDynamics::expectedHistorySlots(size_t pairs, unsigned int W) const {
     policy.W = W;  // (the set's, known before the first upload)
     if (!policy.considers(pairs)) return DENSE_HISTORY;
     size_t withSlot = 0;
-    if (m_numContacts > 0) {
+    if (m_pairsForSlotShare > 0) {
         if (!historyPooled()) return DENSE_HISTORY;
-        // The pool's slots in use as last read back (CudaHistoryPool.cpp), at the new set's size.
-        withSlot = (size_t)((double)m_poolControlHost.used * (double)pairs / (double)m_numContacts + 0.5);
+        // The pool's slots in use as last read back (CudaHistoryPool.cpp), for the set's pairs
+        // before any trim, at the new set's size.
+        withSlot = (size_t)((double)m_poolControlHost.used * (double)pairs / (double)m_pairsForSlotShare + 0.5);
     }
     return policy.chooses(pairs, withSlot) ? policy.capacityFor(withSlot, pairs) : DENSE_HISTORY;
 }

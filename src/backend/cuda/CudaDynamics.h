@@ -160,6 +160,7 @@ class CudaDynamics : public DynamicsBackend {
     // The set in use holds only the pairs it hands to the next set (beforeDetectNow), until an
     // installation or an upload replaces it: it serves no step, and no checkpoint resumes it.
     bool m_setTrimmed = false;
+    uint32_t m_pairsForSlotShare = 0;  // the set's pairs before any trim (expectedHistorySlots)
     bool m_asyncDetection = true;  // the call's detection mode (beginRun): the outbox is kept where it is
     // The largest outbox (bytes of one id array) kept between synchronous detections:
     // KEEP_REBUILT_ARRAYS_UP_TO, or DEME_KEEP_OUTBOX_UP_TO (bytes; tests).

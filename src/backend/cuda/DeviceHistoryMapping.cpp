@@ -42,7 +42,8 @@ void DeviceHistoryMapping::uploadRules(const std::vector<ContactInitRule>& rules
 }
 
 bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHistoryPool& pool, unsigned int& n,
-                                                 unsigned int W, DevicePrimitives& prim, Stream stream) {
+                                                 unsigned int W, DevicePrimitives& prim, Stream stream,
+                                                 const std::function<void()>& beforeTrim) {
     if (n == 0 || !mayKeepOnlyPairsHandedOn(m_numRules > 0)) return false;
     const MemoryGroupScope group(MemoryGroup::CONTACTS);  // the marks
     OldContactHistory h{keysOf(set, n),
@@ -62,6 +63,7 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
     at.downloadAsync(&kept, 1, stream, n);
     synchronize(stream);
     if (!keepingOnlyPairsHandedOnPays(n, kept)) return false;
+    beforeTrim();
     // The trimmed arrays, of the contact sets' group for good (they become the set's).
     auto sized = [stream](auto& buffer, size_t count) {
         buffer.setGroup(MemoryGroup::CONTACTS);

@@ -5,6 +5,7 @@
 // re-uploaded).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "backend/cuda/CudaModule.h"
@@ -43,9 +44,10 @@ class DeviceHistoryMapping {
     // keeps only the pairs that hand something to the next set (pairHandsOn), where the rules of
     // kinematics/CarriedPairsRule.h allow it and it pays; n becomes the count kept. Returns whether
     // it trimmed: the set then serves no step, only the next installation (the pool keeps its
-    // slots, and the trimmed pairs theirs).
+    // slots, and the trimmed pairs theirs). `beforeTrim` runs once it is decided, before the set
+    // changes.
     bool keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHistoryPool& pool, unsigned int& n, unsigned int W,
-                               DevicePrimitives& prim, Stream stream);
+                               DevicePrimitives& prim, Stream stream, const std::function<void()>& beforeTrim);
 
   private:
     // Adds the missing persistent pairs to fresh's pair arrays; returns the new count. Sets
