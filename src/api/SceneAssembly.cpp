@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <parallel/algorithm>
 #include <map>
 #include <tuple>
 
 #include <deme/Error.h>
 
+#include "parallel/Parallel.h"
 #include "physics/ContactGeometry.h"
 #include "physics/RigidBody.h"
 #include "runtime/TextFormat.h"
@@ -39,6 +41,13 @@ bool insideDomain(const double3& p, const float3& lo, const float3& size) {
            p.z <= (double)lo.z + size.z;
 }
 
+// A clump of the scene, by its batch and its index there.
+struct ClumpRef {
+    const DEMClumpBatch* batch;
+    size_t index;
+};
+const float3& positionOf(const ClumpRef& c) { return c.batch->GetPositions()[c.index]; }
+
 // Capacity for n rows in every array of the owners' and the spheres' field groups.
 struct ReserveRows {
     size_t n;
@@ -48,25 +57,45 @@ struct ReserveRows {
     }
 };
 
+// The owner arrays a scene gives values (the others are set for every owner at the end) sized to n.
+void resizeOwnerInputs(OwnerArrays& o, size_t n) {
+    o.voxel.resize(n);
+    o.subX.resize(n);
+    o.subY.resize(n);
+    o.subZ.resize(n);
+    o.oriQ.resize(n);
+    o.vel.resize(n);
+    o.angVel.resize(n);
+    o.family.resize(n);
+    o.type.resize(n);
+    o.inertia.resize(n);
+}
+
+// Owner k's values (its rows exist); false where its position is outside the frame.
+bool setOwner(SimState& s, size_t k, const double3& pos, const float4& q, const float3& v, const float3& w,
+              family_t fam, OwnerType type, inertiaID_t inertia) {
+    OwnerArrays& o = s.owners;
+    if (!encodePosition(pos, s.frame, o.voxel[k], o.subX[k], o.subY[k], o.subZ[k])) return false;
+    o.oriQ[k] = quatNormalize(q);
+    o.vel[k] = v;
+    o.angVel[k] = w;
+    o.family[k] = fam;
+    o.type[k] = (uint8_t)type;
+    o.inertia[k] = inertia;
+    return true;
+}
+
+[[noreturn]] void throwOutsideDomain(const char* what, size_t ownerIndex, const double3& pos) {
+    throwError(CALL, std::string(what) + " (owner " + std::to_string(ownerIndex) + ") at (" + std::to_string(pos.x) +
+                         ", " + std::to_string(pos.y) + ", " + std::to_string(pos.z) +
+                         ") is outside the simulation domain");
+}
+
 void addOwner(SimState& s, const double3& pos, const float4& q, const float3& v, const float3& w, family_t fam,
               OwnerType type, inertiaID_t inertia, size_t ownerIndex, const char* what) {
-    OwnerArrays& o = s.owners;
-    voxelID_t vox;
-    subVoxelPos_t sx, sy, sz;
-    if (!encodePosition(pos, s.frame, vox, sx, sy, sz))
-        throwError(CALL, std::string(what) + " (owner " + std::to_string(ownerIndex) + ") at (" +
-                             std::to_string(pos.x) + ", " + std::to_string(pos.y) + ", " + std::to_string(pos.z) +
-                             ") is outside the simulation domain");
-    o.voxel.push_back(vox);
-    o.subX.push_back(sx);
-    o.subY.push_back(sy);
-    o.subZ.push_back(sz);
-    o.oriQ.push_back(quatNormalize(q));
-    o.vel.push_back(v);
-    o.angVel.push_back(w);
-    o.family.push_back(fam);
-    o.type.push_back((uint8_t)type);
-    o.inertia.push_back(inertia);
+    const size_t k = s.owners.voxel.size();
+    resizeOwnerInputs(s.owners, k + 1);
+    if (!setOwner(s, k, pos, q, v, w, fam, type, inertia)) throwOutsideDomain(what, ownerIndex, pos);
 }
 
 // Appends a mesh's triangles; vertices with bit-identical coordinates are welded into one id.
@@ -129,6 +158,7 @@ std::vector<size_t> spatialOrder(const Scene& scene, size_t n, PosOf posOf) {
         return (uint64_t)std::min(std::max(c, 0.0), 2097151.0);
     };
     std::vector<uint64_t> key(n);
+#pragma omp parallel for schedule(static) if (n > PARALLEL_MIN_ITEMS)
     for (size_t u = 0; u < n; u++) {
         const float3 p = posOf(u);
         key[u] = spread(coord(p.x, scene.domainLo.x)) | spread(coord(p.y, scene.domainLo.y)) << 1 |
@@ -136,7 +166,12 @@ std::vector<size_t> spatialOrder(const Scene& scene, size_t n, PosOf posOf) {
     }
     std::vector<size_t> order(n);
     for (size_t u = 0; u < n; u++) order[u] = u;
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return key[a] < key[b]; });
+    // A stable sort's result is unique: the parallel one's is the serial one's.
+    const auto byKey = [&](size_t a, size_t b) { return key[a] < key[b]; };
+    if (n > PARALLEL_MIN_ITEMS && cpuThreadCount() > 1)
+        __gnu_parallel::stable_sort(order.begin(), order.end(), byKey);
+    else
+        std::stable_sort(order.begin(), order.end(), byKey);
     return order;
 }
 
@@ -168,26 +203,31 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
 
     // Clumps in user order (batch by batch), validated, then laid out in space-filling-curve order
     // so that neighbours in space are neighbours in memory; user ids are kept in a permutation.
-    struct ClumpRef {
-        const DEMClumpBatch* batch;
-        size_t index;
-    };
     std::vector<ClumpRef> user;
+    size_t numClumps = 0;
+    for (const auto& b : scene.batches) numClumps += b->GetNumClumps();
+    user.reserve(numClumps);
     for (const auto& b : scene.batches)
-        for (size_t i = 0; i < b->GetNumClumps(); i++) {
-            const float3 p = b->GetPositions()[i];
-            if (!insideDomain(to_double3(p), scene.domainLo, scene.domainSize))
-                throwError(CALL, "clump " + std::to_string(user.size()) + " at " + formatVector(p) +
-                                     " is outside the simulation domain (from " + formatVector(scene.domainLo) + " to " +
-                                     formatVector(scene.domainLo + scene.domainSize) + ")");
-            user.push_back({b.get(), i});
-        }
-    const std::vector<size_t> order =
-        spatialOrder(scene, user.size(), [&](size_t u) { return user[u].batch->GetPositions()[user[u].index]; });
-    std::vector<uint32_t> userSphereStart(user.size() + 1, 0);
+        for (size_t i = 0; i < b->GetNumClumps(); i++) user.push_back({b.get(), i});
+    // The first clump outside the domain, in user order (checked in parallel: a billion-grain scene).
+    size_t firstOutside = user.size();
+#pragma omp parallel for schedule(static) reduction(min : firstOutside) if (user.size() > PARALLEL_MIN_ITEMS)
+    for (size_t u = 0; u < user.size(); u++)
+        if (!insideDomain(to_double3(positionOf(user[u])), scene.domainLo, scene.domainSize))
+            firstOutside = std::min(firstOutside, u);
+    if (firstOutside < user.size())
+        throwError(CALL, "clump " + std::to_string(firstOutside) + " at " +
+                             formatVector(positionOf(user[firstOutside])) + " is outside the simulation domain (from " +
+                             formatVector(scene.domainLo) + " to " + formatVector(scene.domainLo + scene.domainSize) +
+                             ")");
+    const std::vector<size_t> order = spatialOrder(scene, user.size(), [&](size_t u) { return positionOf(user[u]); });
+    // Each clump's first sphere, in user order and in the spatial order the arrays take.
+    std::vector<uint32_t> userSphereStart(user.size() + 1, 0), sphereStart(user.size() + 1, 0);
     for (size_t u = 0; u < user.size(); u++)
         userSphereStart[u + 1] =
             userSphereStart[u] + (uint32_t)user[u].batch->GetType(user[u].index)->GetNumSpheres();
+    for (size_t k = 0; k < order.size(); k++)
+        sphereStart[k + 1] = sphereStart[k] + (userSphereStart[order[k] + 1] - userSphereStart[order[k]]);
     // Every array to its final size at once: grown by doubling, the owner and sphere arrays would
     // keep up to half their bytes unused for the whole run (docs/memory.md).
     const size_t nOwnersTotal = user.size() + scene.externObjs.size() + scene.meshes.size();
@@ -197,24 +237,37 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
     s.ownerInternalToUser.reserve(nOwnersTotal);
     s.ownerUserToInternal.resize(user.size());
     s.ownerInternalToUser.resize(user.size());
-    s.sphereInternalToUser.reserve(userSphereStart[user.size()]);
-    for (size_t u : order) {
+    // Every clump's owner row and spheres, in parallel (each writes its own rows: owner k, spheres
+    // from sphereStart[k]); the first clump whose position does not encode stops Initialize.
+    const size_t nSpheres = sphereStart[user.size()];
+    resizeOwnerInputs(s.owners, user.size());
+    s.spheres.owner.resize(nSpheres);
+    s.spheres.relPos.resize(nSpheres);
+    s.spheres.radius.resize(nSpheres);
+    s.spheres.material.resize(nSpheres);
+    s.sphereInternalToUser.resize(nSpheres);
+    size_t firstUnencoded = user.size();
+#pragma omp parallel for schedule(static) reduction(min : firstUnencoded) if (user.size() > PARALLEL_MIN_ITEMS)
+    for (size_t owner = 0; owner < order.size(); owner++) {
+        const size_t u = order[owner];
         const DEMClumpBatch* b = user[u].batch;
         const size_t i = user[u].index;
         const DEMClumpTemplate& t = *b->GetType(i);
-        const size_t owner = s.owners.size();
         s.ownerUserToInternal[u] = (bodyID_t)owner;
         s.ownerInternalToUser[owner] = (bodyID_t)u;
-        addOwner(s, to_double3(b->GetPositions()[i]), BatchValues::oriQ(*b, i), BatchValues::vel(*b, i),
-                 BatchValues::angVel(*b, i), BatchValues::family(*b, i), OWNER_CLUMP, templateIndex.at(&t), u, "clump");
-        for (size_t k = 0; k < t.GetNumSpheres(); k++) {
-            s.spheres.owner.push_back((bodyID_t)owner);
-            s.spheres.relPos.push_back(t.relPos[k]);
-            s.spheres.radius.push_back(t.radii[k]);
-            s.spheres.material.push_back((materialID_t)t.materials[k]->GetLoadOrder());
-            s.sphereInternalToUser.push_back(userSphereStart[u] + (uint32_t)k);
+        if (!setOwner(s, owner, to_double3(positionOf(user[u])), BatchValues::oriQ(*b, i), BatchValues::vel(*b, i),
+                      BatchValues::angVel(*b, i), BatchValues::family(*b, i), OWNER_CLUMP, templateIndex.at(&t)))
+            firstUnencoded = std::min(firstUnencoded, owner);
+        for (size_t k = 0, at = sphereStart[owner]; k < t.GetNumSpheres(); k++, at++) {
+            s.spheres.owner[at] = (bodyID_t)owner;
+            s.spheres.relPos[at] = t.relPos[k];
+            s.spheres.radius[at] = t.radii[k];
+            s.spheres.material[at] = (materialID_t)t.materials[k]->GetLoadOrder();
+            s.sphereInternalToUser[at] = userSphereStart[u] + (uint32_t)k;
         }
     }
+    if (firstUnencoded < user.size())
+        throwOutsideDomain("clump", order[firstUnencoded], to_double3(positionOf(user[order[firstUnencoded]])));
     s.numClumps = s.owners.size();
 
     // External objects: kinematic owners made of analytical components.
@@ -267,6 +320,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
     s.owners.travel.assign(nOwners, 0.f);
     s.integrationScratch.flags.assign(nOwners, 0);  // read by the force pass (a parked clump's) before a step
     s.sphereUserToInternal.assign(s.spheres.size(), 0);
+#pragma omp parallel for schedule(static) if (s.spheres.size() > PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < s.spheres.size(); i++) s.sphereUserToInternal[s.sphereInternalToUser[i]] = (bodyID_t)i;
     // Owner and geometry wildcards start at 0.
     const size_t nGeometries = s.spheres.size() + s.analytical.size() + s.triangles.size();

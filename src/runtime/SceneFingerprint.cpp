@@ -1,7 +1,8 @@
 #include "runtime/SceneFingerprint.h"
 
+#include <algorithm>
+#include <iterator>
 #include <map>
-#include <set>
 #include <type_traits>
 
 namespace deme {
@@ -73,7 +74,11 @@ SceneFingerprint sceneFingerprint(const SimState& s, const ModelLayout& model) {
     fp.triangles = s.triangles.size();
     fp.templates = s.massProps.mass.size();
     fp.materials = s.materials.count;
-    fp.families = std::set<family_t>(s.owners.family.begin(), s.owners.family.end()).size();
+    // (A flag per family number: a set of them took a tree search per owner.)
+    static_assert(sizeof(family_t) == 1, "a flag per family number");
+    bool used[256] = {};
+    for (family_t f : s.owners.family) used[f] = true;
+    fp.families = (uint64_t)std::count(std::begin(used), std::end(used), true);
     fp.contactWildcards = s.numWildcards;
     fp.ownerWildcards = s.wildcards.owner.size();
     fp.geometryWildcards = s.wildcards.geometry.size();

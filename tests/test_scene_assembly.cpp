@@ -1,0 +1,112 @@
+// Scene assembly at Initialize (api/SceneAssembly.cpp) fills the owners' and spheres' arrays in
+// parallel, each clump its own rows: the state must be the one a single thread makes, array for
+// array, and the first clump whose position does not fit must still be the one named.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+#include <cstdint>
+
+#include "TestHelpers.h"
+#include "api/Scene.h"
+#include "api/SceneAssembly.h"
+#include "parallel/Parallel.h"
+
+using namespace deme;
+using namespace deme_test;
+
+namespace {
+
+std::shared_ptr<DEMClumpTemplate> clumpOf(size_t spheres, const std::shared_ptr<DEMMaterial>& mat) {
+    auto t = std::make_shared<DEMClumpTemplate>();
+    t->mass = 1.f;
+    t->MOI = make_float3(1.f);
+    for (size_t k = 0; k < spheres; k++) {
+        t->radii.push_back(0.004f + 0.001f * (float)k);
+        t->relPos.push_back(make_float3(0.005f * (float)k, 0.f, 0.f));
+        t->materials.push_back(mat);
+    }
+    return t;
+}
+
+// 6,000 clumps (over the parallel loops' threshold) of a one-sphere and a three-sphere template in
+// random order and places, with per-clump velocities and families, in two batches. `outside`: two
+// clumps (this one and the one 700 after it) at x = 0.95, past a domain that ends at x = 0.92 (as
+// if it had been made smaller after AddClumps checked them).
+Scene randomScene(size_t outside = SIZE_MAX) {
+    auto mat = std::make_shared<DEMMaterial>(
+        std::map<std::string, double>{{"E", 1e7}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}, {"Crr", 0.0}}, 0);
+    const auto one = clumpOf(1, mat), three = clumpOf(3, mat);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> x(-0.9f, 0.9f);
+    Scene sc;
+    sc.materials = {mat};
+    sc.hasDomain = true;
+    sc.domainLo = make_float3(-1.f);
+    sc.domainSize = make_float3(2.f);
+    for (int batch = 0; batch < 2; batch++) {
+        std::vector<std::shared_ptr<DEMClumpTemplate>> types;
+        std::vector<float3> pos, vel;
+        std::vector<unsigned int> fam;
+        for (int i = 0; i < 3000; i++) {
+            types.push_back(rng() % 3 ? one : three);
+            pos.push_back(make_float3(x(rng), x(rng), x(rng)));
+            const size_t u = 3000 * (size_t)batch + (size_t)i;
+            if (outside != SIZE_MAX && (u == outside || u == outside + 700)) pos.back().x = 0.95f;
+            vel.push_back(make_float3(x(rng), 0.f, 1.f));
+            fam.push_back(rng() % 4);
+        }
+        auto b = std::make_shared<DEMClumpBatch>(types, pos);
+        b->SetVel(vel);
+        b->SetFamily(fam);
+        sc.batches.push_back(b);
+    }
+    if (outside != SIZE_MAX) sc.domainSize.x = 1.92f;
+    return sc;
+}
+
+template <class V>
+void expectSameField(const V& a, const V& b, const char* what) {
+    ASSERT_EQ(a.size(), b.size()) << what;
+    EXPECT_TRUE(std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0) << what;
+}
+
+}  // namespace
+
+TEST(SceneAssembly, ParallelAssemblyIsTheSerialOneArrayForArray) {
+    const Scene sc = randomScene();
+    const ModelLayout layout{};
+    const int threads = cpuThreadCount();
+    setCpuThreadCount(1);
+    const SimState serial = assembleScene(sc, layout);
+    setCpuThreadCount(std::max(2, threads));
+    const SimState parallel = assembleScene(sc, layout);
+    setCpuThreadCount(threads);
+    ASSERT_EQ(serial.owners.size(), 6000u);
+    EXPECT_GT(serial.spheres.size(), 6000u);
+    forEachOwnerField(serial.owners, parallel.owners,
+                      [](const auto& a, const auto& b, FieldRole) { expectSameField(a, b, "owner field"); });
+    forEachSphereField(serial.spheres, parallel.spheres,
+                       [](const auto& a, const auto& b, FieldRole) { expectSameField(a, b, "sphere field"); });
+    expectSameField(serial.ownerUserToInternal, parallel.ownerUserToInternal, "ownerUserToInternal");
+    expectSameField(serial.ownerInternalToUser, parallel.ownerInternalToUser, "ownerInternalToUser");
+    expectSameField(serial.sphereUserToInternal, parallel.sphereUserToInternal, "sphereUserToInternal");
+    expectSameField(serial.sphereInternalToUser, parallel.sphereInternalToUser, "sphereInternalToUser");
+    expectSameField(serial.ownerSphereStart, parallel.ownerSphereStart, "ownerSphereStart");
+    // Neighbours in memory are neighbours in space: not the user order.
+    size_t inUserOrder = 0;
+    for (size_t k = 0; k < serial.ownerInternalToUser.size(); k++) inUserOrder += serial.ownerInternalToUser[k] == k;
+    EXPECT_LT(inUserOrder, 100u);
+}
+
+TEST(SceneAssembly, TheFirstClumpOutsideTheDomainIsNamed) {
+    const Scene sc = randomScene(4100);  // clumps 4100 and 4800 (the second batch's 1100th and 1800th)
+    const std::string msg = demeErrorMessage([&] { assembleScene(sc, ModelLayout{}); });
+    EXPECT_NE(msg.find("Initialize"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("clump 4100 at (0.95"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("outside the simulation domain"), std::string::npos) << msg;
+}
