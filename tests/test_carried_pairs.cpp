@@ -213,6 +213,7 @@ size_t differing(const std::vector<float3>& a, const std::vector<float3>& b) {
 DEME_BACKEND_TEST_SUITE(CarriedPairsRuns);
 
 DEME_BACKEND_TEST(CarriedPairsRuns, ARefusedInstallationLeavesARunThatGoesOnAsWithTheWholeSet) {
+    const ScopedEnvironmentVariable large("DEME_SMALL_CONTACT_SET_BYTES", "0");  // the GPU trims this small set too
     const std::vector<std::vector<float3>> trimmed =
         runWithARefusedInstallation((scratchDir() / "trimmed.ckpt").string(), onGpu());
     std::vector<std::vector<float3>> whole;
@@ -226,14 +227,14 @@ DEME_BACKEND_TEST(CarriedPairsRuns, ARefusedInstallationLeavesARunThatGoesOnAsWi
 }
 
 // Between synchronous detections a GPU run holds no outbox (the id arrays a detection fills, which
-// an installation leaves holding the old set's pairs) where it is large: DEME_KEEP_OUTBOX_UP_TO sets
-// the bound in bytes (0: every outbox goes). The contacts group then holds less, and the run is the
+// an installation leaves holding the old set's pairs) where it is large: DEME_SMALL_CONTACT_SET_BYTES
+// sets the bound in bytes (0: every outbox goes). The contacts group then holds less, and the run is the
 // same bit for bit. The CPU has no outbox: the same bytes.
 DEME_BACKEND_TEST(CarriedPairsRuns, SynchronousRunsLetALargeOutboxGo) {
     // The whole set kept before each detection: otherwise the outbox holds the trimmed set's pairs.
     const ScopedEnvironmentVariable whole("DEME_KEEP_WHOLE_SET", "1");
     auto run = [&](const char* keepUpTo, size_t& contactBytes) {
-        const ScopedEnvironmentVariable keep("DEME_KEEP_OUTBOX_UP_TO", keepUpTo);
+        const ScopedEnvironmentVariable keep("DEME_SMALL_CONTACT_SET_BYTES", keepUpTo);
         DriftingLattice b;
         b.sim.DoDynamics(200 * DT);
         const MemoryStats m = b.sim.GetMemoryStats();
@@ -254,6 +255,7 @@ DEME_BACKEND_TEST(CarriedPairsRuns, SynchronousRunsLetALargeOutboxGo) {
 // share the whole set had (a pooled history, not a dense one). A run whose sets keep their size goes
 // on under a limit a little above what it holds.
 DEME_BACKEND_TEST(CarriedPairsRuns, ChecksAfterATrimCountTheWholeSetsShare) {
+    const ScopedEnvironmentVariable large("DEME_SMALL_CONTACT_SET_BYTES", "0");  // the GPU trims this small set too
     // (Every set pooled on the GPU, whose automatic choice keeps small sets dense; the CPU's own
     // choice, which pools sets whose pairs are mostly apart.)
     const ScopedEnvironmentVariable pooled("DEME_POOLED_HISTORY", "1");

@@ -21,6 +21,7 @@
 #include "physics/BuiltInForceModels.h"
 #include "state/HistoryPoolExpand.h"
 #include "state/StateView.h"
+#include "state/StateViewScalars.h"
 
 using namespace deme;
 
@@ -83,14 +84,7 @@ StateView hostView(SimState& s) {
     forEachContactField(v.contacts, s.contacts, p);
     forEachCacheField(v.cache, s.cache, p);
     forEachScratchField(v.integrationScratch, s.integrationScratch, p);
-    v.frame = s.frame;
-    v.domainSize = s.domainSize;
-    v.numWildcards = s.numWildcards;
-    v.spheresAreOwners = s.spheresAreOwners;
-    v.numOwners = (uint32_t)s.owners.size();
-    v.numSpheres = (uint32_t)s.spheres.size();
-    v.numAnalytical = (uint32_t)s.analytical.size();
-    v.numTriangles = (uint32_t)s.triangles.size();
+    setViewScalars(v, s);
     v.numContacts = (uint32_t)s.contacts.size();
     return v;
 }

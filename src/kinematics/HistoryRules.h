@@ -145,10 +145,12 @@ DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const 
 template <class S>
 DEME_HD_INLINE bool pairKeepsHistorySlot(const S& s, const ContactKeys& fresh, unsigned int i, const float* h,
                                          unsigned int W) {
-    if (contactTypeOf(s, fresh.geomB[i]) == SPHERE_TRIANGLE) return true;
-    for (unsigned int w = 0; w < W; w++)
-        if (!isPositiveZero(h[w])) return true;
-    return false;
+    return contactTypeOf(s, fresh.geomB[i]) == SPHERE_TRIANGLE || pairCarriesHistory(h, W, 0, 0);
+}
+
+// The W floats `h` into slot k of a pool of W floats per slot.
+DEME_HD_INLINE void putInPool(float* pool, uint32_t k, const float* h, unsigned int W) {
+    for (unsigned int w = 0; w < W; w++) pool[(size_t)k * W + w] = h[w];
 }
 
 // 2. Both: the history of pair i of the new set.

@@ -182,6 +182,8 @@ class DynamicsBackend {
     // hand something to the next set): if the installation fails, the run detects afresh before
     // its next step, and a checkpoint holds no set to go on with.
     virtual bool beforeDetectNow() { return false; }
+    // Whether beforeDetectNow may trim a set of `pairs` pairs (the GPU leaves small sets whole).
+    virtual bool trimsBeforeDetection(size_t /*pairs*/) const { return true; }
     virtual size_t numContacts() const = 0;
     // Checkpoint and restart. contactSetResumable: whether the set in use could serve a restart (a
     // checkpoint then holds it, with the owners' travel since its snapshot in the state).

@@ -9,6 +9,7 @@
 
 #include "parallel/Parallel.h"
 #include "dynamics/ContactStep.h"
+#include "kinematics/HistoryRules.h"
 #include "state/SimState.h"
 
 namespace deme {
@@ -25,10 +26,7 @@ bool poolsHistory(size_t pairs, size_t withHistory);
 // a slot reads back exactly what the dense form holds). Sphere-triangle pairs always keep a slot:
 // the mesh rule hands history between them during the steps (dynamics/MeshContactRule.h).
 inline bool pairNeedsHistorySlot(uint8_t type, const float* h, unsigned int W) {
-    if (type == SPHERE_TRIANGLE) return true;
-    for (unsigned int w = 0; w < W; w++)
-        if (!isPositiveZero(h[w])) return true;
-    return false;
+    return type == SPHERE_TRIANGLE || pairCarriesHistory(h, W, 0, 0);
 }
 
 // A bit per pair, set where keep(i): the pool's ranked slots (state/PooledHistory.h). Made a word

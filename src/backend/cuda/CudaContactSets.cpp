@@ -45,6 +45,7 @@ double CudaDynamics::maxTravelSinceOrder() {
 // pairs) are let go first: nothing reads them before the installation replaces them. The share of
 // its pairs with a slot is kept for the memory check before that installation.
 bool CudaDynamics::beforeDetectNow() {
+    if (!trimsBeforeDetection(m_numContacts)) return m_setTrimmed;
     select();
     unsigned int n = m_numContacts;
     const auto releaseForces = [this] {
@@ -130,8 +131,8 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     std::swap(out.geomB, old.geomB);
     // Where detection is synchronous, nobody writes the outbox before the next detection, which
     // sizes it anew: a large one is let go (8 B a pair between installations; a small one is kept,
-    // as allocating it at every detection would slow a lab-scale run).
-    if (!m_asyncDetection && out.geomA.capacity() * sizeof(bodyID_t) > m_keepOutboxUpTo) {
+    // m_smallSetBytes).
+    if (!m_asyncDetection && out.geomA.capacity() * sizeof(bodyID_t) > m_smallSetBytes) {
         out.geomA.release();
         out.geomB.release();
     }

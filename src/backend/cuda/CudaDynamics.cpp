@@ -7,6 +7,7 @@
 
 #include "backend/cuda/CudaCheck.h"
 #include "backend/cuda/Device.h"
+#include "state/StateViewScalars.h"
 
 namespace deme::cuda {
 
@@ -54,19 +55,12 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
     m_history.uploadRules(s.wildcards.contactInit);
     synchronize(nullptr);
 
-    m_view.frame = s.frame;
+    setViewScalars(m_view, s);
     // A sheared cell's image offset follows the steps' clock in the control block (every replayed step
     // reads it there; physics/Periodic.h). Other scenes never read it.
     if (s.frame.periodic.shear)
         m_view.frame.periodic.shearClock = reinterpret_cast<const double*>(
             reinterpret_cast<const char*>(m_control.data()) + offsetof(StepBatchControl, time));
-    m_view.domainSize = s.domainSize;
-    m_view.numWildcards = s.numWildcards;
-    m_view.spheresAreOwners = s.spheresAreOwners;
-    m_view.numOwners = (uint32_t)s.owners.size();
-    m_view.numSpheres = (uint32_t)s.spheres.size();
-    m_view.numAnalytical = (uint32_t)s.analytical.size();
-    m_view.numTriangles = (uint32_t)s.triangles.size();
     m_numClumps = (uint32_t)s.numClumps;
     m_numAnalyticalOwners = (uint32_t)s.numAnalyticalOwners;
     m_domainDiagonal = length(s.domainSize);

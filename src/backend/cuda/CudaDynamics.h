@@ -55,6 +55,7 @@ class CudaDynamics : public DynamicsBackend {
     double maxTravelSinceOrder() override;
     void install(const DetectionReport& report, TimingStats& timing) override;
     bool beforeDetectNow() override;
+    bool trimsBeforeDetection(size_t pairs) const override { return pairs * sizeof(bodyID_t) > m_smallSetBytes; }
     size_t numContacts() const override { return m_numContacts; }
     // Checkpoint and restart (CudaCheckpoint.cpp).
     bool contactSetResumable() const override;
@@ -162,9 +163,12 @@ class CudaDynamics : public DynamicsBackend {
     bool m_setTrimmed = false;
     uint32_t m_pairsForSlotShare = 0;  // the set's pairs before any trim (expectedHistorySlots)
     bool m_asyncDetection = true;  // the call's detection mode (beginRun): the outbox is kept where it is
-    // The largest outbox (bytes of one id array) kept between synchronous detections:
-    // KEEP_REBUILT_ARRAYS_UP_TO, or DEME_KEEP_OUTBOX_UP_TO (bytes; tests).
-    size_t m_keepOutboxUpTo = KEEP_REBUILT_ARRAYS_UP_TO;
+    // A contact set whose id arrays take at most this many bytes each is kept whole before a
+    // synchronous detection, and its outbox kept between detections: there the memory does not
+    // count, and a lab-scale run that detects thousands of times a second would pay for the trim's
+    // round trip and for allocating the outbox anew. KEEP_REBUILT_ARRAYS_UP_TO, or
+    // DEME_SMALL_CONTACT_SET_BYTES (bytes; 0 treats every set as large: tests).
+    size_t m_smallSetBytes = KEEP_REBUILT_ARRAYS_UP_TO;
     // Each set's pooled history (DeviceHistoryPool.h), the pool's counters (on the device and as
     // last read back) and the rule that chooses the form.
     DeviceHistoryPool m_pools[2];

@@ -99,8 +99,7 @@ extern "C" __global__ void deme_map_history_pooled(StateView s, ContactKeys fres
         slots[i] = NO_HISTORY_SLOT;
         return;
     }
-    const uint32_t k = slots[i];
-    for (unsigned int w = 0; w < old.W; w++) pool[(size_t)k * old.W + w] = h[w];
+    putInPool(pool, slots[i], h, old.W);
 }
 
 // Pooled form, from the old set's side, 1: marks[i] = 1 for the new set's sphere-triangle pairs,
@@ -117,10 +116,7 @@ extern "C" __global__ void deme_mark_carried_pairs(ContactKeys fresh, OldContact
     const size_t j = globalIndex();
     if (j >= old.keys.n) return;
     const float* h = oldPairHistory(old, (unsigned int)j);
-    if (!h) return;
-    bool any = false;
-    for (unsigned int w = 0; w < old.W; w++) any = any || !isPositiveZero(h[w]);
-    if (!any) return;
+    if (!h || !pairCarriesHistory(h, old.W, 0, 0)) return;
     const uint64_t key = pairKey(old.keys.geomA[j], old.keys.geomB[j]);
     const unsigned int at = keyLowerBound(fresh, key);
     if (keyAt(fresh, at, key)) marks[at] = 1u;
@@ -143,8 +139,7 @@ extern "C" __global__ void deme_map_marked_history(StateView s, ContactKeys fres
     }
     float h[MAX_POOLED_HISTORY];
     carryPairHistory(s, fresh, old, i, h, meshState[i], freshPersistent[i]);
-    const uint32_t k = slots[i];
-    for (unsigned int w = 0; w < old.W; w++) pool[(size_t)k * old.W + w] = h[w];
+    putInPool(pool, slots[i], h, old.W);
 }
 
 // Before a synchronous detection, 1: keep[j] = 1 where pair j of the set in use (`set`, its keys,
