@@ -126,6 +126,9 @@ class KinematicsBackend {
     virtual void detectNow(const DetectionOrder& order, DetectionReport& report) = 0;
     // Whether detection takes its time from the dynamics side's device (n_max then weighs its cost).
     virtual bool sharesDynamicsDevice() const = 0;
+    // Whether a synchronous detection (detectNow) reads the dynamics side's state where it is, with no
+    // snapshot copied: then a run that detects only so holds none (the memory estimate counts so).
+    virtual bool detectsInPlace() const { return true; }
     // Whether a detection of `spheres` spheres may bin them by their centres where the rule allows
     // (kinematics/DetectionRules.h, centreReachFor): the memory estimate counts its bins so.
     virtual bool mayBinSpheresByCentre(size_t /*spheres*/) const { return true; }

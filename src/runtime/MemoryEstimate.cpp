@@ -83,7 +83,8 @@ std::string gib(size_t bytes) {
 
 }  // namespace
 
-MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre, size_t pairs,
+MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre,
+                                 bool snapshotKept, size_t pairs,
                                  const std::function<ContactSetForm(size_t)>& formFor) {
     MemoryEstimate e;
     const size_t nO = s.owners.size(), nS = s.spheres.size();
@@ -124,14 +125,18 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     const bool byCentre = mayBinByCentre && centreReachFor(grid, (double)largest) > 0.0;
     if (onGpu) {
         contacts = contactSetBytes(s, true, e.pairs, e.form);
-        // kT's snapshot (sphere centres, owner families), pair offsets; the bins' entries (an item
-        // id each) and starts, from the counting sort (backend/cuda/CudaKinematics.cpp,
+        // kT's snapshot (sphere centres, owner families) where it keeps one, pair offsets; the bins'
+        // entries (an item id each) and starts, from the counting sort (backend/cuda/CudaKinematics.cpp,
         // Work::detect; the bins an item covers are computed from its box, not stored). (kT on a
         // second GPU also copies the spheres' owners and radii there, 8 B per sphere not counted.)
-        detection = nS * (24 + 4) + nO + (size_t)(4.0 * (byCentre ? (double)nS : entries)) + 4 * (bins + 1);
+        // A detection holds them while it runs, so they count, whether or not it lets them go after.
+        detection = (snapshotKept ? nS * 24 + nO : 0) + nS * 4 + (size_t)(4.0 * (byCentre ? (double)nS : entries)) +
+                    4 * (bins + 1);
         // Triangles, where there are any: their global boxes (2 double3), entries and their own
         // bins' starts.
         if (nT) detection += nT * 48 + (size_t)(4.0 * triEntries) + 4 * (bins + 1);
+        // The snapshot's triangle vertices and analytical components.
+        if (snapshotKept) detection += nT * 72 + s.analytical.size() * 48;
         // The table of a batch's prescriptions (a row of families per step, CudaStepBatch.cpp). (The
         // active box's step lists, 16-24 B per owner, exist only while some owner is fixed at rest:
         // CudaStepSubset.cpp; not counted.)

@@ -54,11 +54,15 @@ struct MemoryEstimate {
 };
 
 // onGpu: the CUDA backend's device buffers (two contact sets, history mapping's scratch, detection's
-// sorted bin entries); otherwise the CPU backend's host arrays. pairs: the contact set's size, or
-// ESTIMATED_PAIRS_PER_SPHERE per sphere where 0. formFor: the form of a first set of that many pairs
-// (its history's from DynamicsBackend::expectedHistorySlots; dense and untrimmed where empty).
+// sorted bin entries); otherwise the CPU backend's host arrays. snapshotKept: the GPU's detection
+// keeps a snapshot of what moves (asynchronous detection, or kT on a second GPU; not where a
+// synchronous detection reads the state in place, KinematicsBackend::detectsInPlace). pairs: the
+// contact set's size, or ESTIMATED_PAIRS_PER_SPHERE per sphere where 0. formFor: the form of a
+// first set of that many pairs (its history's from DynamicsBackend::expectedHistorySlots; dense and
+// untrimmed where empty).
 MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre,
-                                 size_t pairs = 0, const std::function<ContactSetForm(size_t)>& formFor = {});
+                                 bool snapshotKept = true, size_t pairs = 0,
+                                 const std::function<ContactSetForm(size_t)>& formFor = {});
 
 // Throws a deme::Error from `call` when the estimate exceeds `available` bytes (0: not known, no
 // check) of `where` ("GPU 0 (NVIDIA H200)", "host memory"), naming both and the groups. `available`

@@ -134,6 +134,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
         releaseVector(t.geomA);
         releaseVector(t.runs);
     }
+    releaseVector(m_threadOut);  // each thread's (now empty) lists: only while a detection runs
     m_lastPairs = total;
     if (dormant) sortPairs(out);
     searchSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();

@@ -3,10 +3,15 @@
 #include <deme/Error.h>
 
 #include "parallel/Parallel.h"
+#include "runtime/RebuiltArrays.h"
 
 namespace deme {
 
-CpuKinematics::CpuKinematics(const SimState& live, int threads) : m_live(live), m_threads(threads) {}
+CpuKinematics::CpuKinematics(const SimState& live, int threads) : m_live(live), m_threads(threads) {
+    const size_t keep = keepRebuiltArraysUpTo("Initialize");
+    m_detector.keepBinsUpTo(keep);
+    m_workDetector.keepBinsUpTo(keep);
+}
 
 CpuKinematics::~CpuKinematics() {
     m_mailbox.stop();

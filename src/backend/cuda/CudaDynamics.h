@@ -166,8 +166,7 @@ class CudaDynamics : public DynamicsBackend {
     // A contact set whose id arrays take at most this many bytes each is kept whole before a
     // synchronous detection, and its outbox kept between detections: there the memory does not
     // count, and a lab-scale run that detects thousands of times a second would pay for the trim's
-    // round trip and for allocating the outbox anew. KEEP_REBUILT_ARRAYS_UP_TO, or
-    // DEME_SMALL_CONTACT_SET_BYTES (bytes; 0 treats every set as large: tests).
+    // round trip and for allocating the outbox anew (runtime/RebuiltArrays.h).
     size_t m_smallSetBytes = KEEP_REBUILT_ARRAYS_UP_TO;
     // Each set's pooled history (DeviceHistoryPool.h), the pool's counters (on the device and as
     // last read back) and the rule that chooses the form.

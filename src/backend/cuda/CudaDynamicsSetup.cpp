@@ -10,19 +10,14 @@
 #include "backend/cuda/EmbeddedKernel.h"
 #include "backend/cuda/NvrtcCompiler.h"
 #include "codegen/FamilyMotionSource.h"
+#include "runtime/RebuiltArrays.h"
 
 namespace deme::cuda {
 
 CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(device) {
     compileKernels(model);
     if (const char* p = std::getenv("DEME_CUDA_PROFILE_FROM_STEP")) m_profileFromStep = std::strtoull(p, nullptr, 10);
-    if (const char* p = std::getenv("DEME_SMALL_CONTACT_SET_BYTES")) {
-        char* end = nullptr;
-        m_smallSetBytes = std::strtoull(p, &end, 10);
-        if (end == p || *end != '\0')
-            throwError("Initialize",
-                       std::string("DEME_SMALL_CONTACT_SET_BYTES is \"") + p + "\", not a number of bytes");
-    }
+    m_smallSetBytes = keepRebuiltArraysUpTo("Initialize");
     m_useGraphs = stepGraphsEnabled();
     m_overlapLaunches = overlappedLaunchesEnabled() && useDevice("Initialize", m_device).major >= 9;
     m_fusedStep = fusedStepEnabled();

@@ -16,6 +16,7 @@
 #include "backend/cuda/EmbeddedKernel.h"
 #include "backend/cuda/NvrtcCompiler.h"
 #include "kinematics/DetectionRules.h"
+#include "runtime/RebuiltArrays.h"
 #include "state/StateView.h"
 
 namespace deme::cuda {
@@ -98,8 +99,12 @@ struct CudaKinematics::Work {
     }
     void upload(const Geometry& g);
     unsigned int readCount(const DeviceBuffer<unsigned int>& offsets, size_t at);
-    void detect(const DetectionOrder& o, void* submitted, KinematicsInbox& in, KinematicsOutbox& out,
-                DetectionReport& r);
+    // inPlace: reads dT's state (shared), not the inbox, and lets go of the scratch at the end
+    // where it holds more than keepScratchUpTo bytes.
+    void detect(const DetectionOrder& o, bool inPlace, size_t keepScratchUpTo, void* submitted, KinematicsInbox& in,
+                KinematicsOutbox& out, DetectionReport& r);
+    size_t scratchBytes() const;
+    void releaseScratch();
 };
 
 void CudaKinematics::Work::upload(const Geometry& g) {
@@ -145,14 +150,42 @@ unsigned int CudaKinematics::Work::readCount(const DeviceBuffer<unsigned int>& o
     return n;
 }
 
+// What a detection keeps from one to the next that the next rebuilds anyway.
+size_t CudaKinematics::Work::scratchBytes() const {
+    return sphereBins.start.capacityBytes() + sphereBins.items.capacityBytes() + triBins.start.capacityBytes() +
+           triBins.items.capacityBytes() + triLo.capacityBytes() + triHi.capacityBytes() + pairOffset.capacityBytes() +
+           wideCursor.capacityBytes() + laneCursor.capacityBytes() + prim.scratchBytes();
+}
+
+void CudaKinematics::Work::releaseScratch() {
+    sphereBins.start.release();
+    sphereBins.items.release();
+    triBins.start.release();
+    triBins.items.release();
+    triLo.release();
+    triHi.release();
+    pairOffset.release();
+    wideCursor.release();
+    laneCursor.release();
+    prim.releaseScratch();
+}
+
 // The rules of kinematics/DetectionRules.h in kernels (kernels/Detection.cu), bins sorted with CUB.
-void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, KinematicsInbox& in, KinematicsOutbox& out,
-                                  DetectionReport& r) {
+void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t keepScratchUpTo, void* submitted,
+                                  KinematicsInbox& in, KinematicsOutbox& out, DetectionReport& r) {
     const double t0 = now();
-    // The snapshot is complete once dT's stream has passed the event (an event of another GPU is
-    // fine for cudaStreamWaitEvent).
+    // The snapshot is complete (in place: dT's steps have finished) once dT's stream has passed the
+    // event (an event of another GPU is fine for cudaStreamWaitEvent).
     DEME_CUDA_CHECK(CALL, cudaStreamWaitEvent(toCuda(stream), static_cast<cudaEvent_t>(submitted), 0));
     KinematicsInbox& src = staged ? localIn : in;
+    // What moves, from the snapshot or (in place) from dT's state: the spheres' centres are their
+    // owners' where spheres are owners (state/SphereLayout.h).
+    const DeviceBuffer<double3>& centres =
+        !inPlace ? src.spherePos : spheresAreOwners ? shared->cache.ownerPos : shared->cache.spherePos;
+    const DeviceBuffer<double3>& triVert = inPlace ? shared->cache.triVert : src.triVert;
+    const DeviceBuffer<double3>& analPos = inPlace ? shared->cache.analPos : src.analPos;
+    const DeviceBuffer<double3>& analDir = inPlace ? shared->cache.analDir : src.analDir;
+    const DeviceBuffer<family_t>& ownerFamily = inPlace ? shared->owners.family : src.ownerFamily;
     if (staged) {
         localIn.spherePos.copyFromAsync(in.spherePos, numSpheres, stream);
         localIn.triVert.copyFromAsync(in.triVert, 3 * (size_t)numTriangles, stream);
@@ -165,7 +198,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     v.frame = frame;
     v.frame.periodic.shearTime = o.shearTime;  // a sheared cell's image offset: the snapshot's
     v.frame.periodic.shearClock = nullptr;
-    v.owners.family = src.ownerFamily.data();
+    v.owners.family = const_cast<family_t*>(ownerFamily.data());
     // (The view's pointers are writable; detection only reads them.)
     v.spheres.owner = staged ? sphereOwner.data() : const_cast<bodyID_t*>(shared->spheres.owner.data());
     v.spheres.radius = staged ? radius.data() : const_cast<float*>(shared->spheres.radius.data());
@@ -174,14 +207,14 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     v.analytical.radius = anaRadius.data();
     v.analytical.inside = anaInside.data();
     v.triangles.owner = triOwner.data();
-    v.cache.spherePos = src.spherePos.data();
+    v.cache.spherePos = const_cast<double3*>(centres.data());
     // Where spheres are their owners the snapshot's centres are the owners' positions, and sphere i's
     // owner is i: the state keeps no owners to read (state/SphereLayout.h).
     v.spheresAreOwners = spheresAreOwners;
-    v.cache.ownerPos = src.spherePos.data();
-    v.cache.analPos = src.analPos.data();
-    v.cache.analDir = src.analDir.data();
-    v.cache.triVert = src.triVert.data();
+    v.cache.ownerPos = const_cast<double3*>(centres.data());
+    v.cache.analPos = const_cast<double3*>(analPos.data());
+    v.cache.analDir = const_cast<double3*>(analDir.data());
+    v.cache.triVert = const_cast<double3*>(triVert.data());
     v.numOwners = numOwners;
     v.numSpheres = numSpheres;
     v.numAnalytical = numAnalytical;
@@ -200,7 +233,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     // The active box: with dormant spheres registered, only the moving ones (`ids`) are binned and
     // searched, and find their dormant partners in the registry.
     const bool useDormant =
-        dormant.prepare(v, grid, src.ownerFamily, numOwners, familyMask.data(), familyExtraMargin.data(), prim, stream);
+        dormant.prepare(v, grid, ownerFamily, numOwners, familyMask.data(), familyExtraMargin.data(), prim, stream);
     const bodyID_t* ids = useDormant ? dormant.moving() : nullptr;  // null: every sphere
     const unsigned int nSearched = useDormant ? dormant.numMoving() : nS;
     const DormantBinsView dormantBins = useDormant ? dormant.view() : DormantBinsView{nullptr, nullptr, 0.0};
@@ -322,6 +355,9 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, void* submitted, Kine
     // Reported only once everything is in the outbox: dT reads it on its own stream, unordered
     // with this one.
     synchronize(stream);
+    // Between synchronous detections the steps hold the GPU alone: a large scene's bins and counts
+    // go (4 B per sphere each, and per bin), to be made again by the next detection.
+    if (inPlace && scratchBytes() > keepScratchUpTo) releaseScratch();
     r.searchSeconds = now() - t1;
     r.order = o;
     r.numPairs = total;
@@ -337,6 +373,7 @@ CudaKinematics::CudaKinematics(int kTDevice, int dTDevice, const DeviceState& so
     m_inbox.analPos.setGroup(MemoryGroup::DETECTION);
     m_inbox.analDir.setGroup(MemoryGroup::DETECTION);
     m_inbox.ownerFamily.setGroup(MemoryGroup::DETECTION);
+    m_keepScratchUpTo = keepRebuiltArraysUpTo("Initialize");
     // dT's GPU is current here: the event and the exchange buffers belong to it.
     cudaEvent_t event = nullptr;
     DEME_CUDA_CHECK("Initialize", cudaEventCreateWithFlags(&event, cudaEventDisableTiming));
@@ -404,37 +441,57 @@ void CudaKinematics::setGeometry(const SimState& s, const BinGrid& g, const Fami
     k.numAnalytical = (uint32_t)s.analytical.size();
     k.numTriangles = (uint32_t)s.triangles.size();
     m_geometryChanged = true;
-    // The inbox, on dT's GPU (current for this thread).
-    m_inbox.spherePos.resizeDiscarding(k.numSpheres);
-    m_inbox.triVert.resizeDiscarding(3 * (size_t)k.numTriangles);
-    m_inbox.analPos.resizeDiscarding(k.numAnalytical);
-    m_inbox.analDir.resizeDiscarding(k.numAnalytical);
-    m_inbox.ownerFamily.resizeDiscarding(k.numOwners);
 }
 
-void CudaKinematics::submit(const DetectionOrder& order) {
+void CudaKinematics::post(const DetectionOrder& order, bool inPlace) {
     if (!m_mailbox.idle()) throwError(CALL, "internal: a kinematics order was sent while another was in flight");
-    // The snapshot, copied on dT's stream; kT starts once the stream has passed the event.
     const Geometry& k = m_geometry;
-    // The spheres' centres (their owners' where spheres are owners, state/SphereLayout.h).
-    const DeviceBuffer<double3>& centres = k.spheresAreOwners ? m_source.cache.ownerPos : m_source.cache.spherePos;
-    m_inbox.spherePos.copyFromAsync(centres, k.numSpheres, m_dtStream);
-    m_inbox.triVert.copyFromAsync(m_source.cache.triVert, 3 * (size_t)k.numTriangles, m_dtStream);
-    m_inbox.analPos.copyFromAsync(m_source.cache.analPos, k.numAnalytical, m_dtStream);
-    m_inbox.analDir.copyFromAsync(m_source.cache.analDir, k.numAnalytical, m_dtStream);
-    m_inbox.ownerFamily.copyFromAsync(m_source.owners.family, k.numOwners, m_dtStream);
+    KinematicsInbox& in = m_inbox;
+    if (inPlace) {
+        // The inbox is not read: a large one (an asynchronous call's, before a switch) goes.
+        const size_t inboxBytes = in.spherePos.capacityBytes() + in.triVert.capacityBytes() +
+                                  in.analPos.capacityBytes() + in.analDir.capacityBytes() +
+                                  in.ownerFamily.capacityBytes();
+        if (inboxBytes > m_keepScratchUpTo) {
+            in.spherePos.release();
+            in.triVert.release();
+            in.analPos.release();
+            in.analDir.release();
+            in.ownerFamily.release();
+        }
+    } else {
+        // The snapshot, copied on dT's stream (dT's GPU is current for this thread) into the inbox,
+        // sized here: a run that only detects in place never holds one. The spheres' centres are
+        // their owners' where spheres are owners (state/SphereLayout.h).
+        const DeviceBuffer<double3>& centres = k.spheresAreOwners ? m_source.cache.ownerPos : m_source.cache.spherePos;
+        in.spherePos.resizeDiscarding(k.numSpheres);
+        in.triVert.resizeDiscarding(3 * (size_t)k.numTriangles);
+        in.analPos.resizeDiscarding(k.numAnalytical);
+        in.analDir.resizeDiscarding(k.numAnalytical);
+        in.ownerFamily.resizeDiscarding(k.numOwners);
+        in.spherePos.copyFromAsync(centres, k.numSpheres, m_dtStream);
+        in.triVert.copyFromAsync(m_source.cache.triVert, 3 * (size_t)k.numTriangles, m_dtStream);
+        in.analPos.copyFromAsync(m_source.cache.analPos, k.numAnalytical, m_dtStream);
+        in.analDir.copyFromAsync(m_source.cache.analDir, k.numAnalytical, m_dtStream);
+        in.ownerFamily.copyFromAsync(m_source.owners.family, k.numOwners, m_dtStream);
+    }
+    // kT starts once dT's stream has passed this point: the copies made, or the steps finished.
     DEME_CUDA_CHECK(CALL, cudaEventRecord(static_cast<cudaEvent_t>(m_submitted), toCuda(m_dtStream)));
-    Order o{order, m_geometryChanged};
+    Order o{order, m_geometryChanged, inPlace};
     m_geometryChanged = false;
     m_mailbox.post(o);
 }
+
+void CudaKinematics::submit(const DetectionOrder& order) { post(order, false); }
 
 bool CudaKinematics::tryTake(DetectionReport& report) { return m_mailbox.tryTake(report); }
 
 void CudaKinematics::waitAndTake(DetectionReport& report) { m_mailbox.waitAndTake(report); }
 
+// dT waits here, so nothing changes its state until the result is back: on one GPU kT reads it
+// where it is. (On a second GPU kT copies it over from the inbox, as for an asynchronous order.)
 void CudaKinematics::detectNow(const DetectionOrder& order, DetectionReport& report) {
-    submit(order);
+    post(order, m_kTDevice == m_dTDevice);
     waitAndTake(report);
 }
 
@@ -509,7 +566,7 @@ void CudaKinematics::run() {
         try {
             // m_geometry, the inbox and the outbox are kT's to read and write until it reports.
             if (order.geometryChanged) w->upload(m_geometry);
-            w->detect(order.order, m_submitted, m_inbox, m_outbox, report);
+            w->detect(order.order, order.inPlace, m_keepScratchUpTo, m_submitted, m_inbox, m_outbox, report);
             m_dormantRebuilds = w->dormant.rebuilds();
         } catch (...) {
             m_mailbox.fail(std::current_exception());

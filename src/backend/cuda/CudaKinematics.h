@@ -11,7 +11,10 @@
 // sorted entries, per-sphere counts). On a second GPU, kT copies the snapshot to its own memory in
 // one transfer (peer to peer where the GPUs allow it) because the pair search reads each position
 // many times at random, and copies the contact list back in one transfer; on one GPU it reads the
-// inbox and writes the outbox in place.
+// inbox and writes the outbox in place. A synchronous detection on one GPU (detectNow) takes no
+// snapshot: dT waits for it, so its state stands still, and kT reads it where it is. A run that
+// only detects so never holds an inbox, and lets go of large scratch after each detection
+// (docs/memory.md).
 //
 // Buffer ownership: dT writes the inbox only while kT is idle; kT writes the outbox only between
 // taking an order and reporting its result, and dT reads it only after taking that result. kT
@@ -68,6 +71,7 @@ class CudaKinematics : public KinematicsBackend {
     void waitAndTake(DetectionReport& report) override;
     void detectNow(const DetectionOrder& order, DetectionReport& report) override;
     bool sharesDynamicsDevice() const override { return m_kTDevice == m_dTDevice; }
+    bool detectsInPlace() const override { return m_kTDevice == m_dTDevice; }
     bool mayBinSpheresByCentre(size_t spheres) const override;
 
     // The outbox, for dT after it took a result and before it submits the next order.
@@ -101,10 +105,15 @@ class CudaKinematics : public KinematicsBackend {
     struct Order {
         DetectionOrder order;
         bool geometryChanged = false;  // kT copies m_geometry to its GPU first
+        // A synchronous detection on dT's GPU: kT reads dT's state (m_source) instead of the inbox,
+        // and lets go of its scratch at the end where that is large (m_keepScratchUpTo).
+        bool inPlace = false;
     };
     using Mailbox = WorkerMailbox<Order, DetectionReport>;
 
     void run();
+    // Sends an order: with the snapshot copied into the inbox, or (inPlace) none.
+    void post(const DetectionOrder& order, bool inPlace);
 
     const int m_kTDevice, m_dTDevice;
     const DeviceState& m_source;
@@ -123,6 +132,9 @@ class CudaKinematics : public KinematicsBackend {
 
     Geometry m_geometry;  // written by dT only while kT is idle
     bool m_geometryChanged = false;
+    // Detection's arrays rebuilt each time (the inbox, the bins, the per-sphere counts) are kept
+    // between synchronous detections up to this many bytes (keepRebuiltArraysUpTo).
+    size_t m_keepScratchUpTo = 0;
 
     // Exchange buffers, on dT's GPU.
     KinematicsInbox m_inbox;

@@ -114,6 +114,7 @@ class DeviceBuffer {
     const T* data() const { return static_cast<const T*>(raw_.data()); }
     size_t size() const { return size_; }
     size_t capacity() const { return raw_.capacityBytes() / sizeof(T); }
+    size_t capacityBytes() const { return raw_.capacityBytes(); }  // the memory held
     size_t bytes() const { return size_ * sizeof(T); }
     bool empty() const { return size_ == 0; }
 

@@ -39,6 +39,8 @@ class DevicePrimitives {
 
     // Scratch memory held now.
     size_t scratchBytes() const { return scratch_.capacityBytes(); }
+    // Lets the scratch go (the next call allocates what it needs).
+    void releaseScratch() { scratch_.release(); }
 
   private:
     RawDeviceBuffer scratch_;
