@@ -274,14 +274,22 @@ DEME_BACKEND_TEST(CarriedPairsRuns, SynchronousRunsLetLargeDetectionScratchGo) {
     EXPECT_GT(kept, 64 * 2 * sizeof(uint32_t));  // the bins' entries and starts at least
     EXPECT_EQ(released, 0u);
 
+    // And the owners' travel at an asynchronous order (4 B each), which a synchronous set's
+    // installation does not need (it counts from zero).
     const ScopedEnvironmentVariable keep("DEME_SMALL_CONTACT_SET_BYTES", "0");
     DriftingLattice switched;
     switched.sim.SetSynchronousContactDetection(false);
     switched.sim.DoDynamics(200 * DT);
+    const size_t ownersAsync = switched.sim.GetMemoryStats().device(MemoryGroup::OWNER_STATE);
     if (onGpu()) EXPECT_GE(detectionBytes(switched.sim), switched.n * sizeof(double3));  // the snapshot
     switched.sim.SetSynchronousContactDetection(true);
     switched.sim.DoDynamics(200 * DT);
-    if (onGpu()) EXPECT_EQ(detectionBytes(switched.sim), 0u);
+    if (onGpu()) {
+        EXPECT_EQ(detectionBytes(switched.sim), 0u);
+        const size_t freed = ownersAsync - switched.sim.GetMemoryStats().device(MemoryGroup::OWNER_STATE);
+        EXPECT_GE(freed, switched.n * sizeof(float));         // every grain's ...
+        EXPECT_LE(freed, (switched.n + 8) * sizeof(float));  // ... and the walls' owner
+    }
 }
 
 // The memory check before each installation counts the new set in the form it will take: after a

@@ -101,7 +101,8 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     forEachScratchField(s.integrationScratch, s.integrationScratch, [&](const auto& v, const auto&, FieldRole) {
         owner += nO * elementBytes(v);
     });
-    owner += sizeof(float) * nO;  // each owner's travel at an order's snapshot (the CPU's while one is in flight)
+    // Each owner's travel at an asynchronous order's snapshot (while one is in flight).
+    if (snapshotKept) owner += sizeof(float) * nO;
     forEachSphereField(s.spheres, s.spheres, geometrySum);
     forEachAnalyticalField(s.analytical, s.analytical, geometrySum);
     forEachTriangleField(s.triangles, s.triangles, geometrySum);

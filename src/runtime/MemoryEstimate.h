@@ -54,9 +54,10 @@ struct MemoryEstimate {
 };
 
 // onGpu: the CUDA backend's device buffers (two contact sets, history mapping's scratch, detection's
-// sorted bin entries); otherwise the CPU backend's host arrays. snapshotKept: the GPU's detection
-// keeps a snapshot of what moves (asynchronous detection, or kT on a second GPU; not where a
-// synchronous detection reads the state in place, KinematicsBackend::detectsInPlace). pairs: the
+// sorted bin entries); otherwise the CPU backend's host arrays. snapshotKept: detection keeps a
+// snapshot (asynchronous detection, or the GPU's kT on a second GPU; not where a synchronous
+// detection reads the state in place, KinematicsBackend::detectsInPlace): each owner's travel at the
+// order, and on the GPU what moves. pairs: the
 // contact set's size, or ESTIMATED_PAIRS_PER_SPHERE per sphere where 0. formFor: the form of a
 // first set of that many pairs (its history's from DynamicsBackend::expectedHistorySlots; dense and
 // untrimmed where empty).

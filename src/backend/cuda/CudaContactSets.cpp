@@ -18,10 +18,19 @@ double now() { return std::chrono::duration<double>(std::chrono::steady_clock::n
 
 }  // namespace
 
-void CudaDynamics::markOrderBaseline(bool /*installedBeforeNextStep: the copy is on the device*/) {
+void CudaDynamics::markOrderBaseline(bool installedBeforeNextStep) {
     select();
+    // A synchronous detection's set is installed before any step: its snapshot is the travel then,
+    // which the installation sets to zero, and no copy (4 B per owner) is held; a large one left
+    // from an asynchronous order goes (as the CPU's).
+    m_orderAtInstall = installedBeforeNextStep;
+    if (m_orderAtInstall) {
+        if (m_orderBaseline.capacityBytes() > m_smallSetBytes) m_orderBaseline.release();
+        return;
+    }
     // The owners' travel now: the set an order sent now yields serves while nobody travels its margin
     // beyond it.
+    m_orderBaseline.resizeDiscarding(m_view.numOwners);
     if (m_view.numOwners) m_orderBaseline.copyFromAsync(m_state.owners.travel, m_view.numOwners, m_stream);
 }
 
@@ -149,9 +158,13 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
         resetHistoryPoolControl(slotsUsed);
     }
     refreshView();
-    // The set's snapshot is the order's: travel counts from there.
-    launch(kTravelSinceOrder, blocksFor(m_view.numOwners, THREADS), THREADS, 0, m_stream,
-           (float*)m_state.owners.travel.data(), (const float*)m_orderBaseline.data(), m_view.numOwners);
+    // The set's snapshot is the order's: travel counts from there (a synchronous order's is now).
+    if (m_orderAtInstall)
+        m_state.owners.travel.zeroAsync(m_stream);
+    else
+        launch(kTravelSinceOrder, blocksFor(m_view.numOwners, THREADS), THREADS, 0, m_stream,
+               (float*)m_state.owners.travel.data(), (const float*)m_orderBaseline.data(), m_view.numOwners);
+    m_orderAtInstall = false;
     // The owners whose loads a step clears follow the set's contacts. Which owners are stepped does
     // not change with a set (only uploads and family changes, which flag m_subsetStale themselves).
     m_loadOwnersStale = true;

@@ -23,7 +23,6 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
     select();
     const Stream st = m_stream;
     m_state.upload(s, st);
-    m_orderBaseline.resizeDiscarding(s.owners.size());
     if (withContacts) {
         // The contact set the host has (history included).
         returnForceMemory();  // both sets' arrays are rewritten or released here

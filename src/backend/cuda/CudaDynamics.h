@@ -177,7 +177,8 @@ class CudaDynamics : public DynamicsBackend {
     unsigned long long m_installs = 0, m_pooledInstalls = 0, m_historyPauses = 0;  // for launchReport()
     // Owners' travel (since the set in use's snapshot: the state's) at the snapshot of the order in
     // flight.
-    DeviceBuffer<float> m_orderBaseline;
+    DeviceBuffer<float> m_orderBaseline;  // sized by an asynchronous order only
+    bool m_orderAtInstall = false;        // the set to be installed is a synchronous detection's
     DeviceBuffer<FamilyStepMotion> m_motion;
     DeviceBuffer<StepReduction> m_reduction;
     DeviceBuffer<unsigned long long> m_maxTravelBits;
