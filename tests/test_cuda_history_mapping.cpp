@@ -216,7 +216,7 @@ TEST(CudaHistoryMapping, PairsHandedOnAreThoseTheCpuKeeps) {
     for (int round = 0; round < 100; round++) {
         SCOPED_TRACE(round);
         const deme_test::ScopedEnvironmentVariable form("DEME_CONTACT_HISTORY", "dense");
-        const Pairs p = randomPairs(rng, spheres, std::uniform_int_distribution<size_t>(1, 120)(rng));
+        const Pairs p = randomPairs(rng, spheres, std::uniform_int_distribution<size_t>(1, 300)(rng));
         const size_t n = p.a.size();
         SimState s;
         s.numWildcards = W;
@@ -258,16 +258,20 @@ TEST(CudaHistoryMapping, PairsHandedOnAreThoseTheCpuKeeps) {
                                   nullptr,
                                   0u};
             if (pooled) set.slot = slot.data();
-            std::vector<uint32_t> at(n + 1, 99u);
-            runThreads(n + 1, [&] { deme_mark_pairs_handed_on(set, at.data()); });
+            // The marks (a bit a pair), each word's count and their exclusive sum.
+            const size_t words = (n + 63) / 64;
+            std::vector<unsigned long long> marks(words, 0ull);
+            std::vector<uint32_t> rankBase(words + 1, 99u);
+            runThreadsReversed(n, [&] { deme_mark_pairs_handed_on(set, marks.data()); });
+            runThreads(words + 1, [&] { deme_count_marks(marks.data(), (unsigned int)words, rankBase.data()); });
             uint32_t sum = 0;
-            for (uint32_t& v : at) {
-                const uint32_t mark = v;
-                ASSERT_LE(mark, 1u);
+            for (uint32_t& v : rankBase) {
+                const uint32_t count = v;
+                ASSERT_LE(count, 64u);
                 v = sum;
-                sum += mark;
+                sum += count;
             }
-            const size_t kept = at[n];
+            const size_t kept = rankBase[words];
             ASSERT_EQ(keepingOnlyPairsHandedOnPays(n, kept), cpuTrimmed);
             if (!cpuTrimmed) continue;
             ASSERT_EQ(kept, c.size());
@@ -276,8 +280,8 @@ TEST(CudaHistoryMapping, PairsHandedOnAreThoseTheCpuKeeps) {
             std::vector<float> kw(pooled ? 0 : kept * W);
             std::vector<uint32_t> ks(pooled ? kept : 0);
             runThreads(n, [&] {
-                deme_keep_pairs_handed_on(set, at.data(), ka.data(), kb.data(), km.data(), kp.data(), kw.data(),
-                                          ks.data());
+                deme_keep_pairs_handed_on(set, marks.data(), rankBase.data(), ka.data(), kb.data(), km.data(),
+                                          kp.data(), kw.data(), ks.data());
             });
             EXPECT_EQ(ka, c.geomA);
             EXPECT_EQ(kb, c.geomB);

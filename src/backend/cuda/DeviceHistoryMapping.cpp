@@ -33,6 +33,7 @@ void DeviceHistoryMapping::load(const std::string& call, const CudaCompileOption
     m_markCarried = m_module.kernel("deme_mark_carried_pairs");
     m_mapMarked = m_module.kernel("deme_map_marked_history");
     m_markHandedOn = m_module.kernel("deme_mark_pairs_handed_on");
+    m_countMarks = m_module.kernel("deme_count_marks");
     m_keepHandedOn = m_module.kernel("deme_keep_pairs_handed_on");
 }
 
@@ -54,13 +55,19 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
                         nullptr,
                         0u};
     if (pool.active) h.slot = pool.slot.data();
-    // The marks and their exclusive sum in one array (4 B a pair, beside the whole set: this is
-    // the detection's peak, without the outbox that an installation in this mode lets go).
-    DeviceBuffer<uint32_t> at((size_t)n + 1, stream);
-    launch(m_markHandedOn, blocksFor((size_t)n + 1, THREADS), THREADS, 0, stream, h, at.data());
-    prim.exclusiveSum(at.data(), at.data(), (size_t)n + 1, stream);
+    // The marks, a bit a pair, and each word's first rank (12 B per 64 pairs beside the whole set:
+    // this is the detection's peak, without the outbox that an installation in this mode lets go;
+    // kernels/HistoryMapping.cu).
+    const size_t numWords = ((size_t)n + 63) / 64;
+    DeviceBuffer<unsigned long long> marks(numWords, stream);
+    DeviceBuffer<uint32_t> rankBase(numWords + 1, stream);
+    marks.zeroAsync(stream);
+    launch(m_markHandedOn, blocksFor(n, THREADS), THREADS, 0, stream, h, marks.data());
+    launch(m_countMarks, blocksFor(numWords + 1, THREADS), THREADS, 0, stream, (const unsigned long long*)marks.data(),
+           (unsigned int)numWords, rankBase.data());
+    prim.exclusiveSum(rankBase.data(), rankBase.data(), numWords + 1, stream);
     uint32_t kept = 0;
-    at.downloadAsync(&kept, 1, stream, n);
+    rankBase.downloadAsync(&kept, 1, stream, numWords);
     synchronize(stream);
     if (!keepingOnlyPairsHandedOnPays(n, kept)) return false;
     beforeTrim();
@@ -82,8 +89,9 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
     else
         sized(wildcards, (size_t)kept * W);
     if (kept)
-        launch(m_keepHandedOn, blocksFor(n, THREADS), THREADS, 0, stream, h, (const uint32_t*)at.data(), a.data(),
-               b.data(), meshState.data(), persistent.data(), wildcards.data(), slot.data());
+        launch(m_keepHandedOn, blocksFor(n, THREADS), THREADS, 0, stream, h, (const unsigned long long*)marks.data(),
+               (const uint32_t*)rankBase.data(), a.data(), b.data(), meshState.data(), persistent.data(),
+               wildcards.data(), slot.data());
     synchronize(stream);  // the whole set's buffers are read; they go as the trimmed ones take their place
     std::swap(set.geomA, a);
     std::swap(set.geomB, b);

@@ -13,10 +13,12 @@
 //      marked pair). The marks live in the new set's mesh state until the last kernel writes it.
 // Before a synchronous detection, the set in use may keep only the pairs that hand something to
 // the next set (CudaDynamics::beforeDetectNow, as the CPU's backend/cpu/CarriedPairs.h):
-// deme_mark_pairs_handed_on, an exclusive sum of the marks, deme_keep_pairs_handed_on.
+// deme_mark_pairs_handed_on (a bit a pair), deme_count_marks, an exclusive sum of the counts (each
+// word's first rank), deme_keep_pairs_handed_on.
 // Compiled at run time by NVRTC.
 #include "kinematics/HistoryRules.h"
 #include "state/HistoryPool.h"
+#include "state/HistorySlot.h"
 #include "state/StateView.h"
 
 namespace deme {
@@ -142,27 +144,37 @@ extern "C" __global__ void deme_map_marked_history(StateView s, ContactKeys fres
     putInPool(pool, slots[i], h, old.W);
 }
 
-// Before a synchronous detection, 1: keep[j] = 1 where pair j of the set in use (`set`, its keys,
-// history, mesh state and flags as history mapping reads them) hands something to the next set
-// (pairCarriesHistory), else 0, for j < n; keep[n] = 0, so that the exclusive sum ends with the
-// count kept.
-extern "C" __global__ void deme_mark_pairs_handed_on(OldContactHistory set, uint32_t* keep) {
+// Before a synchronous detection the pairs of the set in use (`set`, its keys, history, mesh state
+// and flags as history mapping reads them) that hand something to the next set (pairCarriesHistory)
+// are marked, a bit each, and kept in order: a kept pair's place is its rank among the marked ones
+// (rankAt, state/HistorySlot.h), so the marks take 12 bytes per 64 pairs, not 4 bytes a pair, beside
+// the whole set (the detection's peak). 1: bit j % 64 of marks[j / 64] (zeroed before) for a pair j
+// that hands something on.
+extern "C" __global__ void deme_mark_pairs_handed_on(OldContactHistory set, unsigned long long* marks) {
     const size_t j = globalIndex();
-    const unsigned int n = set.keys.n;
-    if (j > n) return;
-    keep[j] = j < n && pairHandsOn(set, (unsigned int)j) ? 1u : 0u;
+    if (j >= set.keys.n || !pairHandsOn(set, (unsigned int)j)) return;
+    atomicOr(&marks[j >> 6], 1ull << (j & 63));
 }
 
-// 2: `at` holds the marks' exclusive sum (a pair is kept where at[j + 1] > at[j]); each kept pair's
-// ids, mesh state and flag (where the set has flags), and its W floats of history (a dense set,
-// `wildcards` given) or its slot in the pool (a pooled set, `slot` given), go to entry at[j] of the
-// trimmed arrays.
-extern "C" __global__ void deme_keep_pairs_handed_on(OldContactHistory set, const uint32_t* at, bodyID_t* keptA,
-                                                     bodyID_t* keptB, uint8_t* keptMeshState, uint8_t* keptPersistent,
+// 2: each word's marks counted, and 0 past the last word (numWords + 1 entries), so that their
+// exclusive sum gives each word's first rank and, at the end, the count kept.
+extern "C" __global__ void deme_count_marks(const unsigned long long* marks, unsigned int numWords,
+                                            uint32_t* counts) {
+    const size_t w = globalIndex();
+    if (w > numWords) return;
+    counts[w] = w < numWords ? popcount64(marks[w]) : 0u;
+}
+
+// 3: `rankBase` holds the counts' exclusive sum; each kept pair's ids, mesh state and flag (where the
+// set has flags), and its W floats of history (a dense set, `wildcards` given) or its slot in the
+// pool (a pooled set, `slot` given), go to entry rankAt(j) of the trimmed arrays.
+extern "C" __global__ void deme_keep_pairs_handed_on(OldContactHistory set, const unsigned long long* marks,
+                                                     const uint32_t* rankBase, bodyID_t* keptA, bodyID_t* keptB,
+                                                     uint8_t* keptMeshState, uint8_t* keptPersistent,
                                                      float* keptWildcards, uint32_t* keptSlot) {
     const size_t j = globalIndex();
-    if (j >= set.keys.n || at[j + 1] == at[j]) return;
-    const uint32_t k = at[j];
+    if (j >= set.keys.n || !((marks[j >> 6] >> (j & 63)) & 1ull)) return;
+    const uint32_t k = rankAt((const uint64_t*)marks, rankBase, j);
     keptA[k] = set.keys.geomA[j];
     keptB[k] = set.keys.geomB[j];
     keptMeshState[k] = set.meshState[j];
