@@ -183,9 +183,10 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
         const size_t pools = historySlots * (2 * 4 * (size_t)W + forceBytes);
         // Trimmed before a synchronous detection (CudaDynamics::beforeDetectNow), where at most half
         // of the pairs have a slot and so at most about half are kept: the whole set and the trim's
-        // marks (4 B a pair), then an installation's fresh set beside the pairs kept.
+        // marks (a bit a pair and each 64 pairs' first rank: 12 B per 64 pairs), then an
+        // installation's fresh set beside the pairs kept.
         if (form.trimmedBeforeDetection && 2 * historySlots <= pairs)
-            return pairs * (perPair + sizeof(uint32_t)) + historySlots * perPair + pools;
+            return pairs * perPair + (pairs + 63) / 64 * 12 + historySlots * perPair + pools;
         return pairs * 2 * perPair + pools;
     }
     const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;
