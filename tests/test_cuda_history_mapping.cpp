@@ -123,6 +123,18 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         EXPECT_EQ(meshState, c.meshState);
         densifyHistory(s);  // the CPU may keep it pooled (backend/cpu/HistoryForm.h)
         EXPECT_EQ(wildcards, c.wildcards);
+        if (!any) {
+            // A new set without flags (no old pair persistent, a model that sets none): the same
+            // history and mesh states, and no flag written.
+            std::vector<float> unflaggedWildcards(total, -9.f);
+            std::vector<uint8_t> unflaggedMeshState(total, 9);
+            runThreads(total, [&] {
+                deme_map_history(view, mergedKeys, history, unflaggedWildcards.data(), unflaggedMeshState.data(),
+                                 nullptr);
+            });
+            EXPECT_EQ(unflaggedWildcards, wildcards);
+            EXPECT_EQ(unflaggedMeshState, meshState);
+        }
 
         // The GPU's pooled form (state/HistoryPool.h), from the old set kept dense and kept pooled
         // (its nonzero histories in slots, in reverse order): slots only for the pairs whose history

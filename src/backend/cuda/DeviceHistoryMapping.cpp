@@ -50,7 +50,7 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
     OldContactHistory h{keysOf(set, n),
                         pool.active ? pool.pool.data() : set.wildcards.data(),
                         set.meshState.data(),
-                        set.persistent.data(),
+                        set.persistent.empty() ? nullptr : set.persistent.data(),
                         W,
                         nullptr,
                         0u};
@@ -83,7 +83,7 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
     sized(a, kept);
     sized(b, kept);
     sized(meshState, kept);
-    sized(persistent, kept);
+    if (h.persistent) sized(persistent, kept);  // a set without flags keeps none
     if (pool.active)
         sized(slot, kept);
     else
@@ -109,7 +109,7 @@ unsigned int DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, uns
                                                    const DeviceContacts& oldSet, unsigned int nOld,
                                                    DevicePrimitives& prim, Stream stream) {
     m_oldHadPersistent = false;
-    if (nOld == 0) return nFresh;
+    if (nOld == 0 || oldSet.persistent.empty()) return nFresh;  // a set without flags has no persistent pair
     const ContactKeys fresh = keysOf(freshSet, nFresh), old = keysOf(oldSet, nOld);
     const uint8_t* persistent = oldSet.persistent.data();
     // Whether the old set has any persistent pair at all (one byte read per pair). Most runs have
@@ -157,7 +157,13 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
     const unsigned int total = mergePersistent(fresh, nFresh, old, nOld, prim, stream);
     slotsUsed = 0;
     fresh.meshState.resizeDiscarding(total);
-    fresh.persistent.resizeDiscarding(total);
+    // Flags only where a pair may have one: an old pair had, or the model may set one.
+    const bool flags = m_oldHadPersistent || m_modelWritesPersistent;
+    if (flags)
+        fresh.persistent.resizeDiscarding(total);
+    else
+        fresh.persistent.release();
+    uint8_t* freshPersistent = flags ? fresh.persistent.data() : nullptr;
     freshPool.release();
     // Not the per-contact forces: only the set in use holds them (CudaDynamics::install).
     if (total == 0) {
@@ -210,7 +216,7 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
             freshPool.capacity = (uint32_t)capacity;
             freshPool.active = true;
             launch(fromOldSide ? m_mapMarked : m_mapPooled, blocksFor(total, THREADS), THREADS, 0, stream, view, keys,
-                   history, slots, freshPool.pool.data(), fresh.meshState.data(), fresh.persistent.data());
+                   history, slots, freshPool.pool.data(), fresh.meshState.data(), freshPersistent);
             slotsUsed = withSlot;
             return total;
         }
@@ -218,7 +224,7 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
     }
     fresh.wildcards.resizeDiscarding((size_t)total * W);
     launch(m_map, blocksFor(total, THREADS), THREADS, 0, stream, view, keys, history, fresh.wildcards.data(),
-           fresh.meshState.data(), fresh.persistent.data());
+           fresh.meshState.data(), freshPersistent);
     return total;
 }
 

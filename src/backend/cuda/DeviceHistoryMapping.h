@@ -29,6 +29,9 @@ class DeviceHistoryMapping {
 
     // The family initial values of contact wildcards (WildcardArrays::contactInit), after upload.
     void uploadRules(const std::vector<ContactInitRule>& rules);
+    // Whether the force model may set a pair's persistent flag (a custom model): then every set
+    // keeps flags; otherwise only a set with a persistent pair does (1 B a pair, as on the CPU).
+    void setModelWritesPersistent(bool writes) { m_modelWritesPersistent = writes; }
 
     // Makes `fresh` (its first nFresh pairs set by detection, sorted) the new set: adds the
     // persistent pairs of `old` (nOld pairs) it lacks, in key order, sizes its per-contact state and
@@ -63,6 +66,7 @@ class DeviceHistoryMapping {
     DeviceBuffer<ContactInitRule> m_rules;
     unsigned int m_numRules = 0;
     bool m_oldHadPersistent = false;
+    bool m_modelWritesPersistent = true;
     double m_compileSeconds = 0.0;
     bool m_fromCache = true;
 };

@@ -98,10 +98,15 @@ void DeviceState::viewInto(StateView& v) {
     forEachScratchField(v.integrationScratch, integrationScratch, point);
 }
 
-void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, Stream stream) {
+void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, Stream stream, bool flagsKept) {
     const size_t n = c.size();
     forEachContactField(d, c, [&](auto& dev, const auto& host, FieldRole role) {
         if (role != FieldRole::EVOLVES) return;
+        // A set with no flag and a model that sets none keeps no flags (as the CPU's).
+        if (static_cast<const void*>(&host) == &c.persistent && host.empty() && !flagsKept) {
+            dev.release();
+            return;
+        }
         // Per-pair fields the host has not filled yet (none persistent, no forces) start at zero.
         const size_t count = contactFieldCount(c, host, n, W);
         dev.resizeDiscarding(count);
@@ -122,6 +127,12 @@ void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, Contact
             (static_cast<const void*>(&host) == &c.wildcards || static_cast<const void*>(&host) == &c.force))
             return;
         const size_t count = contactFieldCount(c, host, n, W);
+        // A set without flags has no persistent pair: the host's keeps none either.
+        if (static_cast<const void*>(&host) == &c.persistent && dev.empty()) {
+            host.clear();
+            host.shrink_to_fit();
+            return;
+        }
         host.resize(count);
         // Per-contact forces exist only after a storing step of the set in use (CudaDynamics::
         // lendIdleMemoryToForces); before one (a set just installed, and a call that failed before its

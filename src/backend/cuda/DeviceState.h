@@ -36,8 +36,10 @@ struct DeviceState {
     void viewInto(StateView& v);
 };
 
-// The contact set `c` of the host (n pairs, W wildcards each) onto the device, and back.
-void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, Stream stream);
+// The contact set `c` of the host (n pairs, W wildcards each) onto the device, and back. A set whose
+// host copy has no persistent flags keeps none on the device either unless `flagsKept` (the model
+// may set them); one without them downloads none.
+void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, Stream stream, bool flagsKept);
 // `historyAndForces` false: the wildcards and per-contact forces are left to the caller (a pooled
 // history keeps them per slot: CudaDynamics::downloadPooledHistory).
 void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, ContactArrays& c, Stream stream,

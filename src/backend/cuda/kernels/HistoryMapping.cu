@@ -61,12 +61,16 @@ extern "C" __global__ void deme_persistent_merge(ContactKeys fresh, ContactKeys 
 }
 
 // The history of every pair of the new set. `s` is for the geometries' owners and families.
+// freshPersistent (here and below) is null where the new set keeps no flags: none of the old pairs
+// is persistent and the model sets none (DeviceHistoryMapping::install).
 extern "C" __global__ void deme_map_history(StateView s, ContactKeys fresh, OldContactHistory old,
                                             float* freshWildcards, uint8_t* freshMeshState, uint8_t* freshPersistent) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
     const unsigned int i = (unsigned int)t;
-    carryPairHistory(s, fresh, old, i, freshWildcards + (size_t)i * old.W, freshMeshState[i], freshPersistent[i]);
+    uint8_t persistent;
+    carryPairHistory(s, fresh, old, i, freshWildcards + (size_t)i * old.W, freshMeshState[i], persistent);
+    if (freshPersistent) freshPersistent[i] = persistent;
 }
 
 // Pooled form, 1: marks[i] = 1 where pair i of the new set keeps a slot (pairKeepsHistorySlot), for
@@ -96,7 +100,9 @@ extern "C" __global__ void deme_map_history_pooled(StateView s, ContactKeys fres
     if (t >= fresh.n) return;
     const unsigned int i = (unsigned int)t;
     float h[MAX_POOLED_HISTORY];
-    carryPairHistory(s, fresh, old, i, h, freshMeshState[i], freshPersistent[i]);
+    uint8_t persistent;
+    carryPairHistory(s, fresh, old, i, h, freshMeshState[i], persistent);
+    if (freshPersistent) freshPersistent[i] = persistent;
     if (!pairKeepsHistorySlot(s, fresh, i, h, old.W)) {
         slots[i] = NO_HISTORY_SLOT;
         return;
@@ -136,11 +142,13 @@ extern "C" __global__ void deme_map_marked_history(StateView s, ContactKeys fres
     const unsigned int i = (unsigned int)t;
     if (!meshState[i]) {
         slots[i] = NO_HISTORY_SLOT;
-        freshPersistent[i] = 0u;
+        if (freshPersistent) freshPersistent[i] = 0u;
         return;
     }
     float h[MAX_POOLED_HISTORY];
-    carryPairHistory(s, fresh, old, i, h, meshState[i], freshPersistent[i]);
+    uint8_t persistent;
+    carryPairHistory(s, fresh, old, i, h, meshState[i], persistent);
+    if (freshPersistent) freshPersistent[i] = persistent;
     putInPool(pool, slots[i], h, old.W);
 }
 
