@@ -147,3 +147,41 @@ void checkPersistentPairSurvives(bool async) {
 // both detection modes, and the host's Mark/Remove calls reach the device set.
 DEME_BACKEND_TEST(ForceModelPersistence, PersistentPairSurvivesDetection) { checkPersistentPairSurvives(false); }
 DEME_BACKEND_TEST(ForceModelPersistence, PersistentPairSurvivesAsyncDetection) { checkPersistentPairSurvives(true); }
+
+// The built-in model sets no flag, so its sets keep flags only while a pair has one (1 B a pair
+// otherwise, on both backends): a pair the host marks persistent survives detections with its
+// spheres far apart, and once released leaves the set.
+DEME_BACKEND_TEST(ForceModelPersistence, ABuiltInModelsSetKeepsTheHostsFlagsOnly) {
+    const float r = 1e-3f;
+    DEMSolver sim;
+    sim.SetVerbosity("QUIET");
+    auto mat = sim.LoadMaterial({{"E", 1e7}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.3}});
+    sim.InstructBoxDomainDimension(0.1f, 0.1f, 0.1f);
+    auto tmpl = sim.LoadSphereType(1e-5f, r, mat);
+    auto others = sim.AddClumps(tmpl, {make_float3(-0.02f, 0, 0), make_float3(-0.02f, 2.1f * r, 0)});
+    auto held = sim.AddClumps(tmpl, {make_float3(0, 0, 0)});
+    auto driven = sim.AddClumps(tmpl, {make_float3(2.05f * r, 0, 0)});
+    others->SetFamily(3);
+    sim.SetFamilyFixed(3);
+    held->SetFamily(1);
+    driven->SetFamily(2);
+    sim.SetFamilyFixed(1);
+    sim.SetFamilyPrescribedLinVel(2, "0.1", "0", "0");
+    sim.SetFamilyExtraMargin(1, 0.1f * r);
+    sim.SetFamilyExtraMargin(2, 0.1f * r);
+    sim.SetInitTimeStep(1e-5);
+    sim.SetCDUpdateFreq(5);
+    sim.SetGravitationalAcceleration(make_float3(0, 0, 0));
+    sim.SetSynchronousContactDetection(true);
+    sim.Initialize();
+    sim.DoDynamics(1e-5);
+    EXPECT_EQ(sim.GetNumPersistentContacts(), 0u);
+    sim.MarkFamilyPersistentContact(1, 2);
+    ASSERT_EQ(sim.GetNumPersistentContacts(), 1u);
+    sim.DoDynamics(0.05);  // 5 mm apart: no detection finds the pair
+    EXPECT_EQ(sim.GetNumPersistentContacts(), 1u);
+    sim.RemoveFamilyPersistentContactEither(2);
+    EXPECT_EQ(sim.GetNumPersistentContacts(), 0u);
+    sim.DoDynamics(1e-3);
+    EXPECT_EQ(sim.GetNumPersistentContacts(), 0u);
+}
