@@ -271,8 +271,11 @@ DEME_BACKEND_TEST(CarriedPairsRuns, SynchronousRunsLetLargeDetectionScratchGo) {
     size_t kept = 0, released = 0;
     const std::vector<float3> a = run("1000000000000", kept), b = run("0", released);
     EXPECT_EQ(differing(a, b), 0u);
-    EXPECT_GT(kept, 64 * 2 * sizeof(uint32_t));  // the bins' entries and starts at least
-    EXPECT_EQ(released, 0u);
+    // What detection reads and never changes stays: on the GPU kT's copy of the family rules (a
+    // byte per pair of families and a margin per family) and of the walls.
+    const size_t unchanging = onGpu() ? NUM_FAMILIES * NUM_FAMILIES + NUM_FAMILIES * sizeof(float) + 1024 : 0;
+    EXPECT_LE(released, unchanging);
+    EXPECT_GE(kept, released + 512 * sizeof(uint32_t));  // the bins' entries at least (512 spheres)
 
     // And the owners' travel at an asynchronous order (4 B each), which a synchronous set's
     // installation does not need (it counts from zero).
@@ -285,7 +288,7 @@ DEME_BACKEND_TEST(CarriedPairsRuns, SynchronousRunsLetLargeDetectionScratchGo) {
     switched.sim.SetSynchronousContactDetection(true);
     switched.sim.DoDynamics(200 * DT);
     if (onGpu()) {
-        EXPECT_EQ(detectionBytes(switched.sim), 0u);
+        EXPECT_LE(detectionBytes(switched.sim), unchanging);
         const size_t freed = ownersAsync - switched.sim.GetMemoryStats().device(MemoryGroup::OWNER_STATE);
         EXPECT_GE(freed, switched.n * sizeof(float));         // every grain's ...
         EXPECT_LE(freed, (switched.n + 8) * sizeof(float));  // ... and the walls' owner
@@ -308,9 +311,12 @@ DEME_BACKEND_TEST(CarriedPairsRuns, ChecksAfterATrimCountTheWholeSetsShare) {
     const MemoryStats m = b.sim.GetMemoryStats();
     const size_t held = onGpu() ? m.deviceTotal() : m.hostTotal();
     const size_t contacts = (onGpu() ? m.deviceBytes : m.hostBytes)[(int)MemoryGroup::CONTACTS];
-    // Room for sets a third larger than the one held: not for their history dense (the CPU's 24
-    // bytes a pair against 8 or so pooled; the GPU's 52 against 28).
-    const ScopedEnvironmentVariable limit("DEME_MEMORY_LIMIT", std::to_string(held + contacts / 3));
+    // On the CPU room for sets a third larger than the one held: not for their history dense (24
+    // bytes a pair against 8 or so pooled). On the GPU an installation holds two sets (and two
+    // pools, each with at least 4,096 spare slots: at this size the check's bytes are the pools',
+    // whatever the share), so room for a second set of the size held: what a run whose sets keep
+    // their size needs.
+    const ScopedEnvironmentVariable limit("DEME_MEMORY_LIMIT", std::to_string(held + (onGpu() ? contacts : contacts / 3)));
     b.sim.DoDynamics(400 * DT);
     EXPECT_NEAR(b.sim.GetSimTime(), 600 * DT, 1e-9);
 }

@@ -102,8 +102,9 @@ void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, S
     const size_t n = c.size();
     forEachContactField(d, c, [&](auto& dev, const auto& host, FieldRole role) {
         if (role != FieldRole::EVOLVES) return;
-        // A set with no flag and a model that sets none keeps no flags (as the CPU's).
-        if (static_cast<const void*>(&host) == &c.persistent && host.empty() && !flagsKept) {
+        // A set with no flag set and a model that sets none keeps no flags (as the CPU's).
+        if (static_cast<const void*>(&host) == &c.persistent && !flagsKept &&
+            std::none_of(c.persistent.begin(), c.persistent.end(), [](uint8_t f) { return f != 0; })) {
             dev.release();
             return;
         }
@@ -127,12 +128,6 @@ void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, Contact
             (static_cast<const void*>(&host) == &c.wildcards || static_cast<const void*>(&host) == &c.force))
             return;
         const size_t count = contactFieldCount(c, host, n, W);
-        // A set without flags has no persistent pair: the host's keeps none either.
-        if (static_cast<const void*>(&host) == &c.persistent && dev.empty()) {
-            host.clear();
-            host.shrink_to_fit();
-            return;
-        }
         host.resize(count);
         // Per-contact forces exist only after a storing step of the set in use (CudaDynamics::
         // lendIdleMemoryToForces); before one (a set just installed, and a call that failed before its

@@ -37,8 +37,8 @@ struct DeviceState {
 };
 
 // The contact set `c` of the host (n pairs, W wildcards each) onto the device, and back. A set whose
-// host copy has no persistent flags keeps none on the device either unless `flagsKept` (the model
-// may set them); one without them downloads none.
+// host copy has no persistent flag set keeps no flags on the device unless `flagsKept` (the model
+// may set them); one without them downloads a flag of 0 per pair (the host's readers' form).
 void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, Stream stream, bool flagsKept);
 // `historyAndForces` false: the wildcards and per-contact forces are left to the caller (a pooled
 // history keeps them per slot: CudaDynamics::downloadPooledHistory).
