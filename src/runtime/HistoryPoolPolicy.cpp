@@ -5,6 +5,8 @@
 
 #include <deme/Error.h>
 
+#include "runtime/EnvironmentCount.h"
+
 namespace deme {
 
 HistoryPoolPolicy HistoryPoolPolicy::fromEnvironment() {
@@ -20,13 +22,7 @@ HistoryPoolPolicy HistoryPoolPolicy::fromEnvironment() {
         else
             throwError("Initialize", "DEME_POOLED_HISTORY is \"" + v + "\"; use auto, 1 or 0");
     }
-    if (const char* m = std::getenv("DEME_HISTORY_POOL_SPARE")) {
-        char* end = nullptr;
-        const unsigned long long v = std::strtoull(m, &end, 10);
-        if (!*m || *end || *m == '-' || *m == '+')
-            throwError("Initialize", std::string("DEME_HISTORY_POOL_SPARE is \"") + m + "\"; use a number of slots");
-        p.minSpare = (size_t)v;
-    }
+    environmentCount("DEME_HISTORY_POOL_SPARE", "Initialize", "a number of slots", p.minSpare);
     return p;
 }
 

@@ -12,6 +12,7 @@
 
 #include "dynamics/StepBatch.h"
 #include "kinematics/DetectionRules.h"
+#include "runtime/EnvironmentCount.h"
 #include "runtime/MemoryAccounting.h"
 #include "state/FamilyStepMotion.h"
 
@@ -194,13 +195,9 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
 }
 
 size_t memoryLimit(size_t available, const char* call) {
-    const char* limit = std::getenv("DEME_MEMORY_LIMIT");
-    if (!limit) return available;
-    char* end = nullptr;
-    const unsigned long long v = std::strtoull(limit, &end, 10);
-    if (end == limit || *end != '\0')
-        throwError(call, std::string("DEME_MEMORY_LIMIT is \"") + limit + "\", not a number of bytes");
-    return available == 0 || v < available ? (size_t)v : available;
+    size_t v = 0;
+    if (!environmentCount("DEME_MEMORY_LIMIT", call, "a number of bytes", v)) return available;
+    return available == 0 || v < available ? v : available;
 }
 
 void requireMemoryFor(const MemoryEstimate& e, size_t available, const std::string& where, const char* call) {
