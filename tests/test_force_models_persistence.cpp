@@ -97,30 +97,36 @@ namespace {
 // driven 5 mm away along the bond in 0.05 s, far beyond any margin: the bond still pulls with
 // k * stretch, because the pair stays in the contact set. After RemovePersistentContact the pair
 // leaves the set at the next detection: no force.
-void checkPersistentPairSurvives(bool async) {
-    const float r = 1e-3f, k = 100.f;
-    DEMSolver sim;
+// Spheres of radius r: `held` (family 1, fixed) at the origin, `driven` (family 2) at x = gap,
+// moving away along x at 0.1 m/s, and a few fixed ones around (family 3), so that detected pairs
+// surround theirs; a step of 10 us, detection every 5 steps. Returns `driven`.
+std::shared_ptr<DEMClumpBatch> addHeldAndDrivenPair(DEMSolver& sim, const std::shared_ptr<DEMMaterial>& mat, float r,
+                                                    float gap) {
     sim.SetVerbosity("QUIET");
-    auto mat = sim.LoadMaterial({{"kb", k}, {"cb", 0.0}});
-    bonded_demo::useBondedModel(sim);
     sim.InstructBoxDomainDimension(0.1f, 0.1f, 0.1f);
     auto tmpl = sim.LoadSphereType(1e-5f, r, mat);
-    // A few unbonded spheres around, so that detected pairs surround the re-inserted one.
     auto others = sim.AddClumps(tmpl, {make_float3(-0.02f, 0, 0), make_float3(-0.02f, 2.1f * r, 0),
                                        make_float3(0.03f, 0.01f, 0), make_float3(0.03f, 0.01f, 2.05f * r)});
     auto held = sim.AddClumps(tmpl, {make_float3(0, 0, 0)});
-    auto driven = sim.AddClumps(tmpl, {make_float3(2 * r, 0, 0)});
+    auto driven = sim.AddClumps(tmpl, {make_float3(gap, 0, 0)});
     others->SetFamily(3);
     sim.SetFamilyFixed(3);
     held->SetFamily(1);
     driven->SetFamily(2);
     sim.SetFamilyFixed(1);
     sim.SetFamilyPrescribedLinVel(2, "0.1", "0", "0");
-    sim.SetFamilyExtraMargin(1, 0.1f * r);
-    sim.SetFamilyExtraMargin(2, 0.1f * r);
-    sim.SetFamilyExtraMargin(3, 0.1f * r);
+    for (unsigned int f = 1; f <= 3; f++) sim.SetFamilyExtraMargin(f, 0.1f * r);
     sim.SetInitTimeStep(1e-5);
     sim.SetCDUpdateFreq(5);
+    return driven;
+}
+
+void checkPersistentPairSurvives(bool async) {
+    const float r = 1e-3f, k = 100.f;
+    DEMSolver sim;
+    auto mat = sim.LoadMaterial({{"kb", k}, {"cb", 0.0}});
+    bonded_demo::useBondedModel(sim);
+    auto driven = addHeldAndDrivenPair(sim, mat, r, 2 * r);
     sim.SetSynchronousContactDetection(!async);
     sim.Initialize();
     sim.SetSphereWildcardValue("strength", 0, std::vector<float>(6, 1e9f));
@@ -154,23 +160,8 @@ DEME_BACKEND_TEST(ForceModelPersistence, PersistentPairSurvivesAsyncDetection) {
 DEME_BACKEND_TEST(ForceModelPersistence, ABuiltInModelsSetKeepsTheHostsFlagsOnly) {
     const float r = 1e-3f;
     DEMSolver sim;
-    sim.SetVerbosity("QUIET");
     auto mat = sim.LoadMaterial({{"E", 1e7}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.3}});
-    sim.InstructBoxDomainDimension(0.1f, 0.1f, 0.1f);
-    auto tmpl = sim.LoadSphereType(1e-5f, r, mat);
-    auto others = sim.AddClumps(tmpl, {make_float3(-0.02f, 0, 0), make_float3(-0.02f, 2.1f * r, 0)});
-    auto held = sim.AddClumps(tmpl, {make_float3(0, 0, 0)});
-    auto driven = sim.AddClumps(tmpl, {make_float3(2.05f * r, 0, 0)});
-    others->SetFamily(3);
-    sim.SetFamilyFixed(3);
-    held->SetFamily(1);
-    driven->SetFamily(2);
-    sim.SetFamilyFixed(1);
-    sim.SetFamilyPrescribedLinVel(2, "0.1", "0", "0");
-    sim.SetFamilyExtraMargin(1, 0.1f * r);
-    sim.SetFamilyExtraMargin(2, 0.1f * r);
-    sim.SetInitTimeStep(1e-5);
-    sim.SetCDUpdateFreq(5);
+    addHeldAndDrivenPair(sim, mat, r, 2.05f * r);
     sim.SetGravitationalAcceleration(make_float3(0, 0, 0));
     sim.SetSynchronousContactDetection(true);
     sim.Initialize();
