@@ -105,3 +105,26 @@ TEST(CudaDormantDetection, MatchesTheCpuCachedDetectorPairForPair) {
     EXPECT_EQ(kin.dormantRegistryRebuilds(), 2u);
 }
 #endif
+
+#ifdef DEME_TESTS_CUDA_BUILT
+// Which walls and meshes can move (a byte per owner, on the host and on the GPU) is kept only for a
+// registry: a run without dormant families holds none of it (the early mixer's 1 B/sphere of
+// detection scratch, docs/memory.md). No GPU needed.
+TEST(CudaDormantDetection, WallsThatMoveAreListedOnlyWithDormantFamilies) {
+    Scene scene = randomScene(3, 200);
+    auto floor =
+        std::make_shared<DEMMeshConnected>(gridFloor(-0.02f, -0.02f, -0.015f, 4, 0.01f, scene.materials.front()));
+    floor->SetFamily(1);
+    scene.meshes.push_back(floor);
+    const SimState s = detectionState(scene, "CudaDormantDetection");
+    FamilyRules rules;
+    const DormantFamilies none = DormantFamilies::of(s, rules);
+    EXPECT_FALSE(none.any);
+    EXPECT_TRUE(none.movable.empty());
+    rules.motion(2).fixed = true;  // family 2 dormant
+    rules.setContact(2, 2, false);
+    const DormantFamilies some = DormantFamilies::of(s, rules);
+    EXPECT_TRUE(some.any);
+    EXPECT_EQ(some.movable.size(), s.owners.size());
+}
+#endif

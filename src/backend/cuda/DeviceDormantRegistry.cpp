@@ -18,6 +18,9 @@ DormantFamilies DormantFamilies::of(const SimState& live, const FamilyRules& fam
     for (uint8_t d : f.dormant) f.any = f.any || d != 0;
     // The registry's searches know no periodic images: with periodic axes everything is searched.
     if (live.frame.periodic.axes) f.any = false;
+    // Which walls and meshes move matters only to a registry (a byte per owner, on the host and
+    // the GPU: none in a run without dormant families).
+    if (!f.any) return f;
     f.movable.assign(live.owners.size(), 0);
     for (size_t k = 0; k < live.analytical.size(); k++) {
         const bodyID_t o = live.analytical.owner[k];

@@ -25,7 +25,7 @@ namespace deme::cuda {
 // What the host knows at setGeometry: the dormant families and which owners (walls and meshes) can move.
 struct DormantFamilies {
     std::vector<uint8_t> dormant = std::vector<uint8_t>(NUM_FAMILIES, 0);  // 1 per dormant family
-    std::vector<uint8_t> movable;                                          // 1 per owner: a wall or mesh that can move
+    std::vector<uint8_t> movable;  // 1 per owner: a wall or mesh that can move (empty where none is dormant)
     bool any = false;
     static DormantFamilies of(const SimState& live, const FamilyRules& families);
 };
