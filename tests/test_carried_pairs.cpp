@@ -290,7 +290,7 @@ DEME_BACKEND_TEST(CarriedPairsRuns, SynchronousRunsLetLargeDetectionScratchGo) {
     if (onGpu()) {
         EXPECT_LE(detectionBytes(switched.sim), unchanging);
         const size_t freed = ownersAsync - switched.sim.GetMemoryStats().device(MemoryGroup::OWNER_STATE);
-        EXPECT_GE(freed, switched.n * sizeof(float));         // every grain's ...
+        EXPECT_GE(freed, switched.n * sizeof(float));        // every grain's ...
         EXPECT_LE(freed, (switched.n + 8) * sizeof(float));  // ... and the walls' owner
     }
 }
@@ -316,7 +316,8 @@ DEME_BACKEND_TEST(CarriedPairsRuns, ChecksAfterATrimCountTheWholeSetsShare) {
     // pools, each with at least 4,096 spare slots: at this size the check's bytes are the pools',
     // whatever the share), so room for a second set of the size held: what a run whose sets keep
     // their size needs.
-    const ScopedEnvironmentVariable limit("DEME_MEMORY_LIMIT", std::to_string(held + (onGpu() ? contacts : contacts / 3)));
+    const ScopedEnvironmentVariable limit("DEME_MEMORY_LIMIT",
+                                          std::to_string(held + (onGpu() ? contacts : contacts / 3)));
     b.sim.DoDynamics(400 * DT);
     EXPECT_NEAR(b.sim.GetSimTime(), 600 * DT, 1e-9);
 }

@@ -12,8 +12,7 @@ bool environmentCount(const char* name, const char* call, const char* what, size
     if (!p) return false;
     char* end = nullptr;
     const unsigned long long v = std::strtoull(p, &end, 10);
-    if (!*p || *end || *p == '-' || *p == '+')
-        throwError(call, std::string(name) + " is \"" + p + "\", not " + what);
+    if (!*p || *end || *p == '-' || *p == '+') throwError(call, std::string(name) + " is \"" + p + "\", not " + what);
     out = (size_t)v;
     return true;
 }

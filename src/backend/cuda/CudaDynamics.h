@@ -162,8 +162,8 @@ class CudaDynamics : public DynamicsBackend {
     // installation or an upload replaces it: it serves no step, and no checkpoint resumes it.
     bool m_setTrimmed = false;
     uint32_t m_pairsForSlotShare = 0;  // the set's pairs before any trim (expectedHistorySlots)
-    bool m_asyncDetection = true;
-    bool m_modelWritesPersistent = true;  // every set keeps persistent flags (else only where one is set)  // the call's detection mode (beginRun): the outbox is kept where it is
+    bool m_asyncDetection = true;  // the call's detection mode (beginRun): the outbox is kept where it is
+    bool m_modelWritesPersistent = true;  // every set keeps persistent flags (else only where one is set)
     // A contact set whose id arrays take at most this many bytes each is kept whole before a
     // synchronous detection, and its outbox kept between detections: there the memory does not
     // count, and a lab-scale run that detects thousands of times a second would pay for the trim's

@@ -180,8 +180,9 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     KinematicsInbox& src = staged ? localIn : in;
     // What moves, from the snapshot or (in place) from dT's state: the spheres' centres are their
     // owners' where spheres are owners (state/SphereLayout.h).
-    const DeviceBuffer<double3>& centres =
-        !inPlace ? src.spherePos : spheresAreOwners ? shared->cache.ownerPos : shared->cache.spherePos;
+    const DeviceBuffer<double3>& centres = !inPlace           ? src.spherePos
+                                           : spheresAreOwners ? shared->cache.ownerPos
+                                                              : shared->cache.spherePos;
     const DeviceBuffer<double3>& triVert = inPlace ? shared->cache.triVert : src.triVert;
     const DeviceBuffer<double3>& analPos = inPlace ? shared->cache.analPos : src.analPos;
     const DeviceBuffer<double3>& analDir = inPlace ? shared->cache.analDir : src.analDir;

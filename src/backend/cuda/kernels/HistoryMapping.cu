@@ -166,8 +166,7 @@ extern "C" __global__ void deme_mark_pairs_handed_on(OldContactHistory set, unsi
 
 // 2: each word's marks counted, and 0 past the last word (numWords + 1 entries), so that their
 // exclusive sum gives each word's first rank and, at the end, the count kept.
-extern "C" __global__ void deme_count_marks(const unsigned long long* marks, unsigned int numWords,
-                                            uint32_t* counts) {
+extern "C" __global__ void deme_count_marks(const unsigned long long* marks, unsigned int numWords, uint32_t* counts) {
     const size_t w = globalIndex();
     if (w > numWords) return;
     counts[w] = w < numWords ? popcount64(marks[w]) : 0u;
