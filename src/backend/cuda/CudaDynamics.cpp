@@ -31,7 +31,7 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
         m_numContacts = (uint32_t)s.contacts.size();
         m_pairsForSlotShare = m_numContacts;
         m_setTrimmed = false;
-        uploadContacts(s.contacts, m_W, m_contacts[0], st, m_modelWritesPersistent);
+        uploadContacts(s.contacts, m_W, m_contacts[0], st, m_history.modelWritesPersistent());
         m_contacts[1].force.release();  // only the set in use has per-contact forces
         // The host's set keeps W floats per pair: so does the uploaded one, until the next install.
         m_pools[0].release();

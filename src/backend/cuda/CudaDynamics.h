@@ -163,7 +163,6 @@ class CudaDynamics : public DynamicsBackend {
     bool m_setTrimmed = false;
     uint32_t m_pairsForSlotShare = 0;  // the set's pairs before any trim (expectedHistorySlots)
     bool m_asyncDetection = true;  // the call's detection mode (beginRun): the outbox is kept where it is
-    bool m_modelWritesPersistent = true;  // every set keeps persistent flags (else only where one is set)
     // A contact set whose id arrays take at most this many bytes each is kept whole before a
     // synchronous detection, and its outbox kept between detections: there the memory does not
     // count, and a lab-scale run that detects thousands of times a second would pay for the trim's

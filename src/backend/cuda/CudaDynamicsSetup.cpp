@@ -72,8 +72,7 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     kTravelSinceOrder = m_exchangeModule.kernel("deme_travel_since_order");
     m_model.load("Initialize (contact force model)", layout, m_dynamicsModule, opt);
     m_history.load("Initialize", opt);
-    m_modelWritesPersistent = !layout.builtIn();  // a custom model may set the flag (as the CPU's)
-    m_history.setModelWritesPersistent(m_modelWritesPersistent);
+    m_history.setModelWritesPersistent(!layout.builtIn());  // a custom model may set the flag (as the CPU's)
     m_compileSeconds += m_model.compileSeconds() + m_history.compileSeconds();
     m_fromCache = m_fromCache && m_model.fromCache() && m_history.fromCache();
     // Non-blocking: the legacy default stream would serialise with kT's stream on a shared GPU.

@@ -492,7 +492,7 @@ void CudaKinematics::waitAndTake(DetectionReport& report) { m_mailbox.waitAndTak
 // dT waits here, so nothing changes its state until the result is back: on one GPU kT reads it
 // where it is. (On a second GPU kT copies it over from the inbox, as for an asynchronous order.)
 void CudaKinematics::detectNow(const DetectionOrder& order, DetectionReport& report) {
-    post(order, m_kTDevice == m_dTDevice);
+    post(order, detectsInPlace());
     waitAndTake(report);
 }
 

@@ -32,6 +32,7 @@ class DeviceHistoryMapping {
     // Whether the force model may set a pair's persistent flag (a custom model): then every set
     // keeps flags; otherwise only a set with a persistent pair does (1 B a pair, as on the CPU).
     void setModelWritesPersistent(bool writes) { m_modelWritesPersistent = writes; }
+    bool modelWritesPersistent() const { return m_modelWritesPersistent; }
 
     // Makes `fresh` (its first nFresh pairs set by detection, sorted) the new set: adds the
     // persistent pairs of `old` (nOld pairs) it lacks, in key order, sizes its per-contact state and
