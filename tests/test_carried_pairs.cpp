@@ -284,7 +284,8 @@ DEME_BACKEND_TEST(CarriedPairsRuns, SynchronousRunsLetLargeDetectionScratchGo) {
     switched.sim.SetSynchronousContactDetection(false);
     switched.sim.DoDynamics(200 * DT);
     const size_t ownersAsync = switched.sim.GetMemoryStats().device(MemoryGroup::OWNER_STATE);
-    if (onGpu()) EXPECT_GE(detectionBytes(switched.sim), switched.n * sizeof(double3));  // the snapshot
+    // The snapshot: the grains' compact positions (state/OwnerCentre.h) at least.
+    if (onGpu()) EXPECT_GE(detectionBytes(switched.sim), switched.n * (sizeof(voxelID_t) + 3 * sizeof(subVoxelPos_t)));
     switched.sim.SetSynchronousContactDetection(true);
     switched.sim.DoDynamics(200 * DT);
     if (onGpu()) {

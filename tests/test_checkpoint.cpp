@@ -17,6 +17,7 @@
 #include "TestHelpers.h"
 #include "io/CheckpointFile.h"
 #include "io/CheckpointState.h"
+#include "state/OwnerCentre.h"
 
 
 using namespace deme;
@@ -466,7 +467,7 @@ TEST(GpuParity, CheckpointContinuesOnTheOtherBackend) {
     auto maxDistance = [](const Saved& a, const Saved& b) {
         double d = 0.0;
         for (size_t o = 0; o < a.state.numClumps; o++)
-            d = std::max(d, length(a.state.cache.ownerPos[o] - b.state.cache.ownerPos[o]));
+            d = std::max(d, length(ownerCentre(a.state, o) - ownerCentre(b.state, o)));
         return d;
     };
     const double spread = maxDistance(gpu, cpu);

@@ -27,6 +27,7 @@
 #include "backend/cpu/StandaloneContactSet.h"
 #include "parallel/Parallel.h"
 #include "runtime/ContactForceView.h"
+#include "state/OwnerCentre.h"
 
 using namespace deme;
 using namespace deme_test;
@@ -121,7 +122,7 @@ TEST(ForceReduction, OwnersSumsCancelAndDoNotDependOnTheThreadCount) {
     double3 F = make_double3(0, 0, 0), L = make_double3(0, 0, 0);
     double fScale = 0.0, lScale = 0.0;
     for (size_t o = 0; o < s.owners.size(); o++) {
-        const double3 f = toD(one.force[o]), x = s.cache.ownerPos[o];
+        const double3 f = toD(one.force[o]), x = ownerCentre(s, o);
         const double3 l = toD(one.torque[o]) + cross(x, f);
         F = F + f;
         L = L + l;

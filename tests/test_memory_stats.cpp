@@ -37,13 +37,13 @@ size_t ownerBytes() {
 }
 // A sphere's bytes in the geometry group where, as in the scene below, every clump is one sphere at
 // its centre (state/SphereLayout.h): its fields but its offset in the owner's frame and its owner's
-// index (sphere i is owner i's), no cached centre or arm of its own, and its owner's cached position
-// and global angular velocity.
+// index (sphere i is owner i's), and no cached centre or arm (its owner's position is decoded where
+// read, state/OwnerCentre.h).
 size_t sphereBytes() {
     size_t sum = 0;
     SphereFields<FieldBytes> f;
     forEachSphereField(f, f, SumBytes{sum});
-    return sum - sizeof(float3) - sizeof(bodyID_t) + sizeof(double3) + sizeof(float3);
+    return sum - sizeof(float3) - sizeof(bodyID_t);
 }
 
 }  // namespace

@@ -7,10 +7,10 @@
 #include <string>
 
 #include "api/Validate.h"
-#include "physics/CompactPosition.h"
 #include "physics/Quaternion.h"
 #include "runtime/SceneEdits.h"
 #include "runtime/Simulation.h"
+#include "state/OwnerCentre.h"
 
 namespace deme {
 
@@ -47,10 +47,7 @@ size_t DEMTracker::firstOwnerID(const char* call) const {
 void DEMTracker::Positions(float3* out) const {
     const size_t first = firstOwnerID("DEMTracker::Positions");
     const SimState& s = sim().state();
-    gather(s, first, m_count, out, [&s](size_t o) {
-        const OwnerArrays& ow = s.owners;
-        return to_float3(decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], s.frame));
-    });
+    gather(s, first, m_count, out, [&s](size_t o) { return to_float3(ownerCentre(s, o)); });
 }
 void DEMTracker::Velocities(float3* out) const {
     const size_t first = firstOwnerID("DEMTracker::Velocities");

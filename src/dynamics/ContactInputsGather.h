@@ -45,12 +45,6 @@ DEME_HD_INLINE ContactPoint sphereTriangleGeometry(const S& s, bodyID_t a, size_
     return sphereTriangleContact(x, s.spheres.radius[a], onTri, nrm / length(nrm));
 }
 
-template <class S>
-DEME_HD_INLINE double3 ownerPosition(const S& s, bodyID_t o) {
-    const auto& ow = s.owners;
-    return decodePosition(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], s.frame);
-}
-
 // Contact c's inputs, its geometries a and b given (read where the caller chose). `type` is the
 // contact's type; callers that pass a constant get a path without the other branches.
 template <class S>
@@ -86,7 +80,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, bodyID_t a, bodyID_t b
         in.bodyBPos = centroid + shiftB;
         in.BRadius = FLAT_SURFACE_RADIUS;
         in.bodyBMatType = s.triangles.material[t];
-        offB = to_float3(centroid - k.ownerPos[oB]);
+        offB = to_float3(centroid - ownerCentre(s, oB));
         double3 onTri, bary;
         cp = sphereTriangleGeometry(s, a, t, onTri, bary);
     } else {
@@ -94,7 +88,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, bodyID_t a, bodyID_t b
         in.bodyBPos = k.analPos[j];
         in.BRadius = FLAT_SURFACE_RADIUS;
         in.bodyBMatType = s.analytical.material[j];
-        offB = to_float3(in.bodyBPos - k.ownerPos[oB]);
+        offB = to_float3(in.bodyBPos - ownerCentre(s, oB));
         cp = s.analytical.type[j] == ANAL_PLANE
                  ? spherePlaneContact(in.bodyAPos, in.ARadius, in.bodyBPos, k.analDir[j])
                  : sphereCylinderContact(in.bodyAPos, in.ARadius, in.bodyBPos, k.analDir[j], s.analytical.radius[j],
@@ -107,14 +101,17 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, bodyID_t a, bodyID_t b
     in.time = time;
     in.armA = to_float3(in.contactPnt - in.bodyAPos) + sphereArmOf(s, a);
     in.armB = to_float3(in.contactPnt - in.bodyBPos) + offB;
-    in.AOwnerPos = k.ownerPos[oA];
-    in.BOwnerPos = k.ownerPos[oB] + shiftB;
+    // A sphere that is its owner has its centre already (decoded once, state/OwnerCentre.h).
+    in.AOwnerPos = s.spheresAreOwners ? in.bodyAPos : ownerCentre(s, oA);
+    in.BOwnerPos = type == SPHERE_SPHERE && s.spheresAreOwners ? in.bodyBPos : ownerCentre(s, oB) + shiftB;
     in.AOriQ = ow.oriQ[oA];
     in.BOriQ = ow.oriQ[oB];
     in.locCPA = rotateToLocal(in.AOriQ, in.armA);
     in.locCPB = rotateToLocal(in.BOriQ, in.armB);
-    in.rotVelCPA = cross(k.ownerAngVelGlobal[oA], in.armA);
-    in.rotVelCPB = cross(k.ownerAngVelGlobal[oB], in.armB);
+    // The owners' spins in the global frame, from what is read anyway (no cached copy: 12 bytes an
+    // owner).
+    in.rotVelCPA = cross(rotateToGlobal(in.AOriQ, ow.angVel[oA]), in.armA);
+    in.rotVelCPB = cross(rotateToGlobal(in.BOriQ, ow.angVel[oB]), in.armB);
     in.AOwnerMass = s.massProps.mass[ow.inertia[oA]];
     in.BOwnerMass = s.massProps.mass[ow.inertia[oB]];
     in.AOwnerMOI = s.massProps.moi[ow.inertia[oA]];

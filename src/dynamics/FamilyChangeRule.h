@@ -6,6 +6,7 @@
 #pragma once
 
 #include "state/FamilyStepMotion.h"
+#include "state/OwnerCentre.h"
 
 namespace deme {
 
@@ -15,7 +16,7 @@ constexpr int FAMILY_CONDITION_VARS = 7;
 // Owner o's condition inputs: its centre of mass and velocity (global frame) and the time.
 template <class S>
 DEME_HD_INLINE void familyConditionInputs(const S& s, size_t o, double t, double* v) {
-    const double3 p = s.cache.ownerPos[o];
+    const double3 p = ownerCentre(s, o);
     const float3 vel = s.owners.vel[o];
     v[0] = p.x;
     v[1] = p.y;

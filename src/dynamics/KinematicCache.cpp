@@ -13,23 +13,16 @@ void updateAnalyticalCache(SimState& s) {
 
 void refreshKinematicCache(SimState& s) {
     KinematicCache& k = s.cache;
-    const size_t n = s.owners.size(), nT = s.triangles.size();
+    const size_t nT = s.triangles.size();
     // Spheres that are their owners have no centres or arms of their own (state/SphereLayout.h).
     const size_t nS = s.spheresAreOwners ? 0 : s.spheres.size();
-    k.ownerPos.resize(n);
-    k.ownerAngVelGlobal.resize(n);
     k.spherePos.resize(nS);
     k.sphereArm.resize(nS);
     k.analPos.resize(s.analytical.size());
     k.analDir.resize(s.analytical.size());
     k.triVert.resize(3 * nT);
-#pragma omp parallel if (n > PARALLEL_MIN_ITEMS)
+#pragma omp parallel if (nS + nT > PARALLEL_MIN_ITEMS)
     {
-#pragma omp for schedule(static)
-        for (size_t o = 0; o < n; o++) {
-            k.ownerPos[o] = ownerPosition(s, (bodyID_t)o);
-            k.ownerAngVelGlobal[o] = rotateToGlobal(s.owners.oriQ[o], s.owners.angVel[o]);
-        }
 #pragma omp for schedule(static)
         for (size_t i = 0; i < nS; i++) placeSphere(s, i);
 #pragma omp for schedule(static)

@@ -7,6 +7,7 @@
 #include "physics/CompactPosition.h"
 #include "physics/RigidBody.h"
 #include "state/FamilyStepMotion.h"
+#include "state/OwnerCentre.h"
 
 namespace deme {
 
@@ -41,12 +42,6 @@ inline OwnerFault faultFromFlags(uint8_t f) {
                                     : OwnerFault::NONE;
 }
 
-// Where clumps that left the domain under the "remove" exit policy wait for the host to take them
-// out: clump o at start + o * stride (parkingLine, below).
-struct ParkingLine {
-    double3 start, stride;
-};
-
 // What stays fixed over one integration sweep.
 struct StepConstants {
     float3 gravity;
@@ -73,18 +68,9 @@ struct StepConstants {
 // clamps them into a border bin. Analytical walls extend there (an infinite plane, a cylinder), so
 // the force pass skips a parked clump's contacts with them (its STEP_PARKED flag,
 // dynamics/ContactStep.h). A parked clump stays parked: its place is outside the domain, so
-// it leaves again every step, and its flags say so until the host removes it. The line is worked
-// out once per sweep (the backends' StepConstants), not per owner.
-DEME_HD_INLINE ParkingLine parkingLine(const DomainFrame& f, const double3& size) {
-    const unsigned int p = f.periodic.axes;
-    const int a = !(p & 1u) ? 0 : !(p & 2u) ? 1 : 2;
-    const double unit = fmax(size.x, fmax(size.y, size.z));
-    const double3 axis = make_double3(a == 0 ? 1.0 : 0.0, a == 1 ? 1.0 : 0.0, a == 2 ? 1.0 : 0.0);
-    return ParkingLine{f.origin + (1000.0 * unit) * axis, (4.0 * unit) * axis};
-}
-DEME_HD_INLINE double3 parkingPosition(const StepConstants& c, size_t o) {
-    return c.parking.start + (double)o * c.parking.stride;
-}
+// it leaves again every step, and its flags say so until the host removes it. Its voxel code says
+// it is parked (PARKED_VOXEL, state/OwnerCentre.h), so that every reader of its centre finds it on
+// the line. The line is worked out once per sweep (the backends' StepConstants), not per owner.
 
 struct OwnerStepResult {
     float travelSinceDetection;  // negative: not counted (fixed or analytical owners)
@@ -135,17 +121,40 @@ DEME_HD_INLINE OwnerStepInputs loadOwnerStepInputs(const S& s, size_t o, const F
     const bool loads = c.extraAcc != nullptr;
     in.extraAcc = loads ? c.extraAcc[o] : make_float3(0.f);
     in.extraAngAcc = loads ? c.extraAngAcc[o] : make_float3(0.f);
-    in.x0 = s.cache.ownerPos[o];
     in.voxel = ow.voxel[o];
     in.subX = ow.subX[o];
     in.subY = ow.subY[o];
     in.subZ = ow.subZ[o];
+    // ownerCentre's expression, with the sweep's parking line.
+    in.x0 = (in.voxel & PARKED_VOXEL) ? parkedPosition(c.parking, o)
+                                      : decodePosition(in.voxel, in.subX, in.subY, in.subZ, c.frame);
     in.type = ow.type[o];
     in.extent = s.massProps.extent[inertia];
     in.travel0 = ow.travel[o];
     in.moi = s.massProps.moi[inertia];
     in.mass = s.massProps.mass[inertia];
     return in;
+}
+
+// The angular velocity of owner o's step at its end (w) and at its midpoint (wMid), owner frame,
+// prescriptions and fixed families applied: stepOwner's, and again finishLargeRotation's for the
+// rare owner that turns too far for the series step (the one expression, so the same floats).
+struct StepSpin {
+    float3 w, wMid;
+};
+DEME_HD_INLINE StepSpin stepSpin(const OwnerStepInputs& in, const float3& torque, float h) {
+    const FamilyStepMotion& m = in.m;
+    const float3 moi = in.moi;
+    const float3 invMoi = make_float3(1.f / moi.x, 1.f / moi.y, 1.f / moi.z);
+    const float3 torqueLocal = rotateToLocal(in.q0, torque) + in.extraAngAcc * moi;
+    const AngularStep rot = advanceAngularVelocity(in.w0, torqueLocal, moi, invMoi, h);
+    float3 w = in.dynamic ? rot.wEnd : in.w0;
+    float3 wMid = in.dynamic ? rot.wMid : in.w0;
+    // Prescribed components replace the integrated ones (kinematic owners have nothing else).
+    w = applyMask(w, m.ang, m.angMask);
+    wMid = applyMask(wMid, m.ang, m.angMask);
+    const bool fixed = m.fixed != 0;
+    return StepSpin{fixed ? make_float3(0.f) : w, fixed ? make_float3(0.f) : wMid};
 }
 
 // Advances owner o by one step and refreshes its cached pose, from its inputs (above) and the
@@ -161,37 +170,29 @@ template <class S>
 DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const OwnerStepInputs& in, const float3& force,
                                          const float3& torque, const StepConstants& c) {
     auto& ow = s.owners;
-    auto& k = s.cache;
     const FamilyStepMotion& m = in.m;
     const bool fixed = m.fixed != 0;
     const bool dynamic = in.dynamic;
     const float3 v0 = in.v0, w0 = in.w0;
     const float4 q0 = in.q0;
-    const float3 extraAcc = in.extraAcc, extraAngAcc = in.extraAngAcc;
+    const float3 extraAcc = in.extraAcc;
     const double3 x0 = in.x0;
     voxelID_t voxel = in.voxel;
     subVoxelPos_t subX = in.subX, subY = in.subY, subZ = in.subZ;
     const bool clump = in.type == OWNER_CLUMP, analytical = in.type == OWNER_ANALYTICAL;
     const float extent = in.extent;
     const float travel0 = in.travel0;
-    const float3 moi = in.moi;
     const float mass = in.mass;
 
     // Forces and torques (discarded below for owners they do not move).
-    const float3 invMoi = make_float3(1.f / moi.x, 1.f / moi.y, 1.f / moi.z);
     const float3 acc = force * (1.f / mass) + c.gravity + extraAcc;
-    const float3 torqueLocal = rotateToLocal(q0, torque) + extraAngAcc * moi;
-    const AngularStep rot = advanceAngularVelocity(w0, torqueLocal, moi, invMoi, c.h);
     float3 v = dynamic ? advanceVelocity(v0, acc, c.h) : v0;
-    float3 w = dynamic ? rot.wEnd : w0;
-    float3 wMid = dynamic ? rot.wMid : w0;
     // Prescribed components replace the integrated ones (kinematic owners have nothing else).
     v = applyMask(v, m.lin, m.linMask);
-    w = applyMask(w, m.ang, m.angMask);
-    wMid = applyMask(wMid, m.ang, m.angMask);
     v = fixed ? make_float3(0.f) : v;
-    w = fixed ? make_float3(0.f) : w;
-    wMid = fixed ? make_float3(0.f) : wMid;
+    const StepSpin spin = stepSpin(in, torque, c.h);
+    float3 w = spin.w;
+    const float3 wMid = spin.wMid;
 
     const float w2 = dot(wMid, wMid);
     const float h2 = 0.25f * w2 * c.h * c.h;
@@ -199,7 +200,7 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const OwnerStepInputs& 
     const float4 qStep = orientationStepSeries(q0, wMid, c.h, h2);
     const float4 q = (w2 > 0.f && !large) ? qStep : q0;
 
-    // A fixed owner has v = 0, so x is its cached position and re-encodes to the same code. Along a
+    // A fixed owner has v = 0, so x is its decoded position and re-encodes to the same code. Along a
     // periodic axis an owner that left through one face enters through the other; in a sheared cell
     // (Lees–Edwards) one that left through a z face also changes its x velocity by the shear
     // velocity, and is displaced by the offset at the step's end. A position outside the code's
@@ -228,21 +229,17 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const OwnerStepInputs& 
     const float travel = travel0 + r.speed * c.h;
     r.travelSinceDetection = travels ? travel : -1.f;
 
-    // The owner's new state.
-    ow.angVel[o] = w;
+    // The owner's new state. An owner whose rotation is too large for the series keeps its
+    // orientation and angular velocity at the step's start, from which the exact step that follows
+    // in the same sweep (finishLargeRotation) makes them anew: no per-owner scratch for the rare case.
+    ow.angVel[o] = largeStep ? w0 : w;
     ow.oriQ[o] = q;
     ow.vel[o] = v;
-    ow.voxel[o] = voxel;
+    ow.voxel[o] = park ? PARKED_VOXEL : voxel;
     ow.subX[o] = subX;
     ow.subY[o] = subY;
     ow.subZ[o] = subZ;
-    k.ownerPos[o] = park ? parkingPosition(c, o) : decodePosition(voxel, subX, subY, subZ, c.frame);
     ow.travel[o] = travel;
-    // An owner whose rotation is too large for the series leaves its midpoint angular velocity
-    // (local frame) in its cache slot, for the exact step that follows in the same sweep
-    // (finishLargeRotation), which puts the global angular velocity there: the one per-owner array
-    // of the step serves both, instead of a scratch array written by every owner every step.
-    k.ownerAngVelGlobal[o] = largeStep ? wMid : rotateToGlobal(q, w);
     return r;
 }
 
@@ -255,14 +252,20 @@ DEME_HD_INLINE OwnerStepResult stepOwner(S& s, size_t o, const FamilyStepMotion&
     return stepOwner(s, o, in, force, torque, c);
 }
 
-// The exact orientation step of an owner that stepOwner flagged STEP_LARGE_ROTATION (its midpoint
-// angular velocity in its ownerAngVelGlobal slot), then that slot's proper value.
+// The exact orientation step of an owner that stepOwner flagged STEP_LARGE_ROTATION, from its
+// inputs to that step (its orientation and angular velocity still those of the step's start) and
+// the torque it read: its orientation and angular velocity at the step's end.
 template <class S>
-DEME_HD_INLINE void finishLargeRotation(S& s, size_t o, float h) {
-    s.owners.oriQ[o] = integrateOrientation(s.owners.oriQ[o], s.cache.ownerAngVelGlobal[o], h);
-    s.cache.ownerAngVelGlobal[o] = rotateToGlobal(s.owners.oriQ[o], s.owners.angVel[o]);
+DEME_HD_INLINE void finishLargeRotation(S& s, size_t o, const OwnerStepInputs& in, const float3& torque, float h) {
+    const StepSpin spin = stepSpin(in, torque, h);
+    s.owners.oriQ[o] = integrateOrientation(in.q0, spin.wMid, h);
+    s.owners.angVel[o] = spin.w;
 }
-
+// The same, its inputs read again after the step (the CPU's sweep of such owners).
+template <class S>
+DEME_HD_INLINE void finishLargeRotation(S& s, size_t o, const FamilyStepMotion& m, const StepConstants& c) {
+    finishLargeRotation(s, o, loadOwnerStepInputs(s, o, m, c), s.owners.contactTorque[o], c.h);
+}
 // Sphere i's cached centre and arm from its owner's new pose. Most clumps are single spheres at
 // their centre: no rotation needed.
 template <class S>
@@ -272,7 +275,7 @@ DEME_HD_INLINE void placeSphere(S& s, size_t i) {
     const float3 rel = s.spheres.relPos[i];
     const bool centred = rel.x == 0.f && rel.y == 0.f && rel.z == 0.f;
     const double3 arm = centred ? make_double3(0.0, 0.0, 0.0) : rotateToGlobal(s.owners.oriQ[o], to_double3(rel));
-    k.spherePos[i] = k.ownerPos[o] + arm;
+    k.spherePos[i] = ownerCentre(s, o) + arm;
     k.sphereArm[i] = to_float3(arm);
 }
 
@@ -281,9 +284,10 @@ DEME_HD_INLINE void placeTriangle(S& s, size_t t) {
     auto& k = s.cache;
     const bodyID_t o = s.triangles.owner[t];
     const float4 q = s.owners.oriQ[o];
-    k.triVert[3 * t + 0] = localPointToGlobal(k.ownerPos[o], q, s.triangles.v0[t]);
-    k.triVert[3 * t + 1] = localPointToGlobal(k.ownerPos[o], q, s.triangles.v1[t]);
-    k.triVert[3 * t + 2] = localPointToGlobal(k.ownerPos[o], q, s.triangles.v2[t]);
+    const double3 x = ownerCentre(s, o);
+    k.triVert[3 * t + 0] = localPointToGlobal(x, q, s.triangles.v0[t]);
+    k.triVert[3 * t + 1] = localPointToGlobal(x, q, s.triangles.v1[t]);
+    k.triVert[3 * t + 2] = localPointToGlobal(x, q, s.triangles.v2[t]);
 }
 
 // Analytical component k's cached reference point and normal/axis from its owner's pose, and an
@@ -295,7 +299,7 @@ DEME_HD_INLINE float placeAnalytical(S& s, size_t k, double domainDiagonal) {
     const bodyID_t o = s.analytical.owner[k];
     const float3 relPos = s.analytical.relPos[k], relDir = s.analytical.relDir[k];
     const float4 q = s.owners.oriQ[o];
-    const double3 x = s.cache.ownerPos[o];
+    const double3 x = ownerCentre(s, o);
     const float3 v = s.owners.vel[o], w = s.owners.angVel[o];
     const float3 wG = rotateToGlobal(q, w);
     const float3 dir = rotateToGlobal(q, relDir);

@@ -140,7 +140,7 @@ OutputFrame stageClumpFrame(const Simulation& sim) {
     for (long u = 0; u < (long)n; u++) {
         const bodyID_t o = s.ownerUserToInternal[users[u]];
         owner.values<int32_t>()[u] = (int32_t)users[u];
-        putPoint(xyz, u, ownerPosition(s, o));
+        putPoint(xyz, u, ownerCentre(s, o));
         putQuat(quat, u, s.owners.oriQ[o]);
         put3(vel, u, s.owners.vel[o]);
         put3(angVel, u, s.owners.angVel[o]);

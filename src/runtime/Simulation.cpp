@@ -281,7 +281,7 @@ void Simulation::reportFault(const StepOutcome& r) const {
                                        std::to_string(settings.errorOutVelocity) + " m/s, see SetErrorOutVelocity)"
                              : fault == OwnerFault::NOT_FINITE ? "has a non-finite velocity or orientation"
                                                                : "left the simulation domain";
-    const double3 p = ownerPosition(s, (bodyID_t)r.faultOwner);
+    const double3 p = ownerCentre(s, r.faultOwner);
     const float3 v = s.owners.vel[r.faultOwner];
     throwError("DoDynamics", "simulation diverged at t = " + std::to_string(m_time) + " s: owner " +
                                  std::to_string(s.ownerInternalToUser[r.faultOwner]) + " " + what + "; position (" +
@@ -298,7 +298,7 @@ void Simulation::invalidateContacts() {
     m_contacts.invalidate();
 }
 
-double3 Simulation::ownerPos(size_t owner) const { return ownerPosition(state(), (bodyID_t)owner); }
+double3 Simulation::ownerPos(size_t owner) const { return ownerCentre(state(), owner); }
 
 void Simulation::setOwnerPos(size_t owner, const double3& p, const char* call) {
     OwnerArrays& ow = editState().owners;

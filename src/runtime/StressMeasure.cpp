@@ -26,7 +26,7 @@ std::vector<StressTensor> measureStressField(const SimState& s, const double3& l
     const double cellVolume = size.x * size.y * size.z / (double)cells;
     // The cell holding a grain's centre, or -1 outside the box.
     auto cellOf = [&](bodyID_t o) -> long long {
-        const double3 x = s.cache.ownerPos[o];
+        const double3 x = ownerCentre(s, o);
         const double f[3] = {(x.x - lo.x) / size.x, (x.y - lo.y) / size.y, (x.z - lo.z) / size.z};
         long long idx = 0, stride = 1;
         for (int a = 0; a < 3; a++) {

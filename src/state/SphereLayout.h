@@ -9,6 +9,8 @@
 
 #include <deme/VariableTypes.h>
 
+#include "state/OwnerCentre.h"
+
 namespace deme {
 
 // The first element of a state array: a host vector's or a view's pointer.
@@ -21,17 +23,11 @@ DEME_HD_INLINE const typename V::value_type* arrayData(const V& v) {
     return v.data();
 }
 
-// The spheres' centres, global frame, indexed by sphere: the owners' positions where spheres are
-// their owners. (One choice per call, not per sphere: a vectorised loop then gathers from one array.)
-template <class S>
-DEME_HD_INLINE const double3* sphereCentres(const S& s) {
-    return s.spheresAreOwners ? arrayData(s.cache.ownerPos) : arrayData(s.cache.spherePos);
-}
-
-// Sphere i's centre, global frame.
+// Sphere i's centre, global frame: its owner's, decoded from the compact position, where spheres
+// are their owners (state/OwnerCentre.h).
 template <class S>
 DEME_HD_INLINE double3 sphereCentre(const S& s, size_t i) {
-    return sphereCentres(s)[i];
+    return s.spheresAreOwners ? ownerCentre(s, i) : s.cache.spherePos[i];
 }
 
 // Sphere i's owner: sphere i itself where spheres are their owners (one dependent read fewer for a

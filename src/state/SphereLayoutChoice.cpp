@@ -5,6 +5,8 @@
 #include <cstring>
 #include <numeric>
 
+#include "state/OwnerCentre.h"
+
 namespace deme {
 
 bool fullSphereLayoutForced() {
@@ -75,9 +77,9 @@ void expandSphereLayout(SimState& s) {
     s.spheresAreOwners = false;
     ownerSphereRanges(s, s.ownerSphereStart);
     s.spheres.relPos.assign(nS, make_float3(0.f, 0.f, 0.f));
-    // The cache, where it has been built: a centred sphere's centre is its owner's, its arm zero.
-    if (s.cache.ownerPos.size() < nS) return;
-    s.cache.spherePos.assign(s.cache.ownerPos.begin(), s.cache.ownerPos.begin() + nS);
+    // The cache: a centred sphere's centre is its owner's, its arm zero.
+    s.cache.spherePos.resize(nS);
+    for (size_t i = 0; i < nS; i++) s.cache.spherePos[i] = ownerCentre(s, i);
     s.cache.sphereArm.assign(nS, make_float3(0.f, 0.f, 0.f));
 }
 

@@ -124,15 +124,15 @@ struct WindowLoad {
 
 // Quantities derived from the owner state, refreshed after every integration step (and after any
 // host-side edit) so that the force pass and contact detection read them instead of recomputing
-// them for every contact.
-#define DEME_CACHE_FIELDS(X)                                                            \
-    X(ownerPos, double3, EVOLVES)         /* decoded owner positions */                 \
-    X(ownerAngVelGlobal, float3, EVOLVES) /* mid-step: see finishLargeRotation */       \
-    X(spherePos, double3, EVOLVES)        /* sphere centres */                          \
-    X(sphereArm, float3, EVOLVES)         /* sphere centre minus owner centre */        \
-    X(analPos, double3, EVOLVES)          /* analytical components' reference points */ \
-    X(analDir, double3, EVOLVES)          /* analytical normals / axes (unit) */        \
-    X(triVert, double3, EVOLVES)          /* 3 global vertices per triangle */
+// them for every contact: the placed geometry. (An owner's position and global spin are not among
+// them: their readers decode the compact position, state/OwnerCentre.h, and turn the owner-frame
+// spin with the orientation they read anyway, dynamics/ContactInputsGather.h.)
+#define DEME_CACHE_FIELDS(X)                                                      \
+    X(spherePos, double3, EVOLVES) /* sphere centres */                           \
+    X(sphereArm, float3, EVOLVES)  /* sphere centre minus owner centre */         \
+    X(analPos, double3, EVOLVES)   /* analytical components' reference points */ \
+    X(analDir, double3, EVOLVES)   /* analytical normals / axes (unit) */        \
+    X(triVert, double3, EVOLVES)   /* 3 global vertices per triangle */
 
 // Per-owner results of the integration sweep that later sweeps of the same step read.
 #define DEME_SCRATCH_FIELDS(X) X(flags, uint8_t, SCRATCH) /* OwnerStepFlag bits */

@@ -60,11 +60,18 @@ void CpuKinematics::submit(const DetectionOrder& order) {
     }
     Order& o = m_order;
     o.order = order;
-    // The spheres' centres (their owners' where spheres are owners, state/SphereLayout.h).
-    if (m_live.spheresAreOwners)
-        o.spherePos.assign(m_live.cache.ownerPos.begin(), m_live.cache.ownerPos.begin() + m_live.spheres.size());
-    else
+    // The spheres' centres, or where spheres are their owners the owners' compact positions
+    // (state/SphereLayout.h).
+    if (m_live.spheresAreOwners) {
+        const size_t nS = m_live.spheres.size();
+        const OwnerArrays& ow = m_live.owners;
+        o.voxel.assign(ow.voxel.begin(), ow.voxel.begin() + nS);
+        o.subX.assign(ow.subX.begin(), ow.subX.begin() + nS);
+        o.subY.assign(ow.subY.begin(), ow.subY.begin() + nS);
+        o.subZ.assign(ow.subZ.begin(), ow.subZ.begin() + nS);
+    } else {
         o.spherePos = m_live.cache.spherePos;
+    }
     o.analPos = m_live.cache.analPos;
     o.analDir = m_live.cache.analDir;
     o.triVert = m_live.cache.triVert;
@@ -95,7 +102,14 @@ void CpuKinematics::run() {
     Result result;
     while (m_mailbox.waitForOrder(order)) {
         try {
-            (m_work.spheresAreOwners ? m_work.cache.ownerPos : m_work.cache.spherePos).swap(order.spherePos);
+            if (m_work.spheresAreOwners) {
+                m_work.owners.voxel.swap(order.voxel);
+                m_work.owners.subX.swap(order.subX);
+                m_work.owners.subY.swap(order.subY);
+                m_work.owners.subZ.swap(order.subZ);
+            } else {
+                m_work.cache.spherePos.swap(order.spherePos);
+            }
             m_work.cache.analPos.swap(order.analPos);
             m_work.cache.analDir.swap(order.analDir);
             m_work.cache.triVert.swap(order.triVert);
@@ -118,6 +132,8 @@ void CpuKinematics::run() {
 void CpuKinematics::countHostMemory(MemoryStats& m) const {
     size_t b = m_detector.bytes() + m_taken.bytes() + vectorBytes(m_order.spherePos) + vectorBytes(m_order.analPos) +
                vectorBytes(m_order.analDir) + vectorBytes(m_order.triVert) + vectorBytes(m_order.ownerFamily) +
+               vectorBytes(m_order.voxel) + vectorBytes(m_order.subX) + vectorBytes(m_order.subY) +
+               vectorBytes(m_order.subZ) +
                m_result.pairs.bytes();
     // The worker's memory only while it works on nothing (it resizes its arrays as it goes).
     if (m_mailbox.idle()) {

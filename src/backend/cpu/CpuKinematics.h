@@ -44,6 +44,10 @@ class CpuKinematics : public KinematicsBackend {
         DetectionOrder order;
         std::vector<double3> spherePos, analPos, analDir, triVert;
         std::vector<family_t> ownerFamily;
+        // Where spheres are their owners, their owners' compact positions instead of spherePos
+        // (state/OwnerCentre.h: the worker decodes them as the steps do).
+        std::vector<voxelID_t> voxel;
+        std::vector<subVoxelPos_t> subX, subY, subZ;
     };
     struct Result {
         DetectionReport report;

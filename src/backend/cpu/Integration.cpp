@@ -97,7 +97,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
 #pragma omp for schedule(static)
             for (size_t k = 0; k < nStepped; k++) {
                 const size_t o = ownerIds ? (size_t)ownerIds[k] : k;
-                if (flags[o] & STEP_LARGE_ROTATION) finishLargeRotation(s, o, h);
+                if (flags[o] & STEP_LARGE_ROTATION) finishLargeRotation(s, o, familyMotion[ow.family[o]], consts);
             }
         }
 

@@ -82,6 +82,7 @@ struct CudaKinematics::Work {
     DeviceBuffer<uint8_t> anaType, anaInside, familyMask;
     BinGrid grid{};
     DomainFrame frame{};
+    double3 domainSize{};
     uint32_t numOwners = 0, numSpheres = 0, numAnalytical = 0, numTriangles = 0;
     bool spheresAreOwners = false;  // (Geometry's)
     // The snapshot and the contact list on this GPU, when staged.
@@ -107,6 +108,47 @@ struct CudaKinematics::Work {
     void releaseScratch();
 };
 
+void KinematicsInbox::setGroup(MemoryGroup g) {
+    forEachBuffer([g](auto& b) { b.setGroup(g); });
+}
+
+size_t KinematicsInbox::bytes() const {
+    size_t n = 0;
+    const_cast<KinematicsInbox*>(this)->forEachBuffer([&n](const auto& b) { n += b.capacityBytes(); });
+    return n;
+}
+
+void KinematicsInbox::release() {
+    forEachBuffer([](auto& b) { b.release(); });
+}
+
+void KinematicsInbox::resize(bool spheresAreOwners, size_t numOwners, size_t numSpheres, size_t numAnalytical,
+                             size_t numTriangles) {
+    // The form the layout does not read goes (after a layout switch it holds memory).
+    if (spheresAreOwners) {
+        spherePos.release();
+        voxel.resizeDiscarding(numSpheres);
+        subX.resizeDiscarding(numSpheres);
+        subY.resizeDiscarding(numSpheres);
+        subZ.resizeDiscarding(numSpheres);
+    } else {
+        voxel.release();
+        subX.release();
+        subY.release();
+        subZ.release();
+        spherePos.resizeDiscarding(numSpheres);
+    }
+    triVert.resizeDiscarding(3 * numTriangles);
+    analPos.resizeDiscarding(numAnalytical);
+    analDir.resizeDiscarding(numAnalytical);
+    ownerFamily.resizeDiscarding(numOwners);
+}
+
+void KinematicsInbox::copyFrom(const KinematicsInbox& src, Stream stream) {
+    forEachBuffer([stream](auto& to, const auto& from) { to.copyFromAsync(from, to.size(), stream); },
+                  const_cast<KinematicsInbox&>(src));
+}
+
 void CudaKinematics::Work::upload(const Geometry& g) {
     uploadResized(sphereOwner, g.sphereOwner, stream);  // empty where not staged
     uploadResized(radius, g.radius, stream);
@@ -127,18 +169,13 @@ void CudaKinematics::Work::upload(const Geometry& g) {
     dormant.upload(g.dormant, stream);  // built afresh at the next detection
     grid = g.grid;
     frame = g.frame;
+    domainSize = g.domainSize;
     numOwners = g.numOwners;
     numSpheres = g.numSpheres;
     numAnalytical = g.numAnalytical;
     numTriangles = g.numTriangles;
     spheresAreOwners = g.spheresAreOwners;
-    if (staged) {
-        localIn.spherePos.resizeDiscarding(numSpheres);
-        localIn.triVert.resizeDiscarding(3 * (size_t)numTriangles);
-        localIn.analPos.resizeDiscarding(numAnalytical);
-        localIn.analDir.resizeDiscarding(numAnalytical);
-        localIn.ownerFamily.resizeDiscarding(numOwners);
-    }
+    if (staged) localIn.resize(spheresAreOwners, numOwners, numSpheres, numAnalytical, numTriangles);
     // The host vectors stay dT's: wait until the copies have read them.
     synchronize(stream);
 }
@@ -179,21 +216,17 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     DEME_CUDA_CHECK(CALL, cudaStreamWaitEvent(toCuda(stream), static_cast<cudaEvent_t>(submitted), 0));
     KinematicsInbox& src = staged ? localIn : in;
     // What moves, from the snapshot or (in place) from dT's state: the spheres' centres are their
-    // owners' where spheres are owners (state/SphereLayout.h).
-    const DeviceBuffer<double3>& centres = !inPlace           ? src.spherePos
-                                           : spheresAreOwners ? shared->cache.ownerPos
-                                                              : shared->cache.spherePos;
+    // owners', decoded from their compact positions, where spheres are owners (state/SphereLayout.h).
+    const DeviceBuffer<double3>& centres = inPlace ? shared->cache.spherePos : src.spherePos;
+    const DeviceBuffer<voxelID_t>& voxel = inPlace ? shared->owners.voxel : src.voxel;
+    const DeviceBuffer<subVoxelPos_t>& subX = inPlace ? shared->owners.subX : src.subX;
+    const DeviceBuffer<subVoxelPos_t>& subY = inPlace ? shared->owners.subY : src.subY;
+    const DeviceBuffer<subVoxelPos_t>& subZ = inPlace ? shared->owners.subZ : src.subZ;
     const DeviceBuffer<double3>& triVert = inPlace ? shared->cache.triVert : src.triVert;
     const DeviceBuffer<double3>& analPos = inPlace ? shared->cache.analPos : src.analPos;
     const DeviceBuffer<double3>& analDir = inPlace ? shared->cache.analDir : src.analDir;
     const DeviceBuffer<family_t>& ownerFamily = inPlace ? shared->owners.family : src.ownerFamily;
-    if (staged) {
-        localIn.spherePos.copyFromAsync(in.spherePos, numSpheres, stream);
-        localIn.triVert.copyFromAsync(in.triVert, 3 * (size_t)numTriangles, stream);
-        localIn.analPos.copyFromAsync(in.analPos, numAnalytical, stream);
-        localIn.analDir.copyFromAsync(in.analDir, numAnalytical, stream);
-        localIn.ownerFamily.copyFromAsync(in.ownerFamily, numOwners, stream);
-    }
+    if (staged) localIn.copyFrom(in, stream);
     // The state as the detection kernels read it: static geometry here, positions from the snapshot.
     StateView v{};
     v.frame = frame;
@@ -209,10 +242,15 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     v.analytical.inside = anaInside.data();
     v.triangles.owner = triOwner.data();
     v.cache.spherePos = const_cast<double3*>(centres.data());
-    // Where spheres are their owners the snapshot's centres are the owners' positions, and sphere i's
-    // owner is i: the state keeps no owners to read (state/SphereLayout.h).
+    // Where spheres are their owners sphere i's centre is owner i's, decoded from its compact
+    // position in the frame (a parked clump's on the parking line, from the domain's size), and its
+    // owner is i: the state keeps no sphere owners to read (state/SphereLayout.h).
     v.spheresAreOwners = spheresAreOwners;
-    v.cache.ownerPos = const_cast<double3*>(centres.data());
+    v.owners.voxel = const_cast<voxelID_t*>(voxel.data());
+    v.owners.subX = const_cast<subVoxelPos_t*>(subX.data());
+    v.owners.subY = const_cast<subVoxelPos_t*>(subY.data());
+    v.owners.subZ = const_cast<subVoxelPos_t*>(subZ.data());
+    v.domainSize = domainSize;
     v.cache.analPos = const_cast<double3*>(analPos.data());
     v.cache.analDir = const_cast<double3*>(analDir.data());
     v.cache.triVert = const_cast<double3*>(triVert.data());
@@ -369,11 +407,7 @@ CudaKinematics::CudaKinematics(int kTDevice, int dTDevice, const DeviceState& so
     // The outbox's pairs become a contact set when dT takes them (their buffers are swapped).
     m_outbox.geomA.setGroup(MemoryGroup::CONTACTS);
     m_outbox.geomB.setGroup(MemoryGroup::CONTACTS);
-    m_inbox.spherePos.setGroup(MemoryGroup::DETECTION);
-    m_inbox.triVert.setGroup(MemoryGroup::DETECTION);
-    m_inbox.analPos.setGroup(MemoryGroup::DETECTION);
-    m_inbox.analDir.setGroup(MemoryGroup::DETECTION);
-    m_inbox.ownerFamily.setGroup(MemoryGroup::DETECTION);
+    m_inbox.setGroup(MemoryGroup::DETECTION);
     m_keepScratchUpTo = keepRebuiltArraysUpTo("Initialize");
     // dT's GPU is current here: the event and the exchange buffers belong to it.
     cudaEvent_t event = nullptr;
@@ -435,6 +469,7 @@ void CudaKinematics::setGeometry(const SimState& s, const BinGrid& g, const Fami
                                      "(SetInitBinSize) or a smaller domain");
     k.grid = g;
     k.frame = s.frame;
+    k.domainSize = s.domainSize;
     k.dormant = DormantFamilies::of(s, families);
     k.numOwners = (uint32_t)s.owners.size();
     k.numSpheres = (uint32_t)s.spheres.size();
@@ -450,27 +485,20 @@ void CudaKinematics::post(const DetectionOrder& order, bool inPlace) {
     KinematicsInbox& in = m_inbox;
     if (inPlace) {
         // The inbox is not read: a large one (an asynchronous call's, before a switch) goes.
-        const size_t inboxBytes = in.spherePos.capacityBytes() + in.triVert.capacityBytes() +
-                                  in.analPos.capacityBytes() + in.analDir.capacityBytes() +
-                                  in.ownerFamily.capacityBytes();
-        if (inboxBytes > m_keepScratchUpTo) {
-            in.spherePos.release();
-            in.triVert.release();
-            in.analPos.release();
-            in.analDir.release();
-            in.ownerFamily.release();
-        }
+        if (in.bytes() > m_keepScratchUpTo) in.release();
     } else {
         // The snapshot, copied on dT's stream (dT's GPU is current for this thread) into the inbox,
-        // sized here: a run that only detects in place never holds one. The spheres' centres are
-        // their owners' where spheres are owners (state/SphereLayout.h).
-        const DeviceBuffer<double3>& centres = k.spheresAreOwners ? m_source.cache.ownerPos : m_source.cache.spherePos;
-        in.spherePos.resizeDiscarding(k.numSpheres);
-        in.triVert.resizeDiscarding(3 * (size_t)k.numTriangles);
-        in.analPos.resizeDiscarding(k.numAnalytical);
-        in.analDir.resizeDiscarding(k.numAnalytical);
-        in.ownerFamily.resizeDiscarding(k.numOwners);
-        in.spherePos.copyFromAsync(centres, k.numSpheres, m_dtStream);
+        // sized here: a run that only detects in place never holds one. Where spheres are their
+        // owners, the owners' compact positions stand for the spheres' centres (state/SphereLayout.h).
+        in.resize(k.spheresAreOwners, k.numOwners, k.numSpheres, k.numAnalytical, k.numTriangles);
+        if (k.spheresAreOwners) {
+            in.voxel.copyFromAsync(m_source.owners.voxel, k.numSpheres, m_dtStream);
+            in.subX.copyFromAsync(m_source.owners.subX, k.numSpheres, m_dtStream);
+            in.subY.copyFromAsync(m_source.owners.subY, k.numSpheres, m_dtStream);
+            in.subZ.copyFromAsync(m_source.owners.subZ, k.numSpheres, m_dtStream);
+        } else {
+            in.spherePos.copyFromAsync(m_source.cache.spherePos, k.numSpheres, m_dtStream);
+        }
         in.triVert.copyFromAsync(m_source.cache.triVert, 3 * (size_t)k.numTriangles, m_dtStream);
         in.analPos.copyFromAsync(m_source.cache.analPos, k.numAnalytical, m_dtStream);
         in.analDir.copyFromAsync(m_source.cache.analDir, k.numAnalytical, m_dtStream);

@@ -41,10 +41,38 @@
 
 namespace deme::cuda {
 
-// The snapshot detection reads, on dT's GPU (written by dT).
+// The snapshot detection reads, on dT's GPU (written by dT): the spheres' centres, or where spheres
+// are their owners the owners' compact positions (the detection decodes them as the steps do,
+// state/OwnerCentre.h), and what else moves.
 struct KinematicsInbox {
     DeviceBuffer<double3> spherePos, triVert, analPos, analDir;
     DeviceBuffer<family_t> ownerFamily;
+    DeviceBuffer<voxelID_t> voxel;
+    DeviceBuffer<subVoxelPos_t> subX, subY, subZ;
+
+    void setGroup(MemoryGroup g);
+    size_t bytes() const;
+    void release();
+    // Sized for a snapshot of these counts; the form the layout does not read is let go.
+    void resize(bool spheresAreOwners, size_t numOwners, size_t numSpheres, size_t numAnalytical,
+                size_t numTriangles);
+    // A copy of `src`'s snapshot, as sized (on `stream`; src on another GPU).
+    void copyFrom(const KinematicsInbox& src, Stream stream);
+
+  private:
+    // f(buffer of this, buffer of others...) for each buffer, the same one of each inbox.
+    template <class F, class... I>
+    void forEachBuffer(F&& f, I&... others) {
+        f(spherePos, others.spherePos...);
+        f(triVert, others.triVert...);
+        f(analPos, others.analPos...);
+        f(analDir, others.analDir...);
+        f(ownerFamily, others.ownerFamily...);
+        f(voxel, others.voxel...);
+        f(subX, others.subX...);
+        f(subY, others.subY...);
+        f(subZ, others.subZ...);
+    }
 };
 
 // The contact list kT found, sorted by (A, B), on dT's GPU (written by kT). dT may swap these buffers
@@ -98,6 +126,7 @@ class CudaKinematics : public KinematicsBackend {
         std::vector<uint8_t> anaType, anaInside, familyMask;
         BinGrid grid{};
         DomainFrame frame{};  // its periodic box: detection compares geometries through their nearest images
+        double3 domainSize{};  // (a parked clump's place: state/OwnerCentre.h)
         uint32_t numOwners = 0, numSpheres = 0, numAnalytical = 0, numTriangles = 0;
         bool spheresAreOwners = false;  // the snapshot's centres are the owners' (state/SphereLayout.h)
         DormantFamilies dormant;  // the active box's families (DeviceDormantRegistry)

@@ -304,7 +304,7 @@ __device__ inline long long integrateOwner(StateView& s, StepBatchControl* ctl, 
         if (r.flags & STEP_FAULTS) fault = (unsigned int)o;
         parked = (r.flags & STEP_PARKED) != 0;
         large = (r.flags & STEP_LARGE_ROTATION) ? 1u : 0u;
-        if (large) finishLargeRotation(s, o, consts.h);
+        if (large) finishLargeRotation(s, o, st.in, torque, consts.h);
         if (clearLoads) {
             s.owners.contactForce[o] = make_float3(0.f);
             s.owners.contactTorque[o] = make_float3(0.f);

@@ -1,0 +1,44 @@
+// Where an owner's centre is read. The state keeps an owner's position once, in the paper's compact
+// form (§2.3: a voxel index and three sub-voxel offsets, 14 bytes), and every reader decodes it
+// where it needs it, with the one expression the step itself uses (physics/CompactPosition.h), so
+// every reader gets the same double, bit for bit. A cache of the decoded positions (24 bytes an
+// owner, 29 % more than the compact form) was kept until 2026-12-07 (docs/memory.md). Plain code:
+// NVRTC compiles it.
+#pragma once
+
+#include "physics/CompactPosition.h"
+
+namespace deme {
+
+// The voxel code of a clump parked by the "remove" exit policy (dynamics/OwnerStep.h): a code no
+// position has (a position's code is 3 x 21 bits), which places clump o on the parking line.
+constexpr voxelID_t PARKED_VOXEL = voxelID_t(1) << 63;
+
+// Where clumps that left the domain under the "remove" exit policy wait for the host to take them
+// out: clump o at start + o * stride. Parked clumps lie along the first bounded axis (an exit
+// crosses a bounded face, so there is one), from 1000 domain lengths out, 4 domain lengths apart.
+struct ParkingLine {
+    double3 start, stride;
+};
+
+DEME_HD_INLINE ParkingLine parkingLine(const DomainFrame& f, const double3& size) {
+    const unsigned int p = f.periodic.axes;
+    const int a = !(p & 1u) ? 0 : !(p & 2u) ? 1 : 2;
+    const double unit = fmax(size.x, fmax(size.y, size.z));
+    const double3 axis = make_double3(a == 0 ? 1.0 : 0.0, a == 1 ? 1.0 : 0.0, a == 2 ? 1.0 : 0.0);
+    return ParkingLine{f.origin + (1000.0 * unit) * axis, (4.0 * unit) * axis};
+}
+
+DEME_HD_INLINE double3 parkedPosition(const ParkingLine& line, size_t o) { return line.start + (double)o * line.stride; }
+
+// Owner o's centre, global frame, from its compact position (the parking line for a parked clump).
+// A select, not a branch: the CPU's force pass reads it in a vectorised loop.
+template <class S>
+DEME_HD_INLINE double3 ownerCentre(const S& s, size_t o) {
+    const auto& ow = s.owners;
+    const voxelID_t v = ow.voxel[o];
+    const double3 x = decodePosition(v, ow.subX[o], ow.subY[o], ow.subZ[o], s.frame);
+    return (v & PARKED_VOXEL) ? parkedPosition(parkingLine(s.frame, s.domainSize), o) : x;
+}
+
+}  // namespace deme
