@@ -12,6 +12,7 @@
 #include <deme/Error.h>
 
 #include "parallel/Parallel.h"
+#include "state/OwnerCentre.h"
 #include "physics/ContactGeometry.h"
 #include "physics/RigidBody.h"
 #include "runtime/TextFormat.h"
@@ -33,6 +34,7 @@ DomainFrame makeFrame(const float3& lo, const float3& size, unsigned int periodi
     // The largest dimension spans all but one of the 2^21 voxels, so the far faces are representable.
     f.voxelSize = maxL / (double)((1 << VOXEL_BITS_PER_AXIS) - 1);
     f.subStep = f.voxelSize / SUBVOXEL_STEPS;
+    f.parking = parkingLine(f);
     return f;
 }
 

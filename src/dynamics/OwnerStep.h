@@ -53,9 +53,9 @@ struct StepConstants {
     // Tracker loads per owner (state/StateFields.h), or null in a call without any.
     const float3* extraAcc;
     const float3* extraAngAcc;
-    // SetDomainExitPolicy("remove"): a clump that leaves the domain is parked, not a fault.
+    // SetDomainExitPolicy("remove"): a clump that leaves the domain is parked, not a fault (on the
+    // frame's parking line).
     bool parkLeavingClumps;
-    ParkingLine parking;
 };
 
 // Under the "remove" exit policy a clump that leaves the domain is not a fault that ends the batch:
@@ -125,8 +125,8 @@ DEME_HD_INLINE OwnerStepInputs loadOwnerStepInputs(const S& s, size_t o, const F
     in.subX = ow.subX[o];
     in.subY = ow.subY[o];
     in.subZ = ow.subZ[o];
-    // ownerCentre's expression, with the sweep's parking line.
-    in.x0 = (in.voxel & PARKED_VOXEL) ? parkedPosition(c.parking, o)
+    // ownerCentre's expression (state/OwnerCentre.h).
+    in.x0 = (in.voxel & PARKED_VOXEL) ? parkedPosition(c.frame.parking, o)
                                       : decodePosition(in.voxel, in.subX, in.subY, in.subZ, c.frame);
     in.type = ow.type[o];
     in.extent = s.massProps.extent[inertia];

@@ -8,11 +8,18 @@
 
 namespace deme {
 
+// Where clumps that left the domain under the "remove" exit policy wait for the host to take them
+// out: clump o at start + o * stride (state/OwnerCentre.h).
+struct ParkingLine {
+    double3 start, stride;
+};
+
 struct DomainFrame {
     double3 origin;    // lower corner of the domain
     double voxelSize;  // edge of one voxel
     double subStep;    // voxelSize / 2^16: the position resolution
     PeriodicBox periodic{};  // the domain's edges and which axes are periodic (physics/Periodic.h)
+    ParkingLine parking{};   // parkingLine(this frame), set with it: read wherever a centre is
 };
 
 DEME_HD inline voxelID_t packVoxel(uint64_t vx, uint64_t vy, uint64_t vz) {

@@ -14,16 +14,13 @@ namespace deme {
 // position has (a position's code is 3 x 21 bits), which places clump o on the parking line.
 constexpr voxelID_t PARKED_VOXEL = voxelID_t(1) << 63;
 
-// Where clumps that left the domain under the "remove" exit policy wait for the host to take them
-// out: clump o at start + o * stride. Parked clumps lie along the first bounded axis (an exit
-// crosses a bounded face, so there is one), from 1000 domain lengths out, 4 domain lengths apart.
-struct ParkingLine {
-    double3 start, stride;
-};
-
-DEME_HD_INLINE ParkingLine parkingLine(const DomainFrame& f, const double3& size) {
+// The frame's parking line (DomainFrame::parking, made with the frame): parked clumps lie along the
+// first bounded axis (an exit crosses a bounded face, so there is one), from 1000 domain lengths
+// out, 4 domain lengths apart.
+DEME_HD_INLINE ParkingLine parkingLine(const DomainFrame& f) {
     const unsigned int p = f.periodic.axes;
     const int a = !(p & 1u) ? 0 : !(p & 2u) ? 1 : 2;
+    const double3 size = f.periodic.length;
     const double unit = fmax(size.x, fmax(size.y, size.z));
     const double3 axis = make_double3(a == 0 ? 1.0 : 0.0, a == 1 ? 1.0 : 0.0, a == 2 ? 1.0 : 0.0);
     return ParkingLine{f.origin + (1000.0 * unit) * axis, (4.0 * unit) * axis};
@@ -31,14 +28,14 @@ DEME_HD_INLINE ParkingLine parkingLine(const DomainFrame& f, const double3& size
 
 DEME_HD_INLINE double3 parkedPosition(const ParkingLine& line, size_t o) { return line.start + (double)o * line.stride; }
 
-// Owner o's centre, global frame, from its compact position (the parking line for a parked clump).
-// A select, not a branch: the CPU's force pass reads it in a vectorised loop.
+// Owner o's centre, global frame, from its compact position (the frame's parking line for a parked
+// clump). A select, not a branch: the CPU's force pass reads it in a vectorised loop.
 template <class S>
 DEME_HD_INLINE double3 ownerCentre(const S& s, size_t o) {
     const auto& ow = s.owners;
     const voxelID_t v = ow.voxel[o];
     const double3 x = decodePosition(v, ow.subX[o], ow.subY[o], ow.subZ[o], s.frame);
-    return (v & PARKED_VOXEL) ? parkedPosition(parkingLine(s.frame, s.domainSize), o) : x;
+    return (v & PARKED_VOXEL) ? parkedPosition(s.frame.parking, o) : x;
 }
 
 }  // namespace deme

@@ -65,8 +65,7 @@ IntegrationResult integrateOwners(SimState& s, const std::array<FamilyStepMotion
                                s.domainSize,
                                loads.empty() ? nullptr : loads.extraAcc.data(),
                                loads.empty() ? nullptr : loads.extraAngAcc.data(),
-                               parkLeavingClumps,
-                               parkingLine(s.frame, s.domainSize)};
+                               parkLeavingClumps};
     IntegrationScratch& scratch = s.integrationScratch;
     scratch.flags.resize(n);
     uint8_t* flags = scratch.flags.data();

@@ -82,7 +82,6 @@ struct CudaKinematics::Work {
     DeviceBuffer<uint8_t> anaType, anaInside, familyMask;
     BinGrid grid{};
     DomainFrame frame{};
-    double3 domainSize{};
     uint32_t numOwners = 0, numSpheres = 0, numAnalytical = 0, numTriangles = 0;
     bool spheresAreOwners = false;  // (Geometry's)
     // The snapshot and the contact list on this GPU, when staged.
@@ -169,7 +168,6 @@ void CudaKinematics::Work::upload(const Geometry& g) {
     dormant.upload(g.dormant, stream);  // built afresh at the next detection
     grid = g.grid;
     frame = g.frame;
-    domainSize = g.domainSize;
     numOwners = g.numOwners;
     numSpheres = g.numSpheres;
     numAnalytical = g.numAnalytical;
@@ -243,14 +241,13 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     v.triangles.owner = triOwner.data();
     v.cache.spherePos = const_cast<double3*>(centres.data());
     // Where spheres are their owners sphere i's centre is owner i's, decoded from its compact
-    // position in the frame (a parked clump's on the parking line, from the domain's size), and its
-    // owner is i: the state keeps no sphere owners to read (state/SphereLayout.h).
+    // position in the frame (a parked clump's on the frame's parking line), and its owner is i: the
+    // state keeps no sphere owners to read (state/SphereLayout.h).
     v.spheresAreOwners = spheresAreOwners;
     v.owners.voxel = const_cast<voxelID_t*>(voxel.data());
     v.owners.subX = const_cast<subVoxelPos_t*>(subX.data());
     v.owners.subY = const_cast<subVoxelPos_t*>(subY.data());
     v.owners.subZ = const_cast<subVoxelPos_t*>(subZ.data());
-    v.domainSize = domainSize;
     v.cache.analPos = const_cast<double3*>(analPos.data());
     v.cache.analDir = const_cast<double3*>(analDir.data());
     v.cache.triVert = const_cast<double3*>(triVert.data());
@@ -469,7 +466,6 @@ void CudaKinematics::setGeometry(const SimState& s, const BinGrid& g, const Fami
                                      "(SetInitBinSize) or a smaller domain");
     k.grid = g;
     k.frame = s.frame;
-    k.domainSize = s.domainSize;
     k.dormant = DormantFamilies::of(s, families);
     k.numOwners = (uint32_t)s.owners.size();
     k.numSpheres = (uint32_t)s.spheres.size();

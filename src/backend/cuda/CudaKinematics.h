@@ -126,7 +126,6 @@ class CudaKinematics : public KinematicsBackend {
         std::vector<uint8_t> anaType, anaInside, familyMask;
         BinGrid grid{};
         DomainFrame frame{};  // its periodic box: detection compares geometries through their nearest images
-        double3 domainSize{};  // (a parked clump's place: state/OwnerCentre.h)
         uint32_t numOwners = 0, numSpheres = 0, numAnalytical = 0, numTriangles = 0;
         bool spheresAreOwners = false;  // the snapshot's centres are the owners' (state/SphereLayout.h)
         DormantFamilies dormant;  // the active box's families (DeviceDormantRegistry)

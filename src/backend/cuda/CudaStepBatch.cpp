@@ -38,8 +38,7 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
                                m_view.domainSize,
                                withLoads ? loads.extraAcc.data() : nullptr,
                                withLoads ? loads.extraAngAcc.data() : nullptr,
-                               settings.removeLeavingClumps,
-                               parkingLine(m_view.frame, m_view.domainSize)};
+                               settings.removeLeavingClumps};
     const StepBatchControl* ctl = m_control.data();
     const bodyID_t* ownerIds = m_subsetAll ? nullptr : m_steppedOwners.data();
     const bodyID_t* sphereIds = m_subsetAll ? nullptr : m_steppedSpheres.data();
