@@ -19,7 +19,11 @@ struct DomainFrame {
     double voxelSize;  // edge of one voxel
     double subStep;    // voxelSize / 2^16: the position resolution
     PeriodicBox periodic{};  // the domain's edges and which axes are periodic (physics/Periodic.h)
-    ParkingLine parking{};   // parkingLine(this frame), set with it: read wherever a centre is
+    ParkingLine parking{};   // parkingLine(this frame), set with it: read wherever a centre is ...
+    // ... where some clump may be parked: from the first call with the "remove" exit policy on
+    // (Simulation::allowParking). Without it a centre is the decoded position alone: the select
+    // costs the CPU's force pass some 3 % (BENCHMARKS.md, FORCE-PASS).
+    bool parks = false;
 };
 
 DEME_HD inline voxelID_t packVoxel(uint64_t vx, uint64_t vy, uint64_t vz) {

@@ -45,6 +45,7 @@ Simulation::~Simulation() = default;
 void Simulation::start(SimState&& state, const ModelLayout& model) {
     checkPeriodicScene(state, "Initialize");
     m_state = std::move(state);
+    m_state.frame.parks = settings.removeLeavingClumps;  // (allowParking)
     m_model = model;
     m_initialScene = sceneFingerprint(m_state, m_model);  // of the full layout, whichever is chosen
     chooseSphereLayout(m_state);
@@ -155,6 +156,13 @@ void Simulation::markHostBehind() {
                         [](auto& field, auto&, FieldRole) { releaseVector(field); });
 }
 
+void Simulation::allowParking() {
+    // Once on, for the solver's life: a parked clump's centre is read wherever a centre is (the
+    // backends' views and kT's copy take the frame with the next upload), and turning it off
+    // again would gain a few per cent for a rule that is easy to get wrong.
+    if (settings.removeLeavingClumps && !m_state.frame.parks) editState().frame.parks = true;
+}
+
 void Simulation::uploadIfEdited() {
     if (!m_backendStale) return;
     // The order in flight was detected from the state being replaced: let it finish unseen, so the
@@ -194,6 +202,7 @@ void Simulation::advance(unsigned long long n) {
     CollaborationStats& collab = m_contacts.stats();
     DynamicsBackend& dynamics = *m_backends.dynamics;
     const auto t0 = std::chrono::steady_clock::now();
+    allowParking();
     uploadIfEdited();
     const bool loads = !m_state.trackerLoads.empty();
     if (loads) dynamics.uploadTrackerLoads(m_state);

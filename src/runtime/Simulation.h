@@ -98,6 +98,9 @@ class Simulation {
 
     // Owner queries used by trackers, inspectors and writers.
     double3 ownerPos(size_t owner) const;
+    // Before a call's steps: where the "remove" exit policy is on, the frame reads parked clumps'
+    // centres from then on (DomainFrame::parks, state/OwnerCentre.h).
+    void allowParking();
     void setOwnerPos(size_t owner, const double3& p, const char* call);
     float ownerMass(size_t owner) const { return m_state.massProps.mass[m_state.owners.inertia[owner]]; }
     float3 ownerMOI(size_t owner) const { return m_state.massProps.moi[m_state.owners.inertia[owner]]; }

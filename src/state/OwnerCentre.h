@@ -29,13 +29,17 @@ DEME_HD_INLINE ParkingLine parkingLine(const DomainFrame& f) {
 DEME_HD_INLINE double3 parkedPosition(const ParkingLine& line, size_t o) { return line.start + (double)o * line.stride; }
 
 // Owner o's centre, global frame, from its compact position (the frame's parking line for a parked
-// clump). A select, not a branch: the CPU's force pass reads it in a vectorised loop.
+// clump, where the frame parks any). A select, not a branch: the CPU's force pass reads it in a
+// vectorised loop.
+DEME_HD_INLINE double3 ownerCentreOfCode(voxelID_t v, subVoxelPos_t sx, subVoxelPos_t sy, subVoxelPos_t sz,
+                                         const DomainFrame& f, size_t o) {
+    const double3 x = decodePosition(v, sx, sy, sz, f);
+    return f.parks && (v & PARKED_VOXEL) ? parkedPosition(f.parking, o) : x;
+}
 template <class S>
 DEME_HD_INLINE double3 ownerCentre(const S& s, size_t o) {
     const auto& ow = s.owners;
-    const voxelID_t v = ow.voxel[o];
-    const double3 x = decodePosition(v, ow.subX[o], ow.subY[o], ow.subZ[o], s.frame);
-    return (v & PARKED_VOXEL) ? parkedPosition(s.frame.parking, o) : x;
+    return ownerCentreOfCode(ow.voxel[o], ow.subX[o], ow.subY[o], ow.subZ[o], s.frame, o);
 }
 
 }  // namespace deme
