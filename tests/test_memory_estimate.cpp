@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "BackendFixture.h"
+#include "ForceModelTestUtil.h"
 #include "TestHelpers.h"
 
 using namespace deme;
@@ -220,4 +221,28 @@ DEME_BACKEND_TEST(MemoryEstimate, ASetTrimmedBeforeEachDetectionIsCountedOnce) {
         EXPECT_LT((double)trimmed, 0.7 * (double)async);
     else
         EXPECT_EQ(trimmed, async);
+}
+
+// Both backends keep a persistent flag per pair only where the model may set one (a custom model)
+// or a pair of the set has one (docs/memory.md, "Persistent flags only where used"): the estimate
+// counts the byte only then. The default model and the same model written as a custom one assume
+// the same pairs in the same form; the custom one's contacts are a byte more for each pair of every
+// set the form holds (one or two sets, and the pairs kept by a trim), nothing else differs.
+DEME_BACKEND_TEST(MemoryEstimate, PersistentFlagsAreCountedWhereTheModelMaySetThem) {
+    auto estimate = [](bool custom) {
+        DEMSolver sim;
+        if (custom) declareHertzMindlinInputs(*sim.DefineContactForceModel(hertzMindlinSnippet()));
+        addThousandSphereBed(sim);
+        sim.Initialize();
+        return sim.GetMemoryStats();
+    };
+    const MemoryStats builtIn = estimate(false), custom = estimate(true);
+    const int contacts = (int)MemoryGroup::CONTACTS;
+    ASSERT_EQ(builtIn.estimatedPairs, custom.estimatedPairs);
+    const size_t pairs = builtIn.estimatedPairs, more = custom.estimatedBytes[contacts] - builtIn.estimatedBytes[contacts];
+    ASSERT_GT(custom.estimatedBytes[contacts], builtIn.estimatedBytes[contacts]);
+    EXPECT_GE(more, pairs);
+    EXPECT_LE(more, 2 * pairs);
+    EXPECT_EQ(custom.estimatedTotal() - custom.estimatedBytes[contacts],
+              builtIn.estimatedTotal() - builtIn.estimatedBytes[contacts]);
 }

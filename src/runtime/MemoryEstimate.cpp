@@ -40,7 +40,7 @@ struct SizedBytes {
 // Contact pairs: the bytes one pair takes in one contact set (W wildcard floats), the CPU's
 // bookkeeping included where `host`. Not the per-contact force: the GPU keeps it in the idle set's
 // memory (contactSetBytes), the CPU only for the pairs with a force, at the end of a call.
-size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host) {
+size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host, bool persistentFlags) {
     const void* notPerPair[] = {
         &c.force,       &c.meshContacts, &c.meshContactGroups, &c.ownerAStart,   &c.blockWindowStart, &c.window,
         &c.ownerBStart, &c.ownerBSlots,  &c.ownerBInBlock,     &c.blockOutStart, &c.outSlot,          &c.outSlotWide};
@@ -48,6 +48,7 @@ size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host) {
     forEachContactField(c, c, [&](const auto& v, const auto&, FieldRole role) {
         const void* f = &v;
         if (f == &c.wildcards) b += W * elementBytes(v);
+        else if (f == &c.persistent && !persistentFlags) return;
         else if (std::find(std::begin(notPerPair), std::end(notPerPair), f) != std::end(notPerPair))
             return;  // per owner, per block, per slot, per mesh contact or per pair with a force
         else if (role != FieldRole::HOST || host) b += elementBytes(v);
@@ -167,7 +168,7 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
         const size_t slots = (size_t)(ESTIMATED_WINDOW_SLOTS_PER_OWNER * (double)s.owners.size());
         const size_t crossing = (size_t)(ESTIMATED_CROSSING_PAIR_SHARE * (double)pairs);
         const size_t pool = pooled ? (pairs + 63) / 64 * 12 + historySlots * 4 * (size_t)W : 0;
-        return pairs * (bytesPerPair(s.contacts, W, true) - historyPerPair) + pool + crossing * sizeof(uint16_t) +
+        return pairs * (bytesPerPair(s.contacts, W, true, form.persistentFlags) - historyPerPair) + pool + crossing * sizeof(uint16_t) +
                8 * (s.owners.size() + 1) + (s.owners.size() + 63) / 64 * 8 +
                slots * (2 * sizeof(float3) + sizeof(uint32_t));
     }
@@ -180,7 +181,7 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
     // the forces are kept per slot.
     const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
     if (pooled) {
-        const size_t perPair = bytesPerPair(s.contacts, W, false) - historyPerPair + sizeof(uint32_t);
+        const size_t perPair = bytesPerPair(s.contacts, W, false, form.persistentFlags) - historyPerPair + sizeof(uint32_t);
         const size_t pools = historySlots * (2 * 4 * (size_t)W + forceBytes);
         // Trimmed before a synchronous detection (CudaDynamics::beforeDetectNow), where at most half
         // of the pairs have a slot and so at most about half are kept: the whole set and the trim's
@@ -191,7 +192,7 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
         return pairs * 2 * perPair + pools;
     }
     const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;
-    return pairs * (2 * bytesPerPair(s.contacts, W, false) + forceGrowth);
+    return pairs * (2 * bytesPerPair(s.contacts, W, false, form.persistentFlags) + forceGrowth);
 }
 
 size_t memoryLimit(size_t available, const char* call) {

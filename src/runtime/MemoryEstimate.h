@@ -40,6 +40,9 @@ struct ContactSetForm {
     // Detection is synchronous and the set in use keeps only the pairs that hand something on
     // before it (kinematics/CarriedPairsRule.h): a GPU installation then holds one whole set, not two.
     bool trimmedBeforeDetection = false;
+    // Its pairs keep a persistent flag each (a model that may set one, or flags in the set it is
+    // mapped from); otherwise none (both backends keep them only where used).
+    bool persistentFlags = true;
 };
 
 struct MemoryEstimate {

@@ -95,6 +95,7 @@ ContactSetForm Simulation::contactSetForm(size_t pairs) const {
     f.trimmedBeforeDetection = !settings.asyncDetection &&
                                mayKeepOnlyPairsHandedOn(!m_state.wildcards.contactInit.empty()) &&
                                m_backends.dynamics->trimsBeforeDetection(pairs);
+    f.persistentFlags = !m_model.builtIn() || m_backends.dynamics->keepsPersistentFlags();
     return f;
 }
 

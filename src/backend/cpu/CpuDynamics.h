@@ -45,6 +45,7 @@ class CpuDynamics : public DynamicsBackend {
     void countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const override;
     size_t memoryFree() const override;
     size_t expectedHistorySlots(size_t pairs, unsigned int W) const override;
+    bool keepsPersistentFlags() const override { return !m_s.contacts.persistent.empty(); }
     // The share of the set in use's pairs with a history where it is pooled; -1 where it is dense.
     double historyShare() const;
 

@@ -67,6 +67,7 @@ class CudaDynamics : public DynamicsBackend {
     void countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const override;
     size_t memoryFree() const override { return memoryAvailable(); }
     size_t expectedHistorySlots(size_t pairs, unsigned int W) const override;
+    bool keepsPersistentFlags() const override { return !m_contacts[m_current].persistent.empty(); }
 
     // What kinematics orders snapshot, on this stream.
     const DeviceState& state() const { return m_state; }
