@@ -70,7 +70,7 @@ struct StepConstants {
 // dynamics/ContactStep.h). A parked clump stays parked: its place is outside the domain, so
 // it leaves again every step, and its flags say so until the host removes it. Its voxel code says
 // it is parked (PARKED_VOXEL, state/OwnerCentre.h), so that every reader of its centre finds it on
-// the line. The line is worked out once per sweep (the backends' StepConstants), not per owner.
+// the line (the frame's, DomainFrame::parking, worked out once with the frame).
 
 struct OwnerStepResult {
     float travelSinceDetection;  // negative: not counted (fixed or analytical owners)
