@@ -13,6 +13,7 @@
 #include "physics/MaterialMixing.h"
 #include "physics/Quaternion.h"
 #include "physics/RigidBody.h"
+#include "state/OwnerCentre.h"
 
 using namespace deme;
 
@@ -266,6 +267,27 @@ TEST(MathCompactPosition, EncodeRejectsOutsideAndNaN) {
 }
 
 // ---------------------------------------------------------------- contact geometry
+
+// A clump parked by the "remove" exit policy has a code no position has (PARKED_VOXEL): where the
+// frame parks, its centre is its place on the frame's parking line (1000 domain lengths out along
+// x, 4 apart); otherwise, and for every other code, the decoded position (state/OwnerCentre.h).
+TEST(MathCompactPosition, ParkedCodeReadsAsItsPlaceOnTheParkingLine) {
+    DomainFrame f = cubeFrame(2.0);
+    f.periodic.length = make_double3(2.0, 2.0, 2.0);
+    f.parking = parkingLine(f);
+    const double3 p = make_double3(0.3, -0.2, 0.7);
+    voxelID_t v = 0;
+    subVoxelPos_t sx = 0, sy = 0, sz = 0;
+    ASSERT_TRUE(encodePosition(p, f, v, sx, sy, sz));
+    EXPECT_EQ(v & PARKED_VOXEL, 0u);  // no position's code has the bit
+    const size_t o = 7;
+    f.parks = true;
+    expectNear3(ownerCentreOfCode(v, sx, sy, sz, f, o), decodePosition(v, sx, sy, sz, f), 0.0);
+    const double3 parked = ownerCentreOfCode(v | PARKED_VOXEL, sx, sy, sz, f, o);
+    expectNear3(parked, make_double3(-1.0 + (1000.0 + 4.0 * o) * 2.0, -1.0, -1.0), 1e-9);
+    f.parks = false;  // a frame that parks nothing reads no parking line
+    expectNear3(ownerCentreOfCode(v | PARKED_VOXEL, sx, sy, sz, f, o), decodePosition(v, sx, sy, sz, f), 0.0);
+}
 
 TEST(MathContactGeometry, SphereSphere) {
     // A (r 0.01) at z = 0.018 above B (r 0.01) at the origin: overlap 0.01 + 0.01 - 0.018 = 0.002,
