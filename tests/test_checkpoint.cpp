@@ -19,7 +19,6 @@
 #include "io/CheckpointState.h"
 #include "state/OwnerCentre.h"
 
-
 using namespace deme;
 using namespace deme_test;
 

@@ -75,7 +75,7 @@ DEME_BACKEND_TEST(LargeRotation, FreeSphereTurnsByOmegaTInExactSteps) {
     auto tr = sim.Track(ball);
     sim.DoDynamics(STEPS * DT);
     const double half = 0.5 * OMEGA * DT * STEPS;  // the turn's half angle: q = (cos, sin x, 0, 0)
-    const float4 got = tr->OriQ();  // (x, y, z, w): the scalar last
+    const float4 got = tr->OriQ();                 // (x, y, z, w): the scalar last
     // q and -q are one rotation: compare the one nearer the expected (cos, sin x, 0, 0).
     const double c = std::cos(half), sn = std::sin(half);
     const double sign = got.w * c + got.x * sn >= 0.0 ? 1.0 : -1.0;

@@ -239,7 +239,8 @@ DEME_BACKEND_TEST(MemoryEstimate, PersistentFlagsAreCountedWhereTheModelMaySetTh
     const MemoryStats builtIn = estimate(false), custom = estimate(true);
     const int contacts = (int)MemoryGroup::CONTACTS;
     ASSERT_EQ(builtIn.estimatedPairs, custom.estimatedPairs);
-    const size_t pairs = builtIn.estimatedPairs, more = custom.estimatedBytes[contacts] - builtIn.estimatedBytes[contacts];
+    const size_t pairs = builtIn.estimatedPairs,
+                 more = custom.estimatedBytes[contacts] - builtIn.estimatedBytes[contacts];
     ASSERT_GT(custom.estimatedBytes[contacts], builtIn.estimatedBytes[contacts]);
     EXPECT_GE(more, pairs);
     EXPECT_LE(more, 2 * pairs);

@@ -12,10 +12,10 @@
 #include <deme/Error.h>
 
 #include "parallel/Parallel.h"
-#include "state/OwnerCentre.h"
 #include "physics/ContactGeometry.h"
 #include "physics/RigidBody.h"
 #include "runtime/TextFormat.h"
+#include "state/OwnerCentre.h"
 
 namespace deme {
 

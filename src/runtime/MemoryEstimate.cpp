@@ -47,10 +47,10 @@ size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host, bool pers
     size_t b = 0;
     forEachContactField(c, c, [&](const auto& v, const auto&, FieldRole role) {
         const void* f = &v;
+        const bool perPair = std::find(std::begin(notPerPair), std::end(notPerPair), f) == std::end(notPerPair);
         if (f == &c.wildcards) b += W * elementBytes(v);
-        else if (f == &c.persistent && !persistentFlags) return;
-        else if (std::find(std::begin(notPerPair), std::end(notPerPair), f) != std::end(notPerPair))
-            return;  // per owner, per block, per slot, per mesh contact or per pair with a force
+        else if (!perPair || (f == &c.persistent && !persistentFlags))
+            return;  // per owner, per block, per slot, per mesh contact or per pair with a force; flags not kept
         else if (role != FieldRole::HOST || host) b += elementBytes(v);
     });
     return b;
@@ -168,8 +168,8 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
         const size_t slots = (size_t)(ESTIMATED_WINDOW_SLOTS_PER_OWNER * (double)s.owners.size());
         const size_t crossing = (size_t)(ESTIMATED_CROSSING_PAIR_SHARE * (double)pairs);
         const size_t pool = pooled ? (pairs + 63) / 64 * 12 + historySlots * 4 * (size_t)W : 0;
-        return pairs * (bytesPerPair(s.contacts, W, true, form.persistentFlags) - historyPerPair) + pool + crossing * sizeof(uint16_t) +
-               8 * (s.owners.size() + 1) + (s.owners.size() + 63) / 64 * 8 +
+        return pairs * (bytesPerPair(s.contacts, W, true, form.persistentFlags) - historyPerPair) + pool +
+               crossing * sizeof(uint16_t) + 8 * (s.owners.size() + 1) + (s.owners.size() + 63) / 64 * 8 +
                slots * (2 * sizeof(float3) + sizeof(uint32_t));
     }
     // Two sets at an installation (the one history mapping reads from and the fresh one, whose
@@ -181,7 +181,8 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
     // the forces are kept per slot.
     const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
     if (pooled) {
-        const size_t perPair = bytesPerPair(s.contacts, W, false, form.persistentFlags) - historyPerPair + sizeof(uint32_t);
+        const size_t perPair =
+            bytesPerPair(s.contacts, W, false, form.persistentFlags) - historyPerPair + sizeof(uint32_t);
         const size_t pools = historySlots * (2 * 4 * (size_t)W + forceBytes);
         // Trimmed before a synchronous detection (CudaDynamics::beforeDetectNow), where at most half
         // of the pairs have a slot and so at most about half are kept: the whole set and the trim's

@@ -26,7 +26,9 @@ DEME_HD_INLINE ParkingLine parkingLine(const DomainFrame& f) {
     return ParkingLine{f.origin + (1000.0 * unit) * axis, (4.0 * unit) * axis};
 }
 
-DEME_HD_INLINE double3 parkedPosition(const ParkingLine& line, size_t o) { return line.start + (double)o * line.stride; }
+DEME_HD_INLINE double3 parkedPosition(const ParkingLine& line, size_t o) {
+    return line.start + (double)o * line.stride;
+}
 
 // Owner o's centre, global frame, from its compact position (the frame's parking line for a parked
 // clump, where the frame parks any). A select, not a branch: the CPU's force pass reads it in a

@@ -127,9 +127,9 @@ struct WindowLoad {
 // them for every contact: the placed geometry. (An owner's position and global spin are not among
 // them: their readers decode the compact position, state/OwnerCentre.h, and turn the owner-frame
 // spin with the orientation they read anyway, dynamics/ContactInputsGather.h.)
-#define DEME_CACHE_FIELDS(X)                                                      \
-    X(spherePos, double3, EVOLVES) /* sphere centres */                           \
-    X(sphereArm, float3, EVOLVES)  /* sphere centre minus owner centre */         \
+#define DEME_CACHE_FIELDS(X)                                                     \
+    X(spherePos, double3, EVOLVES) /* sphere centres */                          \
+    X(sphereArm, float3, EVOLVES)  /* sphere centre minus owner centre */        \
     X(analPos, double3, EVOLVES)   /* analytical components' reference points */ \
     X(analDir, double3, EVOLVES)   /* analytical normals / axes (unit) */        \
     X(triVert, double3, EVOLVES)   /* 3 global vertices per triangle */

@@ -133,8 +133,7 @@ void CpuKinematics::countHostMemory(MemoryStats& m) const {
     size_t b = m_detector.bytes() + m_taken.bytes() + vectorBytes(m_order.spherePos) + vectorBytes(m_order.analPos) +
                vectorBytes(m_order.analDir) + vectorBytes(m_order.triVert) + vectorBytes(m_order.ownerFamily) +
                vectorBytes(m_order.voxel) + vectorBytes(m_order.subX) + vectorBytes(m_order.subY) +
-               vectorBytes(m_order.subZ) +
-               m_result.pairs.bytes();
+               vectorBytes(m_order.subZ) + m_result.pairs.bytes();
     // The worker's memory only while it works on nothing (it resizes its arrays as it goes).
     if (m_mailbox.idle()) {
         MemoryStats work;

@@ -54,8 +54,7 @@ struct KinematicsInbox {
     size_t bytes() const;
     void release();
     // Sized for a snapshot of these counts; the form the layout does not read is let go.
-    void resize(bool spheresAreOwners, size_t numOwners, size_t numSpheres, size_t numAnalytical,
-                size_t numTriangles);
+    void resize(bool spheresAreOwners, size_t numOwners, size_t numSpheres, size_t numAnalytical, size_t numTriangles);
     // A copy of `src`'s snapshot, as sized (on `stream`; src on another GPU).
     void copyFrom(const KinematicsInbox& src, Stream stream);
 
