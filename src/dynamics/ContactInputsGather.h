@@ -64,6 +64,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, bodyID_t a, bodyID_t b
     // shifted by this (zero without periodic axes, and for analytical boundaries, which periodic
     // shifts leave as they are), and in a sheared cell its velocity by imageVelocity.
     double3 shiftB = make_double3(0.0, 0.0, 0.0);
+    double3 ownerB;  // B's owner's centre, decoded once (state/OwnerCentre.h)
     if (type == SPHERE_SPHERE) {
         const double3 centreB = sphereCentre(s, b);
         shiftB = imageShift(s.frame.periodic, in.bodyAPos - centreB);
@@ -71,6 +72,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, bodyID_t a, bodyID_t b
         in.BRadius = s.spheres.radius[b];
         in.bodyBMatType = s.spheres.material[b];
         offB = sphereArmOf(s, b);
+        ownerB = s.spheresAreOwners ? centreB : ownerCentre(s, oB);
         cp = sphereSphereContact(in.bodyAPos, in.ARadius, in.bodyBPos, in.BRadius);
     } else if (type == SPHERE_TRIANGLE) {
         const size_t t = b - s.triangleIdBase();
@@ -80,7 +82,8 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, bodyID_t a, bodyID_t b
         in.bodyBPos = centroid + shiftB;
         in.BRadius = FLAT_SURFACE_RADIUS;
         in.bodyBMatType = s.triangles.material[t];
-        offB = to_float3(centroid - ownerCentre(s, oB));
+        ownerB = ownerCentre(s, oB);
+        offB = to_float3(centroid - ownerB);
         double3 onTri, bary;
         cp = sphereTriangleGeometry(s, a, t, onTri, bary);
     } else {
@@ -88,7 +91,8 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, bodyID_t a, bodyID_t b
         in.bodyBPos = k.analPos[j];
         in.BRadius = FLAT_SURFACE_RADIUS;
         in.bodyBMatType = s.analytical.material[j];
-        offB = to_float3(in.bodyBPos - ownerCentre(s, oB));
+        ownerB = ownerCentre(s, oB);
+        offB = to_float3(in.bodyBPos - ownerB);
         cp = s.analytical.type[j] == ANAL_PLANE
                  ? spherePlaneContact(in.bodyAPos, in.ARadius, in.bodyBPos, k.analDir[j])
                  : sphereCylinderContact(in.bodyAPos, in.ARadius, in.bodyBPos, k.analDir[j], s.analytical.radius[j],
@@ -103,7 +107,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, bodyID_t a, bodyID_t b
     in.armB = to_float3(in.contactPnt - in.bodyBPos) + offB;
     // A sphere that is its owner has its centre already (decoded once, state/OwnerCentre.h).
     in.AOwnerPos = s.spheresAreOwners ? in.bodyAPos : ownerCentre(s, oA);
-    in.BOwnerPos = type == SPHERE_SPHERE && s.spheresAreOwners ? in.bodyBPos : ownerCentre(s, oB) + shiftB;
+    in.BOwnerPos = ownerB + shiftB;
     in.AOriQ = ow.oriQ[oA];
     in.BOriQ = ow.oriQ[oB];
     in.locCPA = rotateToLocal(in.AOriQ, in.armA);
