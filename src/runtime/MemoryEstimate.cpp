@@ -56,6 +56,22 @@ size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host, bool pers
     return b;
 }
 
+// A pair's bytes in a GPU set that pools its history: its ids, mesh state and flag where kept, and
+// its 4-byte slot instead of W floats (state/HistoryPool.h).
+size_t pooledPairBytes(const SimState& s, unsigned int W, const ContactSetForm& form) {
+    return bytesPerPair(s.contacts, W, false, form.persistentFlags) - 4 * (size_t)W + sizeof(uint32_t);
+}
+
+// What the GPU's trim and installation hold beside the kept pairs where a pooled set is trimmed
+// before each synchronous detection (contactSetBytes): the whole set and the trim's marks (a bit a
+// pair and each 64 pairs' first rank); 0 where the set is not in that form.
+size_t trimmedWholeSetBytes(const SimState& s, size_t pairs, const ContactSetForm& form) {
+    const unsigned int W = s.numWildcards;
+    const size_t historySlots = form.historySlots;
+    if (!form.trimmedBeforeDetection || historySlots == DENSE_HISTORY || W == 0 || 2 * historySlots > pairs) return 0;
+    return pairs * pooledPairBytes(s, W, form) + (pairs + 63) / 64 * 12;
+}
+
 // Detection's bin entries: a box of extent d overlaps on average 1 + d / edge bins along each axis
 // (a sphere's is 2r; a triangle's is taken in its owner's frame).
 double binsOverlapped(const BinGrid& g, double dx, double dy, double dz) {
@@ -86,8 +102,8 @@ std::string gib(size_t bytes) {
 }  // namespace
 
 MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre,
-                                 bool snapshotKept, size_t pairs,
-                                 const std::function<ContactSetForm(size_t)>& formFor) {
+                                 bool snapshotKept, size_t pairs, const std::function<ContactSetForm(size_t)>& formFor,
+                                 size_t scratchKeptUpTo) {
     MemoryEstimate e;
     const size_t nO = s.owners.size(), nS = s.spheres.size();
     e.pairs = pairs ? pairs : (size_t)(ESTIMATED_PAIRS_PER_SPHERE * (double)nS);
@@ -140,6 +156,17 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         if (nT) detection += nT * 48 + (size_t)(4.0 * triEntries) + 4 * (bins + 1);
         // The snapshot's triangle vertices and analytical components.
         if (snapshotKept) detection += nT * 72 + s.analytical.size() * 48;
+        // A synchronous detection in place runs while the set in use holds only the pairs it kept
+        // (trimmed before the detection): its scratch and the outbox's ids (A and B, 8 B a pair, which
+        // become the fresh set's) are held beside the kept pairs, not beside the whole set that the
+        // trim and the installation hold (contacts, above), and a large scratch is let go before the
+        // installation (CudaKinematics::Work::detect). The run's peak is then the larger of the two
+        // phases: the detection counts only what it holds beyond the whole set and the trim's marks.
+        const size_t wholeSet = trimmedWholeSetBytes(s, e.pairs, e.form);
+        if (!snapshotKept && wholeSet && detection > scratchKeptUpTo) {
+            const size_t detecting = detection + e.pairs * 2 * sizeof(bodyID_t);
+            detection = detecting > wholeSet ? detecting - wholeSet : 0;
+        }
         // The table of a batch's prescriptions (a row of families per step, CudaStepBatch.cpp). (The
         // active box's step lists, 16-24 B per owner, exist only while some owner is fixed at rest:
         // CudaStepSubset.cpp; not counted.)
@@ -181,15 +208,14 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
     // the forces are kept per slot.
     const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
     if (pooled) {
-        const size_t perPair =
-            bytesPerPair(s.contacts, W, false, form.persistentFlags) - historyPerPair + sizeof(uint32_t);
+        const size_t perPair = pooledPairBytes(s, W, form);
         const size_t pools = historySlots * (2 * 4 * (size_t)W + forceBytes);
         // Trimmed before a synchronous detection (CudaDynamics::beforeDetectNow), where at most half
         // of the pairs have a slot and so at most about half are kept: the whole set and the trim's
         // marks (a bit a pair and each 64 pairs' first rank: 12 B per 64 pairs), then an
         // installation's fresh set beside the pairs kept.
-        if (form.trimmedBeforeDetection && 2 * historySlots <= pairs)
-            return pairs * perPair + (pairs + 63) / 64 * 12 + historySlots * perPair + pools;
+        if (const size_t wholeSet = trimmedWholeSetBytes(s, pairs, form))
+            return wholeSet + historySlots * perPair + pools;
         return pairs * 2 * perPair + pools;
     }
     const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;

@@ -63,10 +63,13 @@ struct MemoryEstimate {
 // order, and on the GPU what moves. pairs: the
 // contact set's size, or ESTIMATED_PAIRS_PER_SPHERE per sphere where 0. formFor: the form of a
 // first set of that many pairs (its history's from DynamicsBackend::expectedHistorySlots; dense and
-// untrimmed where empty).
+// untrimmed where empty). scratchKeptUpTo: the bytes of detection scratch a synchronous detection
+// in place keeps after it (keepRebuiltArraysUpTo, runtime/RebuiltArrays.h); more is let go before
+// the installation.
 MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool onGpu, bool mayBinByCentre,
                                  bool snapshotKept = true, size_t pairs = 0,
-                                 const std::function<ContactSetForm(size_t)>& formFor = {});
+                                 const std::function<ContactSetForm(size_t)>& formFor = {},
+                                 size_t scratchKeptUpTo = SIZE_MAX);
 
 // Throws a deme::Error from `call` when the estimate exceeds `available` bytes (0: not known, no
 // check) of `where` ("GPU 0 (NVIDIA H200)", "host memory"), naming both and the groups. `available`

@@ -17,6 +17,7 @@
 #include "parallel/Parallel.h"
 #include "runtime/MemoryAccounting.h"
 #include "runtime/PeriodicLimits.h"
+#include "runtime/RebuiltArrays.h"
 #include "state/SphereLayoutChoice.h"
 #include "state/SphereIds.h"
 
@@ -58,10 +59,10 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     // A scene too large for the memory its steps use fails here, not in its first detection.
     const DynamicsBackend& dynamics = *m_backends.dynamics;
     const KinematicsBackend& kinematics = *m_backends.kinematics;
-    m_memoryEstimate =
-        estimateRunMemory(m_state, m_grid, dynamics.onGpu(), kinematics.mayBinSpheresByCentre(m_state.spheres.size()),
-                          settings.asyncDetection || !kinematics.detectsInPlace(), 0,
-                          [this](size_t pairs) { return contactSetForm(pairs); });
+    m_memoryEstimate = estimateRunMemory(
+        m_state, m_grid, dynamics.onGpu(), kinematics.mayBinSpheresByCentre(m_state.spheres.size()),
+        settings.asyncDetection || !kinematics.detectsInPlace(), 0,
+        [this](size_t pairs) { return contactSetForm(pairs); }, keepRebuiltArraysUpTo("Initialize"));
     requireMemoryFor(m_memoryEstimate, dynamics.memoryAvailable(), memoryPlace(dynamics), "Initialize");
     m_contacts.start(settings, *m_backends.dynamics, *m_backends.kinematics);
     m_contacts.period = &m_state.frame.periodic;
