@@ -50,6 +50,29 @@ struct ClumpRef {
 };
 const float3& positionOf(const ClumpRef& c) { return c.batch->GetPositions()[c.index]; }
 
+// The scene's clumps in user order (batch by batch), each found from its user index by its batch's
+// first one: no list of the clumps is made (it was 16 B a clump at the assembly's peak).
+class UserClumps {
+  public:
+    explicit UserClumps(const Scene& scene) {
+        m_start.push_back(0);
+        for (const auto& b : scene.batches) {
+            m_batches.push_back(b.get());
+            m_start.push_back(m_start.back() + b->GetNumClumps());
+        }
+    }
+    size_t size() const { return m_start.back(); }
+    ClumpRef operator[](size_t u) const {
+        // The last batch that starts at or before u (a batch of no clumps starts where the next does).
+        const size_t b = (size_t)(std::upper_bound(m_start.begin(), m_start.end(), u) - m_start.begin()) - 1;
+        return ClumpRef{m_batches[b], u - m_start[b]};
+    }
+
+  private:
+    std::vector<const DEMClumpBatch*> m_batches;
+    std::vector<size_t> m_start;  // batch k's clumps are [m_start[k], m_start[k + 1])
+};
+
 // Capacity for n rows in every array of the owners' and the spheres' field groups.
 struct ReserveRows {
     size_t n;
@@ -141,7 +164,7 @@ void finishTriangleTopology(SimState& s) {
 // Order of clumps along a Morton (Z-order) curve over cells of about two grain sizes; ties keep the
 // user order, so the layout is deterministic.
 template <typename PosOf>
-std::vector<size_t> spatialOrder(const Scene& scene, size_t n, PosOf posOf) {
+std::vector<uint32_t> spatialOrder(const Scene& scene, size_t n, PosOf posOf) {
     float extent = 0.f;
     for (const auto& b : scene.batches)
         for (const auto& t : b->GetDistinctTypes()) extent = std::max(extent, t->GetExtent());
@@ -166,15 +189,87 @@ std::vector<size_t> spatialOrder(const Scene& scene, size_t n, PosOf posOf) {
         key[u] = spread(coord(p.x, scene.domainLo.x)) | spread(coord(p.y, scene.domainLo.y)) << 1 |
                  spread(coord(p.z, scene.domainLo.z)) << 2;
     }
-    std::vector<size_t> order(n);
-    for (size_t u = 0; u < n; u++) order[u] = u;
+    // 32-bit indices (the caller has checked that the clumps have 32-bit ids): 4 B a clump less at the
+    // assembly's peak, and as much in the parallel sort's buffer.
+    std::vector<uint32_t> order(n);
+    for (size_t u = 0; u < n; u++) order[u] = (uint32_t)u;
     // A stable sort's result is unique: the parallel one's is the serial one's.
-    const auto byKey = [&](size_t a, size_t b) { return key[a] < key[b]; };
+    const auto byKey = [&](uint32_t a, uint32_t b) { return key[a] < key[b]; };
     if (n > PARALLEL_MIN_ITEMS && cpuThreadCount() > 1)
         __gnu_parallel::stable_sort(order.begin(), order.end(), byKey);
     else
         std::stable_sort(order.begin(), order.end(), byKey);
     return order;
+}
+
+// The clumps in user order (batch by batch), validated, then laid out in space-filling-curve order
+// so that neighbours in space are neighbours in memory; user ids are kept in a permutation. A
+// function of its own, so that its transients (the order, each clump's first sphere) are gone
+// before the owners' remaining arrays are made: the assembly's peak is the host's in a GPU run.
+void placeClumps(const Scene& scene, const std::map<const DEMClumpTemplate*, inertiaID_t>& templateIndex, SimState& s) {
+    const UserClumps user(scene);
+    if (user.size() >= (size_t(1) << 31)) throwError(CALL, "too many geometries for 32-bit ids");
+    // The first clump outside the domain, in user order (checked in parallel: a billion-grain scene).
+    size_t firstOutside = user.size();
+#pragma omp parallel for schedule(static) reduction(min : firstOutside) if (user.size() > PARALLEL_MIN_ITEMS)
+    for (size_t u = 0; u < user.size(); u++)
+        if (!insideDomain(to_double3(positionOf(user[u])), scene.domainLo, scene.domainSize))
+            firstOutside = std::min(firstOutside, u);
+    if (firstOutside < user.size())
+        throwError(CALL, "clump " + std::to_string(firstOutside) + " at " +
+                             formatVector(positionOf(user[firstOutside])) + " is outside the simulation domain (from " +
+                             formatVector(scene.domainLo) + " to " + formatVector(scene.domainLo + scene.domainSize) +
+                             ")");
+    const std::vector<uint32_t> order = spatialOrder(scene, user.size(), [&](size_t u) { return positionOf(user[u]); });
+    // Each clump's first sphere, in user order and in the spatial order the arrays take.
+    std::vector<uint32_t> userSphereStart(user.size() + 1, 0), sphereStart(user.size() + 1, 0);
+    for (size_t u = 0; u < user.size(); u++) {
+        const ClumpRef c = user[u];
+        userSphereStart[u + 1] = userSphereStart[u] + (uint32_t)c.batch->GetType(c.index)->GetNumSpheres();
+    }
+    for (size_t k = 0; k < order.size(); k++)
+        sphereStart[k + 1] = sphereStart[k] + (userSphereStart[order[k] + 1] - userSphereStart[order[k]]);
+    // Every array to its final size at once: grown by doubling, the owner and sphere arrays would
+    // keep up to half their bytes unused for the whole run (docs/memory.md).
+    const size_t nOwnersTotal = user.size() + scene.externObjs.size() + scene.meshes.size();
+    forEachOwnerField(s.owners, s.owners, ReserveRows{nOwnersTotal});
+    forEachSphereField(s.spheres, s.spheres, ReserveRows{userSphereStart[user.size()]});
+    s.ownerUserToInternal.reserve(nOwnersTotal);
+    s.ownerInternalToUser.reserve(nOwnersTotal);
+    s.ownerUserToInternal.resize(user.size());
+    s.ownerInternalToUser.resize(user.size());
+    // Every clump's owner row and spheres, in parallel (each writes its own rows: owner k, spheres
+    // from sphereStart[k]); the first clump whose position does not encode stops Initialize.
+    const size_t nSpheres = sphereStart[user.size()];
+    resizeOwnerInputs(s.owners, user.size());
+    s.spheres.owner.resize(nSpheres);
+    s.spheres.relPos.resize(nSpheres);
+    s.spheres.radius.resize(nSpheres);
+    s.spheres.material.resize(nSpheres);
+    s.sphereInternalToUser.resize(nSpheres);
+    size_t firstUnencoded = user.size();
+#pragma omp parallel for schedule(static) reduction(min : firstUnencoded) if (user.size() > PARALLEL_MIN_ITEMS)
+    for (size_t owner = 0; owner < order.size(); owner++) {
+        const size_t u = order[owner];
+        const ClumpRef c = user[u];
+        const DEMClumpBatch* b = c.batch;
+        const size_t i = c.index;
+        const DEMClumpTemplate& t = *b->GetType(i);
+        s.ownerUserToInternal[u] = (bodyID_t)owner;
+        s.ownerInternalToUser[owner] = (bodyID_t)u;
+        if (!setOwner(s, owner, to_double3(positionOf(c)), BatchValues::oriQ(*b, i), BatchValues::vel(*b, i),
+                      BatchValues::angVel(*b, i), BatchValues::family(*b, i), OWNER_CLUMP, templateIndex.at(&t)))
+            firstUnencoded = std::min(firstUnencoded, owner);
+        for (size_t k = 0, at = sphereStart[owner]; k < t.GetNumSpheres(); k++, at++) {
+            s.spheres.owner[at] = (bodyID_t)owner;
+            s.spheres.relPos[at] = t.relPos[k];
+            s.spheres.radius[at] = t.radii[k];
+            s.spheres.material[at] = (materialID_t)t.materials[k]->GetLoadOrder();
+            s.sphereInternalToUser[at] = userSphereStart[u] + (uint32_t)k;
+        }
+    }
+    if (firstUnencoded < user.size())
+        throwOutsideDomain("clump", order[firstUnencoded], to_double3(positionOf(user[order[firstUnencoded]])));
 }
 
 }  // namespace
@@ -203,73 +298,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
                 s.massProps.dynamic.push_back(1);
             }
 
-    // Clumps in user order (batch by batch), validated, then laid out in space-filling-curve order
-    // so that neighbours in space are neighbours in memory; user ids are kept in a permutation.
-    std::vector<ClumpRef> user;
-    size_t numClumps = 0;
-    for (const auto& b : scene.batches) numClumps += b->GetNumClumps();
-    user.reserve(numClumps);
-    for (const auto& b : scene.batches)
-        for (size_t i = 0; i < b->GetNumClumps(); i++) user.push_back({b.get(), i});
-    // The first clump outside the domain, in user order (checked in parallel: a billion-grain scene).
-    size_t firstOutside = user.size();
-#pragma omp parallel for schedule(static) reduction(min : firstOutside) if (user.size() > PARALLEL_MIN_ITEMS)
-    for (size_t u = 0; u < user.size(); u++)
-        if (!insideDomain(to_double3(positionOf(user[u])), scene.domainLo, scene.domainSize))
-            firstOutside = std::min(firstOutside, u);
-    if (firstOutside < user.size())
-        throwError(CALL, "clump " + std::to_string(firstOutside) + " at " +
-                             formatVector(positionOf(user[firstOutside])) + " is outside the simulation domain (from " +
-                             formatVector(scene.domainLo) + " to " + formatVector(scene.domainLo + scene.domainSize) +
-                             ")");
-    const std::vector<size_t> order = spatialOrder(scene, user.size(), [&](size_t u) { return positionOf(user[u]); });
-    // Each clump's first sphere, in user order and in the spatial order the arrays take.
-    std::vector<uint32_t> userSphereStart(user.size() + 1, 0), sphereStart(user.size() + 1, 0);
-    for (size_t u = 0; u < user.size(); u++)
-        userSphereStart[u + 1] =
-            userSphereStart[u] + (uint32_t)user[u].batch->GetType(user[u].index)->GetNumSpheres();
-    for (size_t k = 0; k < order.size(); k++)
-        sphereStart[k + 1] = sphereStart[k] + (userSphereStart[order[k] + 1] - userSphereStart[order[k]]);
-    // Every array to its final size at once: grown by doubling, the owner and sphere arrays would
-    // keep up to half their bytes unused for the whole run (docs/memory.md).
-    const size_t nOwnersTotal = user.size() + scene.externObjs.size() + scene.meshes.size();
-    forEachOwnerField(s.owners, s.owners, ReserveRows{nOwnersTotal});
-    forEachSphereField(s.spheres, s.spheres, ReserveRows{userSphereStart[user.size()]});
-    s.ownerUserToInternal.reserve(nOwnersTotal);
-    s.ownerInternalToUser.reserve(nOwnersTotal);
-    s.ownerUserToInternal.resize(user.size());
-    s.ownerInternalToUser.resize(user.size());
-    // Every clump's owner row and spheres, in parallel (each writes its own rows: owner k, spheres
-    // from sphereStart[k]); the first clump whose position does not encode stops Initialize.
-    const size_t nSpheres = sphereStart[user.size()];
-    resizeOwnerInputs(s.owners, user.size());
-    s.spheres.owner.resize(nSpheres);
-    s.spheres.relPos.resize(nSpheres);
-    s.spheres.radius.resize(nSpheres);
-    s.spheres.material.resize(nSpheres);
-    s.sphereInternalToUser.resize(nSpheres);
-    size_t firstUnencoded = user.size();
-#pragma omp parallel for schedule(static) reduction(min : firstUnencoded) if (user.size() > PARALLEL_MIN_ITEMS)
-    for (size_t owner = 0; owner < order.size(); owner++) {
-        const size_t u = order[owner];
-        const DEMClumpBatch* b = user[u].batch;
-        const size_t i = user[u].index;
-        const DEMClumpTemplate& t = *b->GetType(i);
-        s.ownerUserToInternal[u] = (bodyID_t)owner;
-        s.ownerInternalToUser[owner] = (bodyID_t)u;
-        if (!setOwner(s, owner, to_double3(positionOf(user[u])), BatchValues::oriQ(*b, i), BatchValues::vel(*b, i),
-                      BatchValues::angVel(*b, i), BatchValues::family(*b, i), OWNER_CLUMP, templateIndex.at(&t)))
-            firstUnencoded = std::min(firstUnencoded, owner);
-        for (size_t k = 0, at = sphereStart[owner]; k < t.GetNumSpheres(); k++, at++) {
-            s.spheres.owner[at] = (bodyID_t)owner;
-            s.spheres.relPos[at] = t.relPos[k];
-            s.spheres.radius[at] = t.radii[k];
-            s.spheres.material[at] = (materialID_t)t.materials[k]->GetLoadOrder();
-            s.sphereInternalToUser[at] = userSphereStart[u] + (uint32_t)k;
-        }
-    }
-    if (firstUnencoded < user.size())
-        throwOutsideDomain("clump", order[firstUnencoded], to_double3(positionOf(user[order[firstUnencoded]])));
+    placeClumps(scene, templateIndex, s);
     s.numClumps = s.owners.size();
 
     // External objects: kinematic owners made of analytical components.
