@@ -44,8 +44,8 @@ constexpr int64_t MAX_GRID_COORD = (int64_t(1) << (VOXEL_BITS_PER_AXIS + SUBVOXE
 // bits under the exponent of 2^52 make the double 2^52 + v, and subtracting 2^52 leaves v (both
 // exact). A GPU converts a 64-bit integer in its conversion unit, at a small fraction of its FP64
 // rate, and the force pass and the pair search decode a partner's position for each of hundreds of
-// millions of pairs (three conversions a position); x86 vector units have no such conversion before
-// AVX-512. The same double as (double)v, bit for bit (test MathCompactPosition.*).
+// millions of pairs (three conversions a position). The same double as (double)v, bit for bit (test
+// MathCompactPosition.CoordinatesBecomeDoublesExactlyWithoutAConversion).
 DEME_HD inline double exactDoubleBelow2To52(uint64_t v) {
     const uint64_t bits = 0x4330000000000000ull | v;
     double d;
