@@ -11,10 +11,14 @@
 #include <vector>
 #include <cstdint>
 
+#include "BackendFixture.h"
 #include "TestHelpers.h"
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
 #include "parallel/Parallel.h"
+#include "runtime/SceneFingerprint.h"
+#include "state/SphereIds.h"
+#include "state/SphereLayoutChoice.h"
 
 using namespace deme;
 using namespace deme_test;
@@ -109,4 +113,67 @@ TEST(SceneAssembly, TheFirstClumpOutsideTheDomainIsNamed) {
     EXPECT_NE(msg.find("Initialize"), std::string::npos) << msg;
     EXPECT_NE(msg.find("clump 4100 at (0.95"), std::string::npos) << msg;
     EXPECT_NE(msg.find("outside the simulation domain"), std::string::npos) << msg;
+}
+
+// Where every clump is one sphere at its centre the assembly makes the spheres their owners at once
+// (no sphere owners, offsets, id maps or first spheres: 24 B a sphere at a GPU run's host peak),
+// the state the full assembly (DEME_FULL_SPHERE_LAYOUT=1) comes to once its layout is chosen: the
+// same owners, radii and materials array for array, the same sphere ranges, owners and id maps as
+// the layout's readers make them, and the same fingerprint (a checkpoint of one reads in the other).
+TEST(SceneAssembly, OneSphereClumpsAreTheirOwnersFromTheStart) {
+    auto mat = std::make_shared<DEMMaterial>(
+        std::map<std::string, double>{{"E", 1e7}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}, {"Crr", 0.0}}, 0);
+    auto small = clumpOf(1, mat), large = clumpOf(1, mat);
+    large->radii[0] = 0.006f;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> x(-0.9f, 0.9f);
+    Scene sc;
+    sc.materials = {mat};
+    sc.hasDomain = true;
+    sc.domainLo = make_float3(-1.f);
+    sc.domainSize = make_float3(2.f);
+    for (int batch = 0; batch < 3; batch++) {
+        std::vector<std::shared_ptr<DEMClumpTemplate>> types;
+        std::vector<float3> pos;
+        for (int i = 0; i < (batch == 1 ? 0 : 2500); i++) {  // (an empty batch between two)
+            types.push_back(rng() % 2 ? small : large);
+            pos.push_back(make_float3(x(rng), x(rng), x(rng)));
+        }
+        sc.batches.push_back(std::make_shared<DEMClumpBatch>(types, pos));
+    }
+    const ModelLayout layout{};
+    const SimState compact = assembleScene(sc, layout);
+    SimState full;
+    {
+        const ScopedEnvironmentVariable forced("DEME_FULL_SPHERE_LAYOUT", "1");
+        full = assembleScene(sc, layout);
+    }
+    ASSERT_EQ(compact.owners.size(), 5000u);
+    ASSERT_EQ(compact.spheres.size(), 5000u);
+    EXPECT_TRUE(compact.spheresAreOwners);
+    EXPECT_TRUE(compact.sphereIdsAreOwnerIds);
+    EXPECT_FALSE(full.spheresAreOwners);
+    EXPECT_TRUE(compact.spheres.owner.empty() && compact.spheres.relPos.empty() && compact.ownerSphereStart.empty());
+    EXPECT_TRUE(compact.sphereInternalToUser.empty() && compact.sphereUserToInternal.empty());
+    EXPECT_EQ(0u, fingerprintMismatch(sceneFingerprint(full, layout), sceneFingerprint(compact, layout)).size())
+        << fingerprintMismatch(sceneFingerprint(full, layout), sceneFingerprint(compact, layout));
+    forEachOwnerField(full.owners, compact.owners,
+                      [](const auto& a, const auto& b, FieldRole) { expectSameField(a, b, "owner field"); });
+    expectSameField(full.spheres.radius, compact.spheres.radius, "radius");
+    expectSameField(full.spheres.material, compact.spheres.material, "material");
+    expectSameField(full.ownerUserToInternal, compact.ownerUserToInternal, "ownerUserToInternal");
+    expectSameField(full.ownerInternalToUser, compact.ownerInternalToUser, "ownerInternalToUser");
+    std::vector<uint32_t> ranges;
+    ownerSphereRanges(compact, ranges);
+    expectSameField(full.ownerSphereStart, ranges, "ownerSphereStart");
+    std::vector<bodyID_t> owners, toUser, toInternal;
+    sphereOwners(compact, owners);
+    expectSameField(full.spheres.owner, owners, "sphere owners");
+    sphereIdMaps(compact, toUser, toInternal);
+    expectSameField(full.sphereInternalToUser, toUser, "sphereInternalToUser");
+    expectSameField(full.sphereUserToInternal, toInternal, "sphereUserToInternal");
+    // A scene with a clump of two spheres is assembled in the full layout, as before.
+    sc.batches.push_back(std::make_shared<DEMClumpBatch>(
+        std::vector<std::shared_ptr<DEMClumpTemplate>>{clumpOf(2, mat)}, std::vector<float3>{make_float3(0.f)}));
+    EXPECT_FALSE(assembleScene(sc, layout).spheresAreOwners);
 }

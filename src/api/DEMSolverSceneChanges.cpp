@@ -49,7 +49,7 @@ void DEMSolver::UpdateClumps() {
     part.domainSize = m_scene->domainSize;
     part.periodicAxes = m_scene->periodicAxes;
     part.batches = m_scene->pendingBatches;
-    const SimState rows = assembleScene(part, m_sim->forceModel());
+    const SimState rows = assembleScene(part, m_sim->forceModel(), false);  // (the full arrays insertClumps reads)
     m_sim->insertClumps(rows);
     for (auto& b : m_scene->pendingBatches) {
         for (auto& t : b->GetDistinctTypes()) t->m_frozen = true;

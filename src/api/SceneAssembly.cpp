@@ -16,6 +16,7 @@
 #include "physics/RigidBody.h"
 #include "runtime/TextFormat.h"
 #include "state/OwnerCentre.h"
+#include "state/SphereLayoutChoice.h"
 
 namespace deme {
 
@@ -202,11 +203,28 @@ std::vector<uint32_t> spatialOrder(const Scene& scene, size_t n, PosOf posOf) {
     return order;
 }
 
+// Whether the scene's spheres are their owners from the start: every clump is one sphere at its
+// centre (what chooseSphereLayout, state/SphereLayoutChoice.h, would choose at once), unless the
+// full layout is forced. Then no sphere owners, offsets and id maps are made only to be let go: 24
+// B a sphere at the assembly's peak, a GPU run's host peak.
+bool spheresAreOwnersFromTheStart(const Scene& scene) {
+    if (fullSphereLayoutForced()) return false;
+    size_t clumps = 0;
+    for (const auto& b : scene.batches) {
+        clumps += b->GetNumClumps();
+        for (const auto& t : b->GetDistinctTypes())
+            if (t->GetNumSpheres() != 1 || !isZero(t->relPos[0])) return false;
+    }
+    return clumps > 0;
+}
+
 // The clumps in user order (batch by batch), validated, then laid out in space-filling-curve order
 // so that neighbours in space are neighbours in memory; user ids are kept in a permutation. A
 // function of its own, so that its transients (the order, each clump's first sphere) are gone
 // before the owners' remaining arrays are made: the assembly's peak is the host's in a GPU run.
-void placeClumps(const Scene& scene, const std::map<const DEMClumpTemplate*, inertiaID_t>& templateIndex, SimState& s) {
+// compact: every clump is one sphere at its centre, and the spheres are to be their owners.
+void placeClumps(const Scene& scene, const std::map<const DEMClumpTemplate*, inertiaID_t>& templateIndex, bool compact,
+                 SimState& s) {
     const UserClumps user(scene);
     if (user.size() >= (size_t(1) << 31)) throwError(CALL, "too many geometries for 32-bit ids");
     // The first clump outside the domain, in user order (checked in parallel: a billion-grain scene).
@@ -221,32 +239,46 @@ void placeClumps(const Scene& scene, const std::map<const DEMClumpTemplate*, ine
                              formatVector(scene.domainLo) + " to " + formatVector(scene.domainLo + scene.domainSize) +
                              ")");
     const std::vector<uint32_t> order = spatialOrder(scene, user.size(), [&](size_t u) { return positionOf(user[u]); });
+    // Where spheres are their owners (owner k's sphere is sphere k, at its centre, and sphere ids
+    // are owner ids) the state keeps no sphere owners, offsets, id maps or first spheres.
     // Each clump's first sphere, in user order and in the spatial order the arrays take.
-    std::vector<uint32_t> userSphereStart(user.size() + 1, 0), sphereStart(user.size() + 1, 0);
-    for (size_t u = 0; u < user.size(); u++) {
-        const ClumpRef c = user[u];
-        userSphereStart[u + 1] = userSphereStart[u] + (uint32_t)c.batch->GetType(c.index)->GetNumSpheres();
+    std::vector<uint32_t> userSphereStart, sphereStart;
+    if (!compact) {
+        userSphereStart.assign(user.size() + 1, 0);
+        sphereStart.assign(user.size() + 1, 0);
+        for (size_t u = 0; u < user.size(); u++) {
+            const ClumpRef c = user[u];
+            userSphereStart[u + 1] = userSphereStart[u] + (uint32_t)c.batch->GetType(c.index)->GetNumSpheres();
+        }
+        for (size_t k = 0; k < order.size(); k++)
+            sphereStart[k + 1] = sphereStart[k] + (userSphereStart[order[k] + 1] - userSphereStart[order[k]]);
     }
-    for (size_t k = 0; k < order.size(); k++)
-        sphereStart[k + 1] = sphereStart[k] + (userSphereStart[order[k] + 1] - userSphereStart[order[k]]);
     // Every array to its final size at once: grown by doubling, the owner and sphere arrays would
     // keep up to half their bytes unused for the whole run (docs/memory.md).
     const size_t nOwnersTotal = user.size() + scene.externObjs.size() + scene.meshes.size();
+    const size_t nSpheres = compact ? user.size() : sphereStart[user.size()];
     forEachOwnerField(s.owners, s.owners, ReserveRows{nOwnersTotal});
-    forEachSphereField(s.spheres, s.spheres, ReserveRows{userSphereStart[user.size()]});
+    if (compact) {
+        s.spheres.radius.resize(nSpheres);
+        s.spheres.material.resize(nSpheres);
+        s.spheresAreOwners = s.sphereIdsAreOwnerIds = true;
+        s.userSphereIds = nSpheres;
+    } else {
+        forEachSphereField(s.spheres, s.spheres, ReserveRows{nSpheres});
+        s.spheres.owner.resize(nSpheres);
+        s.spheres.relPos.resize(nSpheres);
+        s.spheres.radius.resize(nSpheres);
+        s.spheres.material.resize(nSpheres);
+        s.sphereInternalToUser.resize(nSpheres);
+    }
     s.ownerUserToInternal.reserve(nOwnersTotal);
     s.ownerInternalToUser.reserve(nOwnersTotal);
     s.ownerUserToInternal.resize(user.size());
     s.ownerInternalToUser.resize(user.size());
     // Every clump's owner row and spheres, in parallel (each writes its own rows: owner k, spheres
-    // from sphereStart[k]); the first clump whose position does not encode stops Initialize.
-    const size_t nSpheres = sphereStart[user.size()];
+    // from sphereStart[k], or sphere k where spheres are their owners); the first clump whose
+    // position does not encode stops Initialize.
     resizeOwnerInputs(s.owners, user.size());
-    s.spheres.owner.resize(nSpheres);
-    s.spheres.relPos.resize(nSpheres);
-    s.spheres.radius.resize(nSpheres);
-    s.spheres.material.resize(nSpheres);
-    s.sphereInternalToUser.resize(nSpheres);
     size_t firstUnencoded = user.size();
 #pragma omp parallel for schedule(static) reduction(min : firstUnencoded) if (user.size() > PARALLEL_MIN_ITEMS)
     for (size_t owner = 0; owner < order.size(); owner++) {
@@ -260,6 +292,11 @@ void placeClumps(const Scene& scene, const std::map<const DEMClumpTemplate*, ine
         if (!setOwner(s, owner, to_double3(positionOf(c)), BatchValues::oriQ(*b, i), BatchValues::vel(*b, i),
                       BatchValues::angVel(*b, i), BatchValues::family(*b, i), OWNER_CLUMP, templateIndex.at(&t)))
             firstUnencoded = std::min(firstUnencoded, owner);
+        if (compact) {
+            s.spheres.radius[owner] = t.radii[0];
+            s.spheres.material[owner] = (materialID_t)t.materials[0]->GetLoadOrder();
+            continue;
+        }
         for (size_t k = 0, at = sphereStart[owner]; k < t.GetNumSpheres(); k++, at++) {
             s.spheres.owner[at] = (bodyID_t)owner;
             s.spheres.relPos[at] = t.relPos[k];
@@ -274,7 +311,7 @@ void placeClumps(const Scene& scene, const std::map<const DEMClumpTemplate*, ine
 
 }  // namespace
 
-SimState assembleScene(const Scene& scene, const ModelLayout& model) {
+SimState assembleScene(const Scene& scene, const ModelLayout& model, bool spheresMayBeOwners) {
     if (!scene.hasDomain) throwError(CALL, "no simulation domain: call InstructBoxDomainDimension first");
     if (scene.materials.empty()) throwError(CALL, "no material loaded: call LoadMaterial first");
     if (scene.batches.empty() && scene.externObjs.empty() && scene.meshes.empty())
@@ -298,7 +335,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
                 s.massProps.dynamic.push_back(1);
             }
 
-    placeClumps(scene, templateIndex, s);
+    placeClumps(scene, templateIndex, spheresMayBeOwners && spheresAreOwnersFromTheStart(scene), s);
     s.numClumps = s.owners.size();
 
     // External objects: kinematic owners made of analytical components.
@@ -345,14 +382,16 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model) {
     finishTriangleTopology(s);
 
     const size_t nOwners = s.owners.size();
-    rangesByOwner(nOwners, s.spheres.owner, s.ownerSphereStart);
+    if (!s.spheresAreOwners) rangesByOwner(nOwners, s.spheres.owner, s.ownerSphereStart);
     s.owners.contactForce.assign(nOwners, make_float3(0.f));
     s.owners.contactTorque.assign(nOwners, make_float3(0.f));
     s.owners.travel.assign(nOwners, 0.f);
     s.integrationScratch.flags.assign(nOwners, 0);  // read by the force pass (a parked clump's) before a step
-    s.sphereUserToInternal.assign(s.spheres.size(), 0);
+    if (!s.sphereIdsAreOwnerIds) {
+        s.sphereUserToInternal.assign(s.spheres.size(), 0);
 #pragma omp parallel for schedule(static) if (s.spheres.size() > PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < s.spheres.size(); i++) s.sphereUserToInternal[s.sphereInternalToUser[i]] = (bodyID_t)i;
+        for (size_t i = 0; i < s.spheres.size(); i++) s.sphereUserToInternal[s.sphereInternalToUser[i]] = (bodyID_t)i;
+    }
     // Owner and geometry wildcards start at 0.
     const size_t nGeometries = s.spheres.size() + s.analytical.size() + s.triangles.size();
     s.wildcards.owner.assign(model.ownerWildcards.size(), std::vector<float>(nOwners, 0.f));

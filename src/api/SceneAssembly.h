@@ -9,6 +9,10 @@
 
 namespace deme {
 
-SimState assembleScene(const Scene& scene, const ModelLayout& model);
+// The scene's state as Initialize starts it: owners in a space-filling-curve order, their spheres,
+// components and triangles. Where every clump is one sphere at its centre and `spheresMayBeOwners`,
+// the spheres are their owners at once (state/SphereLayout.h); otherwise the full sphere arrays
+// (UpdateClumps merges its rows into a running state that way).
+SimState assembleScene(const Scene& scene, const ModelLayout& model, bool spheresMayBeOwners = true);
 
 }  // namespace deme

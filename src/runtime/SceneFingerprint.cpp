@@ -47,6 +47,13 @@ class Hash {
             if (next != count.end() && next->first == o) start += (next++)->second;
         }
     }
+    // What array() hashes for the per-owner sphere ranges where spheres are their owners (owner o's
+    // sphere is sphere o; the owners after the clumps have none: ownerSphereRanges), without making
+    // them.
+    void ownSphereRanges(size_t numOwners, size_t numSpheres) {
+        value((uint64_t)(numOwners + 1));
+        for (size_t o = 0; o <= numOwners; o++) value((uint32_t)std::min(o, numSpheres));
+    }
     uint64_t result() const { return m_h; }
 
   private:
@@ -58,6 +65,28 @@ template <class Visit, class G>
 uint64_t hashInputs(Visit&& visit, const G& group, Hash h = Hash()) {
     visit(group, group, [&](const auto& field, const auto&, FieldRole role) {
         if (role == FieldRole::INPUT) h.array(field);
+    });
+    return h.result();
+}
+
+// The spheres' INPUT fields as the full layout holds them: where spheres are their owners the state
+// keeps no owners (sphere i's is owner i) and no offsets (zero), and these are hashed as the arrays
+// they stand for, so that a scene's fingerprint does not depend on its layout (checkpoints of either
+// read in the other; test SceneAssembly.OneSphereClumpsAreTheirOwnersFromTheStart).
+uint64_t hashSphereInputs(const SimState& s) {
+    Hash h;
+    const size_t n = s.spheres.size();
+    forEachSphereField(s.spheres, s.spheres, [&](const auto& field, const auto&, FieldRole role) {
+        if (role != FieldRole::INPUT) return;
+        using T = typename std::decay_t<decltype(field)>::value_type;
+        if (!s.spheresAreOwners || field.size() == n) return h.array(field);
+        h.value((uint64_t)n);
+        for (size_t i = 0; i < n; i++) {
+            if constexpr (std::is_same_v<T, bodyID_t>)
+                h.value((bodyID_t)i);  // the owners
+            else
+                h.value(T{});  // the offsets: zero
+        }
     });
     return h.result();
 }
@@ -86,16 +115,18 @@ SceneFingerprint sceneFingerprint(const SimState& s, const ModelLayout& model) {
     // The generic lambdas below take the group's two storages (the same one twice here).
     auto owners = [](const auto& a, const auto& b, auto&& f) { forEachOwnerField(a, b, f); };
     auto mass = [](const auto& a, const auto& b, auto&& f) { forEachMassField(a, b, f); };
-    auto spheres = [](const auto& a, const auto& b, auto&& f) { forEachSphereField(a, b, f); };
     auto anal = [](const auto& a, const auto& b, auto&& f) { forEachAnalyticalField(a, b, f); };
     auto tris = [](const auto& a, const auto& b, auto&& f) { forEachTriangleField(a, b, f); };
     fp.ownerInputs = hashInputs(owners, s.owners);
     fp.templateInputs = hashInputs(mass, s.massProps);
     Hash g;
-    g.value(hashInputs(spheres, s.spheres));
+    g.value(hashSphereInputs(s));
     g.value(hashInputs(anal, s.analytical));
     g.value(hashInputs(tris, s.triangles));
-    g.array(s.ownerSphereStart);
+    if (s.spheresAreOwners && s.ownerSphereStart.empty())
+        g.ownSphereRanges(s.owners.size(), s.spheres.size());
+    else
+        g.array(s.ownerSphereStart);
     g.ownerRanges(s.owners.size(), s.triangles.owner);  // (as the triangle ranges once kept were hashed)
     fp.geometryInputs = g.result();
 

@@ -48,7 +48,7 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     m_state = std::move(state);
     m_state.frame.parks = settings.removeLeavingClumps;  // (allowParking)
     m_model = model;
-    m_initialScene = sceneFingerprint(m_state, m_model);  // of the full layout, whichever is chosen
+    m_initialScene = sceneFingerprint(m_state, m_model);  // (the same in either sphere layout)
     chooseSphereLayout(m_state);
     shareSphereIdsWithOwners(m_state);
     refreshKinematicCache(m_state);
