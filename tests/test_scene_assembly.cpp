@@ -16,6 +16,7 @@
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
 #include "parallel/Parallel.h"
+#include "runtime/SceneEdits.h"
 #include "runtime/SceneFingerprint.h"
 #include "state/SphereIds.h"
 #include "state/SphereLayoutChoice.h"
@@ -172,6 +173,16 @@ TEST(SceneAssembly, OneSphereClumpsAreTheirOwnersFromTheStart) {
     sphereIdMaps(compact, toUser, toInternal);
     expectSameField(full.sphereInternalToUser, toUser, "sphereInternalToUser");
     expectSameField(full.sphereUserToInternal, toInternal, "sphereUserToInternal");
+    // Rows whose spheres are their owners merge into a running state as their full arrays do.
+    SimState intoCompact = full, intoFull = full;
+    insertClumps(intoCompact, compact);
+    insertClumps(intoFull, full);
+    forEachOwnerField(intoFull.owners, intoCompact.owners,
+                      [](const auto& a, const auto& b, FieldRole) { expectSameField(a, b, "merged owner field"); });
+    forEachSphereField(intoFull.spheres, intoCompact.spheres,
+                       [](const auto& a, const auto& b, FieldRole) { expectSameField(a, b, "merged sphere field"); });
+    expectSameField(intoFull.sphereUserToInternal, intoCompact.sphereUserToInternal, "merged sphereUserToInternal");
+    expectSameField(intoFull.ownerSphereStart, intoCompact.ownerSphereStart, "merged ownerSphereStart");
     // A scene with a clump of two spheres is assembled in the full layout, as before.
     sc.batches.push_back(std::make_shared<DEMClumpBatch>(
         std::vector<std::shared_ptr<DEMClumpTemplate>>{clumpOf(2, mat)}, std::vector<float3>{make_float3(0.f)}));

@@ -66,7 +66,9 @@ TEST(SphereIds, SharedWithTheOwnersWhereTheyAgreeAndReadTheSame) {
     const ScopedEnvironmentVariable shared("DEME_FULL_SPHERE_LAYOUT", "0");
     const ModelLayout layout;
     for (bool planeAfter : {true, false}) {
-        SimState s = assembleScene(oneSphereClumps(pos, planeAfter), layout);
+        // Assembled with the spheres' own arrays (as UpdateClumps' rows are; Initialize's assembly
+        // shares them at once, test SceneAssembly.OneSphereClumpsAreTheirOwnersFromTheStart).
+        SimState s = assembleScene(oneSphereClumps(pos, planeAfter), layout, false);
         ASSERT_FALSE(s.sphereIdsAreOwnerIds);
         const Ids before = idsOf(s);
         shareSphereIdsWithOwners(s);
@@ -80,8 +82,8 @@ TEST(SphereIds, SharedWithTheOwnersWhereTheyAgreeAndReadTheSame) {
         // Two more clumps: their sphere ids are 4 and 5; their owner ids 4 and 5 only without the
         // plane (which took owner id 4 first).
         insertClumps(
-            s,
-            assembleScene(oneSphereClumps({make_float3(0.3f, 0.3f, 0), make_float3(-0.3f, -0.3f, 0)}, false), layout));
+            s, assembleScene(oneSphereClumps({make_float3(0.3f, 0.3f, 0), make_float3(-0.3f, -0.3f, 0)}, false), layout,
+                             false));
         EXPECT_EQ(s.sphereIdsAreOwnerIds, !planeAfter);
         ASSERT_EQ(userSphereCount(s), 6u);
         expectInverse(s);

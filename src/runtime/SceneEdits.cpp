@@ -51,6 +51,14 @@ void resizeDerived(SimState& s) {
 }  // namespace
 
 void insertClumps(SimState& s, const SimState& part) {
+    // The rows are read as full sphere arrays with their own id maps (UpdateClumps assembles them
+    // so); rows whose spheres are their owners are expanded first.
+    if (part.spheresAreOwners || part.sphereIdsAreOwnerIds) {
+        SimState full = part;
+        expandSphereLayout(full);
+        ownSphereIds(full);
+        return insertClumps(s, full);
+    }
     const size_t k = part.owners.size(), kS = part.spheres.size();
     const bodyID_t at = (bodyID_t)s.numClumps;  // where the new owners go
     const bodyID_t nS = (bodyID_t)s.spheres.size();
