@@ -38,21 +38,27 @@ std::shared_ptr<DEMClumpTemplate> clumpOf(size_t spheres, const std::shared_ptr<
     return t;
 }
 
+// A scene of one material in the domain [-1, 1]^3, without clumps yet.
+Scene sceneWithOneMaterial() {
+    Scene sc;
+    sc.materials = {std::make_shared<DEMMaterial>(
+        std::map<std::string, double>{{"E", 1e7}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}, {"Crr", 0.0}}, 0)};
+    sc.hasDomain = true;
+    sc.domainLo = make_float3(-1.f);
+    sc.domainSize = make_float3(2.f);
+    return sc;
+}
+
 // 6,000 clumps (over the parallel loops' threshold) of a one-sphere and a three-sphere template in
 // random order and places, with per-clump velocities and families, in two batches. `outside`: two
 // clumps (this one and the one 700 after it) at x = 0.95, past a domain that ends at x = 0.92 (as
 // if it had been made smaller after AddClumps checked them).
 Scene randomScene(size_t outside = SIZE_MAX) {
-    auto mat = std::make_shared<DEMMaterial>(
-        std::map<std::string, double>{{"E", 1e7}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}, {"Crr", 0.0}}, 0);
+    Scene sc = sceneWithOneMaterial();
+    const auto mat = sc.materials[0];
     const auto one = clumpOf(1, mat), three = clumpOf(3, mat);
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> x(-0.9f, 0.9f);
-    Scene sc;
-    sc.materials = {mat};
-    sc.hasDomain = true;
-    sc.domainLo = make_float3(-1.f);
-    sc.domainSize = make_float3(2.f);
     for (int batch = 0; batch < 2; batch++) {
         std::vector<std::shared_ptr<DEMClumpTemplate>> types;
         std::vector<float3> pos, vel;
@@ -122,17 +128,12 @@ TEST(SceneAssembly, TheFirstClumpOutsideTheDomainIsNamed) {
 // same owners, radii and materials array for array, the same sphere ranges, owners and id maps as
 // the layout's readers make them, and the same fingerprint (a checkpoint of one reads in the other).
 TEST(SceneAssembly, OneSphereClumpsAreTheirOwnersFromTheStart) {
-    auto mat = std::make_shared<DEMMaterial>(
-        std::map<std::string, double>{{"E", 1e7}, {"nu", 0.3}, {"CoR", 0.5}, {"mu", 0.5}, {"Crr", 0.0}}, 0);
+    Scene sc = sceneWithOneMaterial();
+    const auto mat = sc.materials[0];
     auto small = clumpOf(1, mat), large = clumpOf(1, mat);
     large->radii[0] = 0.006f;
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> x(-0.9f, 0.9f);
-    Scene sc;
-    sc.materials = {mat};
-    sc.hasDomain = true;
-    sc.domainLo = make_float3(-1.f);
-    sc.domainSize = make_float3(2.f);
     for (int batch = 0; batch < 3; batch++) {
         std::vector<std::shared_ptr<DEMClumpTemplate>> types;
         std::vector<float3> pos;
