@@ -24,15 +24,23 @@ struct FieldBytes {
 };
 struct SumBytes {
     size_t& sum;
+    bool results = true;  // false: only the RESULT fields
     template <class F>
     void operator()(const F& f, const F&, FieldRole role) const {
-        if (role != FieldRole::HOST) sum += f.bytes;
+        if (role != FieldRole::HOST && (results || role == FieldRole::RESULT)) sum += f.bytes;
     }
 };
 size_t ownerBytes() {
     size_t sum = 0;
     OwnerFields<FieldBytes> f;
     forEachOwnerField(f, f, SumBytes{sum});
+    return sum;
+}
+// An owner's results (the last step's loads, its travel: state/SimState.h).
+size_t ownerResultBytes() {
+    size_t sum = 0;
+    OwnerFields<FieldBytes> f;
+    forEachOwnerField(f, f, SumBytes{sum, false});
     return sum;
 }
 // A sphere's bytes in the geometry group where, as in the scene below, every clump is one sphere at
@@ -62,8 +70,9 @@ DEME_BACKEND_TEST(MemoryStatsGroups, GroupsHoldTheirArraysAndAddUp) {
     const MemoryStats m = sim.GetMemoryStats();
     EXPECT_EQ(m.spheres, n);
 
-    // The host state (both backends keep it): owners, spheres, contact pairs; detection's scratch.
-    EXPECT_GE(m.host(MemoryGroup::OWNER_STATE), n * ownerBytes());
+    // The host state (both backends keep it): owners (a GPU run's without their results, below),
+    // spheres, contact pairs; detection's scratch.
+    EXPECT_GE(m.host(MemoryGroup::OWNER_STATE), n * (ownerBytes() - (onGpu() ? ownerResultBytes() : 0)));
     EXPECT_GE(m.host(MemoryGroup::GEOMETRY), n * sphereBytes());
     EXPECT_EQ(m.host(MemoryGroup::WILDCARDS), 0u);  // the default model has no owner or geometry wildcards
     size_t hostSum = 0;
@@ -73,6 +82,20 @@ DEME_BACKEND_TEST(MemoryStatsGroups, GroupsHoldTheirArraysAndAddUp) {
     size_t deviceSum = 0;
     for (size_t b : m.deviceBytes) deviceSum += b;
     EXPECT_EQ(m.deviceTotal(), deviceSum);
+    // The owners' results: the CPU's steps write them in the host state; a GPU run's host fetches
+    // them for a checkpoint (every owner's: 1,000 spheres and the box's) and lets them go
+    // when the steps go on.
+    const size_t ownersBefore = m.host(MemoryGroup::OWNER_STATE);
+    sim.WriteCheckpoint((scratchDir() / "memory.ckpt").string());
+    const size_t fetched = sim.GetMemoryStats().host(MemoryGroup::OWNER_STATE) - ownersBefore;
+    if (onGpu()) {
+        EXPECT_GE(fetched, n * ownerResultBytes());
+        EXPECT_LE(fetched, (n + 8) * ownerResultBytes());
+        sim.DoDynamics(1e-4);
+        EXPECT_EQ(sim.GetMemoryStats().host(MemoryGroup::OWNER_STATE), ownersBefore);
+    } else {
+        EXPECT_EQ(fetched, 0u);
+    }
     if (!onGpu()) {
         // The CPU steps on the host arrays: the contact set and the detector's bins (kept between
         // detections in so small a scene) are there. Pairs, type and Hertz-Mindlin's tangential

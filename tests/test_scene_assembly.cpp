@@ -174,7 +174,9 @@ TEST(SceneAssembly, OneSphereClumpsAreTheirOwnersFromTheStart) {
     sphereIdMaps(compact, toUser, toInternal);
     expectSameField(full.sphereInternalToUser, toUser, "sphereInternalToUser");
     expectSameField(full.sphereUserToInternal, toInternal, "sphereUserToInternal");
-    // Rows whose spheres are their owners merge into a running state as their full arrays do.
+    // Rows whose spheres are their owners merge into a running state (which holds its owners'
+    // results, state/SimState.h) as their full arrays do.
+    full.owners.makeResults();
     SimState intoCompact = full, intoFull = full;
     insertClumps(intoCompact, compact);
     insertClumps(intoFull, full);

@@ -50,8 +50,11 @@ struct Fixture {
 
 // Tags: owner wildcard 100 + user id, sphere wildcard 1000 + user sphere id, the plane's 5000.
 // Contacts: every sphere with the plane, tagged 10000 + user sphere id.
+// Owners' results (state/SimState.h: a running state holds them for an edit): travel 100 + user id.
 void tag(SimState& s) {
+    s.owners.makeResults();
     for (size_t o = 0; o < s.owners.size(); o++) s.wildcards.owner[0][o] = 100.f + s.ownerInternalToUser[o];
+    for (size_t o = 0; o < s.owners.size(); o++) s.owners.travel[o] = 100.f + s.ownerInternalToUser[o];
     for (size_t i = 0; i < s.spheres.size(); i++) s.wildcards.geometry[0][i] = 1000.f + s.sphereInternalToUser[i];
     s.wildcards.geometry[0][s.analyticalIdBase()] = 5000.f;
     ContactArrays& c = s.contacts;
@@ -72,6 +75,7 @@ void expectConsistent(const SimState& s) {
         if (o == R) continue;
         EXPECT_EQ(s.ownerInternalToUser[o], u);
         EXPECT_EQ(s.wildcards.owner[0][o], 100.f + u) << "owner " << u;
+        EXPECT_EQ(s.owners.travel[o], 100.f + u) << "owner " << u;
     }
     for (size_t u = 0; u < s.sphereUserToInternal.size(); u++) {
         const bodyID_t i = s.sphereUserToInternal[u];
@@ -110,6 +114,8 @@ TEST(SceneEditsState, InsertionAndRemovalKeepEveryRowsValuesAndIds) {
     ASSERT_EQ(s.ownerUserToInternal.size(), 6u);
     ASSERT_EQ(s.sphereUserToInternal.size(), 10u);
     for (bodyID_t u : {4u, 5u}) {
+        EXPECT_EQ(s.owners.travel[s.ownerUserToInternal[u]], 0.f);  // (the part assembled has no results)
+        s.owners.travel[s.ownerUserToInternal[u]] = 100.f + u;
         s.wildcards.owner[0][s.ownerUserToInternal[u]] = 100.f + u;  // tag the newcomers (they start at 0)
         EXPECT_LT(s.ownerUserToInternal[u], s.numClumps);
     }

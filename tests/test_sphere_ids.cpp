@@ -69,6 +69,7 @@ TEST(SphereIds, SharedWithTheOwnersWhereTheyAgreeAndReadTheSame) {
         // Assembled with the spheres' own arrays (as UpdateClumps' rows are; Initialize's assembly
         // shares them at once, test SceneAssembly.OneSphereClumpsAreTheirOwnersFromTheStart).
         SimState s = assembleScene(oneSphereClumps(pos, planeAfter), layout, false);
+        s.owners.makeResults();  // (as a running state holds them for an edit: state/SimState.h)
         ASSERT_FALSE(s.sphereIdsAreOwnerIds);
         const Ids before = idsOf(s);
         shareSphereIdsWithOwners(s);

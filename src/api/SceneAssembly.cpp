@@ -78,8 +78,8 @@ class UserClumps {
 struct ReserveRows {
     size_t n;
     template <class V>
-    void operator()(V& v, V&, FieldRole) const {
-        v.reserve(n);
+    void operator()(V& v, V&, FieldRole role) const {
+        if (role != FieldRole::RESULT) v.reserve(n);  // results: the backend's (SimState.h)
     }
 };
 
@@ -383,9 +383,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model, bool sphere
 
     const size_t nOwners = s.owners.size();
     if (!s.spheresAreOwners) rangesByOwner(nOwners, s.spheres.owner, s.ownerSphereStart);
-    s.owners.contactForce.assign(nOwners, make_float3(0.f));
-    s.owners.contactTorque.assign(nOwners, make_float3(0.f));
-    s.owners.travel.assign(nOwners, 0.f);
+    // (No loads or travel: the steps' results, which the backend that runs them makes: SimState.h.)
     s.integrationScratch.flags.assign(nOwners, 0);  // read by the force pass (a parked clump's) before a step
     if (!s.sphereIdsAreOwnerIds) {
         s.sphereUserToInternal.assign(s.spheres.size(), 0);

@@ -37,15 +37,29 @@ float4 DEMTracker::OriQ(size_t offset) const { return sim().state().owners.oriQ[
 float DEMTracker::Mass(size_t offset) const { return sim().ownerMass(internalID(offset)); }
 float3 DEMTracker::MOI(size_t offset) const { return sim().ownerMOI(internalID(offset)); }
 unsigned int DEMTracker::GetFamily(size_t offset) const { return sim().state().owners.family[internalID(offset)]; }
-float3 DEMTracker::ContactForce(size_t offset) const { return sim().state().owners.contactForce[internalID(offset)]; }
-float3 DEMTracker::ContactTorque(size_t offset) const { return sim().state().owners.contactTorque[internalID(offset)]; }
+namespace {
+
+// Owner o's last-step contact force and torque (Simulation::ownerLoads: the device's, on a GPU).
+struct Loads {
+    float3 force, torque;
+};
+Loads loadsOf(const Simulation& sim, size_t o) {
+    Loads l;
+    sim.ownerLoads({(bodyID_t)o}, &l.force, &l.torque);
+    return l;
+}
+
+}  // namespace
+
+float3 DEMTracker::ContactForce(size_t offset) const { return loadsOf(sim(), internalID(offset)).force; }
+float3 DEMTracker::ContactTorque(size_t offset) const { return loadsOf(sim(), internalID(offset)).torque; }
 float3 DEMTracker::ContactAcc(size_t offset) const {
     const size_t o = internalID(offset);
-    return sim().state().owners.contactForce[o] / sim().ownerMass(o);
+    return loadsOf(sim(), o).force / sim().ownerMass(o);
 }
 float3 DEMTracker::ContactAngAccLocal(size_t offset) const {
     const size_t o = internalID(offset);
-    const float3 tLocal = rotateToLocal(sim().state().owners.oriQ[o], sim().state().owners.contactTorque[o]);
+    const float3 tLocal = rotateToLocal(sim().state().owners.oriQ[o], loadsOf(sim(), o).torque);
     return tLocal / sim().ownerMOI(o);
 }
 

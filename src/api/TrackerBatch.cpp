@@ -4,6 +4,7 @@
 #include <deme/Tracker.h>
 
 #include <cmath>
+#include <cstddef>
 #include <string>
 
 #include "api/Validate.h"
@@ -24,6 +25,12 @@ template <class T, class F>
 void gather(const SimState& s, size_t first, size_t count, T* out, F value) {
     const bodyID_t* toInternal = s.ownerUserToInternal.data() + first;
     for (size_t i = 0; i < count; i++) out[i] = value((size_t)toInternal[i]);
+}
+
+// The internal ids of user ids [first, first + count).
+std::vector<bodyID_t> internalRows(const SimState& s, size_t first, size_t count) {
+    const auto from = s.ownerUserToInternal.begin() + (std::ptrdiff_t)first;
+    return std::vector<bodyID_t>(from, from + (std::ptrdiff_t)count);
 }
 
 bool allFinite(const float3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -64,15 +71,14 @@ void DEMTracker::OriQs(float4* out) const {
     const SimState& s = sim().state();
     gather(s, first, m_count, out, [&s](size_t o) { return s.owners.oriQ[o]; });
 }
+// The rows' last-step loads come from Simulation::ownerLoads (on a GPU the device gathers them).
 void DEMTracker::ContactForces(float3* out) const {
     const size_t first = firstOwnerID("DEMTracker::ContactForces");
-    const SimState& s = sim().state();
-    gather(s, first, m_count, out, [&s](size_t o) { return s.owners.contactForce[o]; });
+    sim().ownerLoads(internalRows(sim().state(), first, m_count), out, nullptr);
 }
 void DEMTracker::ContactTorques(float3* out) const {
     const size_t first = firstOwnerID("DEMTracker::ContactTorques");
-    const SimState& s = sim().state();
-    gather(s, first, m_count, out, [&s](size_t o) { return s.owners.contactTorque[o]; });
+    sim().ownerLoads(internalRows(sim().state(), first, m_count), nullptr, out);
 }
 
 std::vector<float3> DEMTracker::Positions() const {

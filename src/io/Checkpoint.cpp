@@ -174,7 +174,7 @@ const SectionDef SECTIONS[] = {
     {"clock", writeClock},
     {"settings", writeSettings},
     {"families", writeFamilies},
-    {"state", [](const Simulation& sim, ByteWriter& out) { writeStateSection(sim.stateWithContacts(), out); }},
+    {"state", [](const Simulation& sim, ByteWriter& out) { writeStateSection(sim.wholeState(), out); }},
 };
 
 void readSection(const std::string& name, ByteReader& in, Staging& st, const Simulation& sim,

@@ -2,7 +2,7 @@
 // and read back into a solver that a new process built from the same script up to Initialize().
 // On the CPU the restarted run is bit for bit the run that was not interrupted.
 //
-// What is written: the state arrays of state/StateFields.h (every EVOLVES and INPUT field of the
+// What is written: the state arrays of state/StateFields.h (every EVOLVES, RESULT and INPUT field of the
 // owners, mass properties, geometries and the contact set with its wildcards and persistence marks;
 // by name, so a field added to the lists is included without further code), the host tables beside
 // them (id maps, per-owner geometry ranges, owner and geometry wildcards, contact wildcard rules),

@@ -31,8 +31,8 @@ DEME_NAMED_VISITOR(namedCacheFields, DEME_CACHE_FIELDS)
 #undef DEME_NAMED_VISITOR
 #undef DEME_NAMED_FIELD
 
-// Every array a checkpoint holds, as f("group.field", vector): the listed groups' EVOLVES and INPUT
-// fields (SCRATCH is a step's own, HOST the CPU's bookkeeping, rebuilt at the next detection), then
+// Every array a checkpoint holds, as f("group.field", vector): the listed groups' EVOLVES, RESULT and
+// INPUT fields (SCRATCH is a step's own, HOST the CPU's bookkeeping, rebuilt at the next detection), then
 // the host tables. The kinematic cache is derived from the poses, but stored all the same: the
 // integration's vectorised loop and the host's refresh (dynamics/KinematicCache.h) may round the
 // sphere centres differently, and a restart that recomputed them would not be bit for bit.
@@ -40,7 +40,7 @@ template <class S, class F>
 void forEachStoredArray(S& s, F&& f) {
     auto group = [&](const char* prefix) {
         return [&f, prefix](const char* name, auto& field, FieldRole role) {
-            if (role == FieldRole::EVOLVES || role == FieldRole::INPUT) f(std::string(prefix) + "." + name, field);
+            if (role != FieldRole::SCRATCH && role != FieldRole::HOST) f(std::string(prefix) + "." + name, field);
         };
     };
     namedOwnerFields(s.owners, group("owners"));

@@ -148,6 +148,12 @@ class DynamicsBackend {
     virtual void download(SimState& s) = 0;
     // The contact set in use (pairs, history, per-contact forces) into s.contacts.
     virtual void downloadContacts(SimState& s) = 0;
+    // The owners' results (the RESULT fields of state/StateFields.h) into `s`, one per owner (zero
+    // before the first step). The CPU's host state holds them always.
+    virtual void downloadResults(SimState& /*s*/) {}
+    // The last step's contact force and torque of owners[i] (internal ids) into force[i] and
+    // torque[i] (either may be null), without bringing every owner's back.
+    virtual void gatherOwnerLoads(const std::vector<bodyID_t>& owners, float3* force, float3* torque) = 0;
     // Tracker loads (AddAcc) of `s` for the coming call, or zeros.
     virtual void uploadTrackerLoads(const SimState& s) = 0;
     // Before the steps of one DoDynamics call (the GPU compiles changed prescriptions here).

@@ -26,14 +26,16 @@ constexpr size_t elementBytes(const V&) {
 }
 
 // The bytes a backend's copy of a field group holds: the host arrays' sizes (they are the scene's,
-// assembled by Initialize), the fields of the roles that backend keeps.
+// assembled by Initialize), the fields of the roles that backend keeps; the results one per owner
+// (the backend makes them: state/SimState.h).
 struct SizedBytes {
     size_t& sum;
     bool deviceCopy;  // the GPU keeps no HOST-role field
+    size_t owners;
     template <class V>
     void operator()(const V& v, const V&, FieldRole role) const {
         if (deviceCopy && role == FieldRole::HOST) return;
-        sum += v.size() * elementBytes(v);
+        sum += (role == FieldRole::RESULT ? owners : v.size()) * elementBytes(v);
     }
 };
 
@@ -111,7 +113,7 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
     auto& b = e.bytes;
     size_t& owner = b[(int)MemoryGroup::OWNER_STATE];
     size_t& geometry = b[(int)MemoryGroup::GEOMETRY];
-    const SizedBytes ownerSum{owner, onGpu}, geometrySum{geometry, onGpu};
+    const SizedBytes ownerSum{owner, onGpu, nO}, geometrySum{geometry, onGpu, nO};
     // Owners, mass properties, the integration's per-owner scratch; geometry and its placed poses
     // (the kinematic cache, which Initialize has filled): as ShowMemoryStats groups them.
     forEachOwnerField(s.owners, s.owners, ownerSum);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <type_traits>
 
 #include <deme/Error.h>
 
@@ -51,6 +52,7 @@ void resizeDerived(SimState& s) {
 }  // namespace
 
 void insertClumps(SimState& s, const SimState& part) {
+    if (!s.owners.holdsResults()) throwError("UpdateClumps", "internal: the state edited lacks its owners' results");
     // The rows are read as full sphere arrays with their own id maps (UpdateClumps assembles them
     // so); rows whose spheres are their owners are expanded first.
     if (part.spheresAreOwners || part.sphereIdsAreOwnerIds) {
@@ -73,8 +75,13 @@ void insertClumps(SimState& s, const SimState& part) {
     expandSphereLayout(s);
 
     // Owners: every field's new rows at `at`; the analytical and mesh owners move up by k.
-    forEachOwnerField(s.owners, part.owners, [at](auto& mine, const auto& theirs, FieldRole) {
-        mine.insert(mine.begin() + at, theirs.begin(), theirs.end());
+    // (The edited state holds every owner's results, Simulation::wholeState; an assembled part has
+    // none, state/SimState.h: its owners' start at zero.)
+    forEachOwnerField(s.owners, part.owners, [at, k](auto& mine, const auto& theirs, FieldRole role) {
+        if (role == FieldRole::RESULT && theirs.size() != k)
+            mine.insert(mine.begin() + at, k, typename std::decay_t<decltype(mine)>::value_type{});
+        else
+            mine.insert(mine.begin() + at, theirs.begin(), theirs.end());
     });
     // Loads added before the edit stay with their owners; the new owners have none.
     if (!s.trackerLoads.empty())
@@ -125,6 +132,7 @@ void insertClumps(SimState& s, const SimState& part) {
 
 RemovedClumps removeClumps(SimState& s, const std::vector<uint8_t>& remove) {
     const size_t n = s.owners.size(), nS = s.spheres.size(), nA = s.analytical.size(), nT = s.triangles.size();
+    if (!s.owners.holdsResults()) throwError("RemoveClumps", "internal: the state edited lacks its owners' results");
     RemovedClumps r;
     std::vector<uint8_t> keepOwner(n, 1);
     for (size_t o = 0; o < n; o++) {

@@ -24,7 +24,8 @@ namespace deme {
 // wildcard counts -- into `s`: the clumps after the existing ones, their spheres after the existing
 // spheres, their user ids after every user id ever issued (owners and spheres alike). Owner and
 // geometry wildcards of the new rows come from `part`; the contact set keeps its pairs and history.
-// The kinematic cache is left for the caller to refresh.
+// The kinematic cache is left for the caller to refresh. `s` holds every owner's results
+// (state/SimState.h: a GPU run's host fetches them first); `part`'s, where it has none, are zero.
 void insertClumps(SimState& s, const SimState& part);
 
 struct RemovedClumps {
@@ -33,7 +34,8 @@ struct RemovedClumps {
 };
 // Removes every clump o with remove[o] != 0 (remove has one entry per owner; entries of non-clump
 // owners must be 0), its spheres, their contacts, and their rows of every wildcard; adds them to
-// s.numRemovedClumps and s.removedMass. The kinematic cache is left for the caller to refresh.
+// s.numRemovedClumps and s.removedMass. The kinematic cache is left for the caller to refresh. `s`
+// holds every owner's results (as for insertClumps).
 RemovedClumps removeClumps(SimState& s, const std::vector<uint8_t>& remove);
 
 // The internal id of the owner (sphere) with user id `user`: a deme::Error naming `call` if there is

@@ -56,6 +56,8 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
     checkShearedGrid(m_state.frame.periodic, m_grid, "Initialize");
     applyDetectionMode();
     m_backends = makeBackends(m_state, m_model, settings, [this](Verbosity v, const std::string& msg) { log(v, msg); });
+    // The CPU's steps run on the host state, results included; a GPU's upload makes its own.
+    if (!m_backends.dynamics->onGpu()) m_state.owners.makeResults();
     // A scene too large for the memory its steps use fails here, not in its first detection.
     const DynamicsBackend& dynamics = *m_backends.dynamics;
     const KinematicsBackend& kinematics = *m_backends.kinematics;
@@ -131,6 +133,13 @@ const SimState& Simulation::stateWithContacts() const {
     return m_state;
 }
 
+const SimState& Simulation::wholeState() const {
+    stateWithContacts();
+    // (A GPU run's host lets them go after each upload and each call's steps.)
+    if (!m_state.owners.holdsResults()) m_backends.dynamics->downloadResults(m_state);
+    return m_state;
+}
+
 SimState& Simulation::editState() {
     state();
     m_backendStale = true;
@@ -143,6 +152,24 @@ SimState& Simulation::editStateWithContacts() {
     return m_state;
 }
 
+SimState& Simulation::editWholeState() {
+    wholeState();
+    m_backendStale = m_backendContactsStale = true;
+    return m_state;
+}
+
+void Simulation::ownerLoads(const std::vector<bodyID_t>& owners, float3* force, float3* torque) const {
+    const SimState& s = state();
+    if (!s.owners.holdsResults()) {
+        m_backends.dynamics->gatherOwnerLoads(owners, force, torque);
+        return;
+    }
+    for (size_t i = 0; i < owners.size(); i++) {
+        if (force) force[i] = s.owners.contactForce[owners[i]];
+        if (torque) torque[i] = s.owners.contactTorque[owners[i]];
+    }
+}
+
 void Simulation::markHostBehind() {
     if (!m_backends.dynamics->onGpu()) {
         // The CPU steps the host state itself; only the contacts' history may be in the steps'
@@ -151,6 +178,8 @@ void Simulation::markHostBehind() {
         return;
     }
     m_hostStale = true;
+    // The owners' results are fetched again where asked for (wholeState), not kept behind.
+    m_state.owners.releaseResults();
     // Contacts the host edited and has not sent yet stay until the upload that sends them.
     if (m_backendContactsStale) return;
     m_hostContactsStale = true;
@@ -181,6 +210,8 @@ void Simulation::uploadIfEdited() {
         m_contacts.resume(m_resume->contactSet);
     m_resume.reset();
     m_backendStale = false;
+    // A GPU run's host keeps no copy of the owners' results (state/SimState.h): the device has them.
+    if (m_backends.dynamics->onGpu()) m_state.owners.releaseResults();
 }
 
 namespace {

@@ -41,15 +41,20 @@ class Simulation {
     // device has moved on. Without the contact set: on the GPU backend s.contacts may be empty or
     // behind (the set lives on the device, and the host keeps no copy of it between calls).
     const SimState& state() const;
-    // The same with the contact set (output of contacts, stress, checkpoints).
+    // The same with the contact set (output of contacts, stress).
     const SimState& stateWithContacts() const;
+    // The same with every owner's results too (state/SimState.h: a GPU run's host holds them only
+    // while fetched): checkpoints, and edits that renumber owners.
+    const SimState& wholeState() const;
     // The state for editing (tracker setters, family changes): the backend's copy is replaced by it
     // before the next step, which re-detects contacts; the backend's contact set and its history
     // stay.
     SimState& editState();
     // For edits of the contact set itself (scene edits, contact wildcards and persistence): the
-    // backend's set is replaced by the host's too.
+    // backend's set is replaced by the host's too, and its owners' results where the host has them
+    // (wholeState: an edit that adds or removes owners needs them).
     SimState& editStateWithContacts();
+    SimState& editWholeState();
     // The tracker loads for adding to (AddAcc), made on the first: they go to the backend with the
     // next call by themselves, without replacing its state.
     TrackerLoadArrays& trackerLoads() {
@@ -98,6 +103,10 @@ class Simulation {
 
     // Owner queries used by trackers, inspectors and writers.
     double3 ownerPos(size_t owner) const;
+    // The last step's contact force and torque (global frame) of owners[i] (internal ids), into
+    // force[i] and torque[i] (either may be null): from the host where it holds the results, else
+    // gathered on the device (a tracker's rows, without bringing every owner's back).
+    void ownerLoads(const std::vector<bodyID_t>& owners, float3* force, float3* torque) const;
     // Before a call's steps: where the "remove" exit policy is on, the frame reads parked clumps'
     // centres from then on (DomainFrame::parks, state/OwnerCentre.h).
     void allowParking();

@@ -14,7 +14,7 @@ namespace deme {
 
 void Simulation::insertClumps(const SimState& part) {
     checkPeriodicRadii(m_state.frame.periodic, part.spheres.radius, "UpdateClumps");
-    SimState& s = editStateWithContacts();  // the device's state first, if it has moved on
+    SimState& s = editWholeState();  // the device's state first, if it has moved on
     deme::insertClumps(s, part);
     refreshKinematicCache(s);
     // New templates may bring larger spheres than the grid was sized for (uploadIfEdited gives the
@@ -27,7 +27,7 @@ void Simulation::insertClumps(const SimState& part) {
 
 size_t Simulation::removeClumps(const std::vector<uint8_t>& remove) {
     if (std::find(remove.begin(), remove.end(), 1) == remove.end()) return 0;  // no edit, no re-detection
-    SimState& s = editStateWithContacts();  // the contact set is renumbered too
+    SimState& s = editWholeState();  // the contact set and the results are renumbered too
     const RemovedClumps r = deme::removeClumps(s, remove);
     if (r.count) refreshKinematicCache(s);
     return r.count;

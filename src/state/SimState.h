@@ -23,6 +23,22 @@ using HostArray = std::vector<T>;
 
 struct OwnerArrays : OwnerFields<HostArray> {
     size_t size() const { return voxel.size(); }
+    // The RESULT fields (state/StateFields.h: the last step's loads, the travel) held for every
+    // owner: always on the CPU backend, whose steps run on these arrays; in a GPU run only while
+    // fetched (Simulation::wholeState).
+    bool holdsResults() const { return travel.size() == size(); }
+    // Zero results for every owner where the host holds none (an assembled scene).
+    void makeResults() {
+        forEachOwnerField(*this, *this, [n = size()](auto& v, auto&, FieldRole role) {
+            if (role == FieldRole::RESULT && v.size() != n) v.assign(n, {});
+        });
+    }
+    // Lets the host's copy of the results go (their storage too).
+    void releaseResults() {
+        forEachOwnerField(*this, *this, [](auto& v, auto&, FieldRole role) {
+            if (role == FieldRole::RESULT) std::decay_t<decltype(v)>().swap(v);
+        });
+    }
 };
 // Empty unless some owner has a tracker load for the coming call (state/StateFields.h).
 struct TrackerLoadArrays : TrackerLoadFields<HostArray> {

@@ -9,6 +9,10 @@
 //   INPUT    only the host writes it (uploaded, never downloaded)
 //   SCRATCH  the steps' own per-step results (sized where the steps run, never copied)
 //   HOST     the CPU backend's own bookkeeping (never on a device)
+//   RESULT   the steps write it, and only the steps and a few readers need it: a GPU run keeps it
+//            on the device alone, the host fetching it when asked (a tracker's rows, a checkpoint,
+//            a scene edit). Empty on the host means zero (an assembled scene has none; each
+//            backend's upload makes them), so a GPU run's host never holds them for every owner.
 #pragma once
 
 #include <deme/VariableTypes.h>
@@ -29,17 +33,17 @@ struct WindowLoad {
     X(subY, subVoxelPos_t, EVOLVES)                                                                  \
     X(subZ, subVoxelPos_t, EVOLVES)                                                                  \
     X(oriQ, oriQ_t, EVOLVES)                                                                         \
-    X(vel, float3, EVOLVES)           /* global frame */                                             \
-    X(angVel, float3, EVOLVES)        /* local (body) frame */                                       \
-    X(family, family_t, EVOLVES)      /* ChangeFamilyWhen changes it on the device */                \
-    X(type, uint8_t, INPUT)           /* OwnerType */                                                \
-    X(inertia, inertiaID_t, INPUT)    /* index into the mass properties (extent, dynamic) */         \
-    X(contactForce, float3, EVOLVES)  /* contact force of the last step (global), for trackers */    \
-    X(contactTorque, float3, EVOLVES) /* contact torque of the last step (global) */                 \
+    X(vel, float3, EVOLVES)          /* global frame */                                              \
+    X(angVel, float3, EVOLVES)       /* local (body) frame */                                        \
+    X(family, family_t, EVOLVES)     /* ChangeFamilyWhen changes it on the device */                 \
+    X(type, uint8_t, INPUT)          /* OwnerType */                                                 \
+    X(inertia, inertiaID_t, INPUT)   /* index into the mass properties (extent, dynamic) */          \
+    X(contactForce, float3, RESULT)  /* contact force of the last step (global), for trackers */     \
+    X(contactTorque, float3, RESULT) /* contact torque of the last step (global) */                  \
     /* Path length travelled since the snapshot of the contact set in use (the poses its          */ \
     /* detection saw): bounds how far every point of its geometry moved since. Set back at each   */ \
     /* installation, so it stays within about a margin and a float holds it to 1e-7 of that.     */  \
-    X(travel, float, EVOLVES)
+    X(travel, float, RESULT)
 
 // Tracker loads (DEMTracker::AddAcc, AddAngAcc) for the coming DoDynamics call, per owner. They
 // exist only from the first load to the end of the call that applies it, and are empty otherwise:
@@ -140,7 +144,7 @@ struct WindowLoad {
 namespace deme {
 
 // Who writes a field while steps run (see above).
-enum class FieldRole { EVOLVES, INPUT, SCRATCH, HOST };
+enum class FieldRole { EVOLVES, INPUT, SCRATCH, HOST, RESULT };
 
 // One struct template per group, holding each field in storage A<T>: std::vector<T> on the host,
 // T* in the view, a device buffer on the GPU.

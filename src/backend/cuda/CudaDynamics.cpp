@@ -74,6 +74,42 @@ void CudaDynamics::download(SimState& s) {
     m_model.download(s);
 }
 
+void CudaDynamics::downloadResults(SimState& s) {
+    select();
+    m_state.downloadResults(s, m_stream);
+    synchronize(m_stream);
+    s.owners.makeResults();  // (none on the device before the first upload: zero)
+}
+
+void CudaDynamics::gatherOwnerLoads(const std::vector<bodyID_t>& owners, float3* force, float3* torque) {
+    select();
+    const size_t n = owners.size();
+    if (n == 0) return;
+    // Before the first upload the device has no loads: zero, as the host's would be.
+    if (m_state.owners.contactForce.size() != m_view.numOwners || m_view.numOwners == 0) {
+        if (force) std::fill(force, force + n, make_float3(0.f));
+        if (torque) std::fill(torque, torque + n, make_float3(0.f));
+        return;
+    }
+    m_gatherIds.resizeDiscarding(n);
+    m_gatherIds.uploadAsync(owners.data(), n, m_stream);
+    m_gatheredLoads.resizeDiscarding(2 * n);
+    constexpr unsigned int THREADS = 256;
+    launch(kGatherOwnerLoads, blocksFor(n, THREADS), THREADS, 0, m_stream,
+           (const float3*)m_state.owners.contactForce.data(), (const float3*)m_state.owners.contactTorque.data(),
+           (const bodyID_t*)m_gatherIds.data(), (unsigned int)n, m_gatheredLoads.data());
+    std::vector<float3> both(2 * n);
+    m_gatheredLoads.downloadAsync(both.data(), 2 * n, m_stream);
+    synchronize(m_stream);
+    if (force) std::copy(both.begin(), both.begin() + n, force);
+    if (torque) std::copy(both.begin() + n, both.end(), torque);
+    // A large batch's scratch goes with it (a few rows' stays, for the next call).
+    if (n > GATHER_KEPT_ROWS) {
+        m_gatherIds.release();
+        m_gatheredLoads.release();
+    }
+}
+
 void CudaDynamics::downloadContacts(SimState& s) {
     select();
     cuda::downloadContacts(m_contacts[m_current], m_numContacts, m_W, s.contacts, m_stream, !historyPooled());

@@ -45,6 +45,8 @@ class CudaDynamics : public DynamicsBackend {
     void upload(const SimState& s, bool withContacts) override;
     void download(SimState& s) override;
     void downloadContacts(SimState& s) override;
+    void downloadResults(SimState& s) override;
+    void gatherOwnerLoads(const std::vector<bodyID_t>& owners, float3* force, float3* torque) override;
     void uploadTrackerLoads(const SimState& s) override;
     void beginRun(const Settings& settings, const FamilyRules& families) override;
     StepBatchResult steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules& families,
@@ -116,7 +118,7 @@ class CudaDynamics : public DynamicsBackend {
     CudaModule m_dynamicsModule, m_exchangeModule;
     CudaKernel kBeginBatch, kClearLoads, kResolveMesh, kIntegrate, kPlaceAndFinish, kIntegrateAndPlace, kMaxTravelSince,
         kTravelSinceOrder, kAnyOwnerAtRest, kSteppedFlags, kSteppedScatter, kMarkContactOwners, kScatterFlagged,
-        kFlagListed;
+        kFlagListed, kGatherOwnerLoads;
     // The batch's control block (dynamics/StepBatch.h) on the device, and its pinned host copy.
     DeviceBuffer<StepBatchControl> m_control;
     StepBatchControl* m_controlHost = nullptr;
@@ -183,6 +185,11 @@ class CudaDynamics : public DynamicsBackend {
     DeviceBuffer<FamilyStepMotion> m_motion;
     DeviceBuffer<StepReduction> m_reduction;
     DeviceBuffer<unsigned long long> m_maxTravelBits;
+    // gatherOwnerLoads's rows and their forces then torques (let go after a batch of more than
+    // GATHER_KEPT_ROWS rows).
+    static constexpr size_t GATHER_KEPT_ROWS = 4096;
+    DeviceBuffer<bodyID_t> m_gatherIds;
+    DeviceBuffer<float3> m_gatheredLoads;
     // The active box: the owners a step integrates (all but fixed ones at rest) and their spheres,
     // rebuilt at the first step after an upload, a detection's install, a family change or the
     // start of a call, the only times families, velocities of fixed owners and the set change.

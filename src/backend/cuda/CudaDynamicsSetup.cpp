@@ -68,6 +68,7 @@ void CudaDynamics::compileKernels(const ModelLayout& layout) {
     kMarkContactOwners = m_dynamicsModule.kernel("deme_mark_contact_owners");
     kScatterFlagged = m_dynamicsModule.kernel("deme_scatter_flagged");
     kFlagListed = m_dynamicsModule.kernel("deme_flag_listed");
+    kGatherOwnerLoads = m_dynamicsModule.kernel("deme_gather_owner_loads");
     kMaxTravelSince = m_exchangeModule.kernel("deme_max_travel_since");
     kTravelSinceOrder = m_exchangeModule.kernel("deme_travel_since_order");
     m_model.load("Initialize (contact force model)", layout, m_dynamicsModule, opt);

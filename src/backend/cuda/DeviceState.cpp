@@ -8,29 +8,37 @@ namespace deme::cuda {
 namespace {
 
 // Copies by role (state/StateFields.h): what the host writes goes up, what the steps write comes
-// back; the steps' scratch is sized where they run; the CPU's bookkeeping stays on the host.
+// back; the steps' scratch is sized where they run; the CPU's bookkeeping stays on the host; the
+// steps' results go up where the host has them and come back only when asked for.
 struct Upload {
     Stream stream;
-    size_t scratchSize;
+    size_t numOwners;
     template <class T>
     void operator()(DeviceBuffer<T>& d, const std::vector<T>& h, FieldRole role) const {
         if (role == FieldRole::HOST) return;
-        if (role == FieldRole::SCRATCH) {
-            // Cleared, not left as the memory was: the force pass reads an owner's step flags (a
-            // parked clump touches nothing, dynamics/ContactStep.h) before the first step writes them.
-            d.resizeDiscarding(scratchSize);
-            if (scratchSize) d.zeroAsync(stream);
+        const bool hostHasNone = role == FieldRole::RESULT && h.size() != numOwners;
+        if (role == FieldRole::SCRATCH || hostHasNone) {
+            // Results the host lets go (state/SimState.h) stay as the steps left them, one per owner
+            // (an edit that renumbers owners sends the host's: Simulation::wholeState); a new
+            // scene's start at zero. Scratch is cleared, not left as the memory was: the force pass
+            // reads an owner's step flags (a parked clump touches nothing, dynamics/ContactStep.h)
+            // before the first step writes them.
+            if (hostHasNone && d.size() == numOwners) return;
+            d.resizeDiscarding(numOwners);
+            if (numOwners) d.zeroAsync(stream);
             return;
         }
         uploadResized(d, h, stream);
     }
 };
 
+// Brings back the fields of one role (each one per owner).
 struct Download {
     Stream stream;
+    FieldRole which;
     template <class T>
     void operator()(const DeviceBuffer<T>& d, std::vector<T>& h, FieldRole role) const {
-        if (role != FieldRole::EVOLVES) return;
+        if (role != which) return;
         h.resize(d.size());
         if (!h.empty()) d.downloadAsync(h.data(), h.size(), stream);
     }
@@ -82,9 +90,13 @@ void DeviceState::uploadTrackerLoads(const SimState& s, Stream stream) {
 }
 
 void DeviceState::download(SimState& s, Stream stream) const {
-    const Download down{stream};
+    const Download down{stream, FieldRole::EVOLVES};
     forEachOwnerField(owners, s.owners, down);
     forEachCacheField(cache, s.cache, down);
+}
+
+void DeviceState::downloadResults(SimState& s, Stream stream) const {
+    forEachOwnerField(owners, s.owners, Download{stream, FieldRole::RESULT});
 }
 
 void DeviceState::viewInto(StateView& v) {

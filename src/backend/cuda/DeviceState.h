@@ -1,8 +1,8 @@
 // The simulation state in device memory: the field lists of state/StateFields.h as device buffers,
 // and their copies to and from the host's SimState, made from the fields' roles (INPUT and EVOLVES
 // fields go up, EVOLVES fields come back, SCRATCH fields are sized per owner, HOST fields stay on
-// the host). Contact sets are kept by the dynamics side itself (two of them, for history mapping),
-// with the contact field list: DeviceContacts.
+// the host, RESULT fields go up where the host has them and come back when asked for). Contact sets are kept by the
+// dynamics side itself (two of them, for history mapping), with the contact field list: DeviceContacts.
 #pragma once
 
 #include "backend/cuda/DeviceBuffer.h"
@@ -30,6 +30,8 @@ struct DeviceState {
     void upload(const SimState& s, Stream stream);
     // Queues the copies of every evolving field into `s` on `stream`.
     void download(SimState& s, Stream stream) const;
+    // The same of the owners' results (state/SimState.h; as many as the device has).
+    void downloadResults(SimState& s, Stream stream) const;
     // Sends the host's tracker loads (none: the steps read none).
     void uploadTrackerLoads(const SimState& s, Stream stream);
     // Points `v`'s arrays (all but its contacts) at these buffers.

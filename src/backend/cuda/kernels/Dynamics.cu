@@ -462,6 +462,15 @@ extern "C" __global__ void deme_flag_listed(const bodyID_t* ids, unsigned int n,
     if (k < n) flags[ids[k]] = 1u;
 }
 
+// A tracker's rows of the last step's loads: out[k] = force[ids[k]], out[n + k] = torque[ids[k]].
+extern "C" __global__ void deme_gather_owner_loads(const float3* force, const float3* torque, const bodyID_t* ids,
+                                                   unsigned int n, float3* out) {
+    const size_t k = globalIndex();
+    if (k >= n) return;
+    out[k] = force[ids[k]];
+    out[n + k] = torque[ids[k]];
+}
+
 // The stepped owners and spheres at their offsets (the flags' exclusive sums), ascending.
 extern "C" __global__ void deme_stepped_scatter(StateView s, const unsigned int* ownerStepped,
                                                 const unsigned int* ownerOffset, const unsigned int* sphereStepped,
