@@ -83,6 +83,7 @@ void timeModel(const Scene& scene, const DEMForceModel& model, const char* name,
     const ModelLayout layout = resolveModelLayout(model, scene, "force_pass");
     SimState s = assembleScene(scene, layout);
     chooseSphereLayout(s);  // as Initialize does (DEME_FULL_SPHERE_LAYOUT=1: the full arrays)
+    s.owners.makeResults();  // the loads the reduction writes (as the CPU backend makes them)
     const CpuForceModel active = loadCpuForceModel(layout, "force_pass");
     // The contact set of a detection with a 20 um margin (about a fifth of its pairs apart).
     detectAndInstallContacts(s, 2e-5);

@@ -90,6 +90,7 @@ Loads passAndReduce(const Scene& scene, int threads, SimState* out = nullptr, Fo
     const ModelLayout layout =
         resolveModelLayout(DEMForceModel(DEMForceModel::Kind::FRICTIONAL_HERTZIAN), scene, "test");
     SimState s = assembleScene(scene, layout);
+    s.owners.makeResults();  // the loads the reduction writes (as the CPU backend makes them)
     const CpuForceModel model = loadCpuForceModel(layout, "test");
     detectAndInstallContacts(s, margin);
     model.pass(s, 0.0, 1e-6, store);
