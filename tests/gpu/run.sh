@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|pooled|pooledab|python|output|bench|small|sweep|graphsteps|smallab|discharge|mixerab|profile-small|profile-step|activebox|profile-box|memory|shear|chute|timing|gpus|settled|profile|compile|validation|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|pooled|pooledab|python|output|bench|small|sweep|graphsteps|smallab|discharge|mixerab|profile-small|profile-step|activebox|profile-box|memory|shear|chute|timing|gpus|earlyab|settled|profile|compile|validation|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -327,6 +327,22 @@ for step in "${steps[@]}"; do
             for bin in ${MIXERS:-./build-gpu/bench/mixer}; do
                 echo "{\"binary\": \"$bin\", \"round\": $round}" >>"$OUT/mixerab.jsonl"
                 timeout 200 "$bin" .benchdata/internal_mixer.obj 0.0025 spheres 2000 2000 2>&1 | tee -a "$OUT/mixerab.jsonl" | tail -n 1 | cut -c1-300
+            done
+        done
+        ;;
+    earlyab)
+        # The early mixer at r = 1 mm (45.8 M spheres, 60 steps, synchronous), alternating over
+        # MIXERS (default the baseline's and this build's: `baseline` builds the first; BASE=<dir>
+        # `baseline` builds another tree beside it) for EARLY_ROUNDS rounds (default 2): each run's
+        # JSON line, memory table and phases in $OUT/early.log, and a line per run here (binary,
+        # sphere-steps/s, device B/sphere, host peak MiB).
+        for round in $(seq "${EARLY_ROUNDS:-2}"); do
+            for bin in ${MIXERS:-.base/build-gpu/bench/mixer ./build-gpu/bench/mixer}; do
+                echo "== $bin round $round" >>"$OUT/early.log"
+                DEME_BENCH_TIMING=1 timeout 120 "$bin" .benchdata/internal_mixer.obj 0.001 spheres 0 60 5e-7 1 sync \
+                    >>"$OUT/early.log" 2>&1
+                tail -n 40 "$OUT/early.log" | grep '"case"' | tail -n 1 |
+                    sed -E 's/.*"sphere_steps_per_s": ([^,]*).*"device_bytes_per_sphere": ([^,]*).*"peak_host_mem_mib": ([^,]*).*/'"${bin//\//\\/}"' \1 \2 \3/'
             done
         done
         ;;
