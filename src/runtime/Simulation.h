@@ -50,10 +50,11 @@ class Simulation {
     // before the next step, which re-detects contacts; the backend's contact set and its history
     // stay.
     SimState& editState();
-    // For edits of the contact set itself (scene edits, contact wildcards and persistence): the
-    // backend's set is replaced by the host's too, and its owners' results where the host has them
-    // (wholeState: an edit that adds or removes owners needs them).
+    // For edits of the contact set itself (contact wildcards and persistence): the backend's set is
+    // replaced by the host's too.
     SimState& editStateWithContacts();
+    // For edits that add or remove owners (scene edits): the same with every owner's results
+    // (wholeState), which the edit renumbers and the upload sends.
     SimState& editWholeState();
     // The tracker loads for adding to (AddAcc), made on the first: they go to the backend with the
     // next call by themselves, without replacing its state.
