@@ -9,6 +9,7 @@
 // the installation of a detected contact set (history mapping).
 #pragma once
 
+#include <deme/Error.h>
 #include <deme/MemoryStats.h>
 #include <cstddef>
 #include <cstdint>
@@ -152,8 +153,11 @@ class DynamicsBackend {
     // before the first step). The CPU's host state holds them always.
     virtual void downloadResults(SimState& /*s*/) {}
     // The last step's contact force and torque of owners[i] (internal ids) into force[i] and
-    // torque[i] (either may be null), without bringing every owner's back.
-    virtual void gatherOwnerLoads(const std::vector<bodyID_t>& owners, float3* force, float3* torque) = 0;
+    // torque[i] (either may be null), without bringing every owner's back: for a host that does not
+    // hold the results (Simulation::ownerLoads), which the CPU's always does.
+    virtual void gatherOwnerLoads(const std::vector<bodyID_t>& /*owners*/, float3* /*force*/, float3* /*torque*/) {
+        throwError("DEMTracker", "internal: this backend's host state holds the owners' loads");
+    }
     // Tracker loads (AddAcc) of `s` for the coming call, or zeros.
     virtual void uploadTrackerLoads(const SimState& s) = 0;
     // Before the steps of one DoDynamics call (the GPU compiles changed prescriptions here).

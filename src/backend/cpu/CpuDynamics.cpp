@@ -34,14 +34,6 @@ void CpuDynamics::upload(const SimState& /*s: the host state the steps run on*/,
     m_s.integrationScratch.flags.assign(m_s.owners.size(), 0);
 }
 
-void CpuDynamics::gatherOwnerLoads(const std::vector<bodyID_t>& owners, float3* force, float3* torque) {
-    const OwnerArrays& ow = m_s.owners;  // (every owner's: the steps write them here)
-    for (size_t i = 0; i < owners.size(); i++) {
-        if (force) force[i] = ow.contactForce[owners[i]];
-        if (torque) torque[i] = ow.contactTorque[owners[i]];
-    }
-}
-
 StepBatchResult CpuDynamics::steps(const StepBatchRequest& batch, const Settings& settings,
                                    const FamilyRules& families, TimingStats& timing) {
     StepBatchControl c = beginStepBatch(batch.time, settings.dt, batch.margin);

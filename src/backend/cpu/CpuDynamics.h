@@ -26,7 +26,6 @@ class CpuDynamics : public DynamicsBackend {
     // The steps' history, pooled or not, into the form every host reader takes (HistoryForm.h).
     void downloadContacts(SimState& s) override;
     void uploadTrackerLoads(const SimState&) override {}
-    void gatherOwnerLoads(const std::vector<bodyID_t>& owners, float3* force, float3* torque) override;
     void beginRun(const Settings&, const FamilyRules&) override { m_subsetStale = true; }
     StepBatchResult steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules& families,
                           TimingStats& timing) override;
