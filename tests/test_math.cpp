@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <random>
 
@@ -228,38 +227,6 @@ TEST(MathCompactPosition, RoundTripErrorAtMostHalfStep) {
         unpackVoxel(v, vx, vy, vz);
         EXPECT_EQ(vx, 8u);
         EXPECT_EQ(sx, 0u);
-    }
-}
-
-// On a GPU a grid coordinate becomes a double by its bits (exactDoubleBelow2To52), not by a
-// conversion: the same double as the conversion gives, bit for bit, at the ends of the range, at
-// every power of two and beside it, and at a million random coordinates of the 37 bits a position
-// has; so a decoded position is what the conversion would have made, and every trajectory is as
-// before. (The host's decodeAxis converts; it is held to the old expression too.)
-TEST(MathCompactPosition, CoordinatesBecomeDoublesExactlyWithoutAConversion) {
-    auto same = [](uint64_t v) {
-        const double a = exactDoubleBelow2To52(v), b = (double)v;
-        return std::memcmp(&a, &b, sizeof a) == 0;
-    };
-    for (uint64_t v : {0ull, 1ull, 65535ull, 65536ull, (1ull << 37) - 1, (1ull << 52) - 1}) EXPECT_TRUE(same(v)) << v;
-    for (int k = 0; k < 52; k++) {
-        const uint64_t p = 1ull << k;
-        EXPECT_TRUE(same(p)) << p;
-        EXPECT_TRUE(same(p - 1)) << p - 1;
-        EXPECT_TRUE(same(p + 1)) << p + 1;
-    }
-    std::mt19937_64 rng(7);
-    size_t differ = 0;
-    for (int i = 0; i < 1000000; i++) differ += !same(rng() & ((1ull << 37) - 1));
-    EXPECT_EQ(differ, 0u);
-    // A decoded axis is the old expression, bit for bit.
-    const double origin = -0.3, subStep = 1.0 / 65536.0 / 1234.5;
-    for (int i = 0; i < 100000; i++) {
-        const uint64_t voxel = rng() & ((1ull << VOXEL_BITS_PER_AXIS) - 1);
-        const subVoxelPos_t sub = (subVoxelPos_t)(rng() & 0xFFFF);
-        const double expected = origin + (double)((int64_t)(voxel << SUBVOXEL_BITS) + (int64_t)sub) * subStep;
-        const double got = decodeAxis(voxel, sub, origin, subStep);
-        ASSERT_EQ(0, std::memcmp(&got, &expected, sizeof got)) << voxel << " " << sub;
     }
 }
 

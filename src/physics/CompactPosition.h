@@ -40,33 +40,8 @@ DEME_HD inline void unpackVoxel(voxelID_t v, uint64_t& vx, uint64_t& vy, uint64_
 // Largest representable integer coordinate along an axis (voxel and sub-voxel bits together).
 constexpr int64_t MAX_GRID_COORD = (int64_t(1) << (VOXEL_BITS_PER_AXIS + SUBVOXEL_BITS)) - 1;
 
-// An integer below 2^52 as a double, exactly, without an integer-to-float conversion: the integer's
-// bits under the exponent of 2^52 make the double 2^52 + v, and subtracting 2^52 leaves v (both
-// exact). A GPU converts a 64-bit integer in its conversion unit, at a small fraction of its FP64
-// rate, and the force pass and the pair search decode a partner's position for each of hundreds of
-// millions of pairs (three conversions a position). The same double as (double)v, bit for bit (test
-// MathCompactPosition.CoordinatesBecomeDoublesExactlyWithoutAConversion).
-DEME_HD inline double exactDoubleBelow2To52(uint64_t v) {
-    const uint64_t bits = 0x4330000000000000ull | v;
-    double d;
-#ifdef __CUDA_ARCH__
-    d = __longlong_as_double((long long)bits);
-#else
-    __builtin_memcpy(&d, &bits, sizeof d);
-#endif
-    return d - 4503599627370496.0;  // 2^52
-}
-
-// A grid coordinate (voxel and sub-voxel bits: under 2^37) to its place along the axis: on a GPU
-// by its bits, on the CPU by the conversion, whose scalar instruction is quick there (FORCE-PASS,
-// six alternating runs each: the bits' form no faster); the same double either way.
 DEME_HD inline double decodeAxis(uint64_t voxel, subVoxelPos_t sub, double origin, double subStep) {
-    const uint64_t coord = (voxel << SUBVOXEL_BITS) + (uint64_t)sub;
-#ifdef __CUDA_ARCH__
-    return origin + exactDoubleBelow2To52(coord) * subStep;
-#else
-    return origin + (double)(int64_t)coord * subStep;  // (signed: one instruction on x86)
-#endif
+    return origin + (double)((int64_t)(voxel << SUBVOXEL_BITS) + (int64_t)sub) * subStep;
 }
 
 DEME_HD inline double3 decodePosition(voxelID_t voxel, subVoxelPos_t sx, subVoxelPos_t sy, subVoxelPos_t sz,
