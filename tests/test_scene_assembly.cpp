@@ -86,6 +86,14 @@ void expectSameField(const V& a, const V& b, const char* what) {
     EXPECT_TRUE(std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0) << what;
 }
 
+// Every owner field and every sphere field of `a` and `b` the same, array for array.
+void expectSameOwnersAndSpheres(const SimState& a, const SimState& b, const char* what) {
+    forEachOwnerField(a.owners, b.owners,
+                      [what](const auto& x, const auto& y, FieldRole) { expectSameField(x, y, what); });
+    forEachSphereField(a.spheres, b.spheres,
+                       [what](const auto& x, const auto& y, FieldRole) { expectSameField(x, y, what); });
+}
+
 }  // namespace
 
 TEST(SceneAssembly, ParallelAssemblyIsTheSerialOneArrayForArray) {
@@ -99,10 +107,7 @@ TEST(SceneAssembly, ParallelAssemblyIsTheSerialOneArrayForArray) {
     setCpuThreadCount(threads);
     ASSERT_EQ(serial.owners.size(), 6000u);
     EXPECT_GT(serial.spheres.size(), 6000u);
-    forEachOwnerField(serial.owners, parallel.owners,
-                      [](const auto& a, const auto& b, FieldRole) { expectSameField(a, b, "owner field"); });
-    forEachSphereField(serial.spheres, parallel.spheres,
-                       [](const auto& a, const auto& b, FieldRole) { expectSameField(a, b, "sphere field"); });
+    expectSameOwnersAndSpheres(serial, parallel, "owner or sphere field");
     expectSameField(serial.ownerUserToInternal, parallel.ownerUserToInternal, "ownerUserToInternal");
     expectSameField(serial.ownerInternalToUser, parallel.ownerInternalToUser, "ownerInternalToUser");
     expectSameField(serial.sphereUserToInternal, parallel.sphereUserToInternal, "sphereUserToInternal");
@@ -180,10 +185,7 @@ TEST(SceneAssembly, OneSphereClumpsAreTheirOwnersFromTheStart) {
     SimState intoCompact = full, intoFull = full;
     insertClumps(intoCompact, compact);
     insertClumps(intoFull, full);
-    forEachOwnerField(intoFull.owners, intoCompact.owners,
-                      [](const auto& a, const auto& b, FieldRole) { expectSameField(a, b, "merged owner field"); });
-    forEachSphereField(intoFull.spheres, intoCompact.spheres,
-                       [](const auto& a, const auto& b, FieldRole) { expectSameField(a, b, "merged sphere field"); });
+    expectSameOwnersAndSpheres(intoFull, intoCompact, "merged owner or sphere field");
     expectSameField(intoFull.sphereUserToInternal, intoCompact.sphereUserToInternal, "merged sphereUserToInternal");
     expectSameField(intoFull.ownerSphereStart, intoCompact.ownerSphereStart, "merged ownerSphereStart");
     // A scene with a clump of two spheres is assembled in the full layout, as before.
