@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "physics/CompactPosition.h"
 #include "physics/ContactGeometry.h"
@@ -263,6 +264,59 @@ TEST(MathCompactPosition, EncodeRejectsOutsideAndNaN) {
         EXPECT_EQ(sx, 1u);
         EXPECT_EQ(sy, 2u);
         EXPECT_EQ(sz, 3u);
+    }
+}
+
+// The force pass's voxel pretest (state/OwnerCentre.h, apartByVoxelCodes) may turn a pair away
+// only where its decoded centres are farther apart than the reach: pairs placed at random around
+// the reach (at it exactly, and within a hundredth of it in a fine frame: a 0.3 m domain, voxels of
+// 0.14 um against a 2 mm reach; from half to three times it in a coarse one: a 2,000 m domain,
+// voxels of 1 mm, a pair's voxels a few apart along an axis), never one within reach. In the fine frame every pair
+// more than a thousandth of the reach apart is turned away (the bound loses at most two voxels an
+// axis, 0.5 um in all).
+TEST(MathCompactPosition, VoxelCodesNeverPartAPairWithinReach) {
+    struct {
+        struct {
+            std::vector<voxelID_t> voxel;
+        } owners;
+        DomainFrame frame;
+    } s;
+    const double reach = 2e-3;
+    for (double L : {0.3, 2000.0}) {
+        SCOPED_TRACE("domain " + std::to_string(L) + " m");
+        s.frame = cubeFrame(L);
+        std::mt19937_64 rng(17);
+        const bool fine = L < 1.0;
+        std::uniform_real_distribution<double> u(-0.4 * L, 0.4 * L), dir(-1.0, 1.0),
+            rel(fine ? -0.01 : -0.5, fine ? 0.01 : 2.0);
+        size_t within = 0, turnedAway = 0, farTurnedAway = 0, far = 0;
+        for (int i = 0; i < 200000; i++) {
+            const double3 a = make_double3(u(rng), u(rng), u(rng));
+            double3 n = make_double3(dir(rng), dir(rng), dir(rng));
+            n = n / std::sqrt(dot(n, n));
+            const double d = reach * (i % 10 == 0 ? 1.0 : 1.0 + rel(rng));
+            const double3 b = a + d * n;
+            s.owners.voxel.assign(2, 0);
+            subVoxelPos_t sub[6];
+            ASSERT_TRUE(encodePosition(a, s.frame, s.owners.voxel[0], sub[0], sub[1], sub[2]));
+            ASSERT_TRUE(encodePosition(b, s.frame, s.owners.voxel[1], sub[3], sub[4], sub[5]));
+            const double3 pa = decodePosition(s.owners.voxel[0], sub[0], sub[1], sub[2], s.frame);
+            const double3 pb = decodePosition(s.owners.voxel[1], sub[3], sub[4], sub[5], s.frame);
+            const double dist = std::sqrt(dot(pa - pb, pa - pb));
+            const bool apart = apartByVoxelCodes(s, 0, 1, reach);
+            if (dist <= reach) {
+                within++;
+                ASSERT_FALSE(apart) << "a pair " << dist << " m apart, reach " << reach;
+            }
+            turnedAway += apart;
+            if (dist > 1.001 * reach) {
+                far++;
+                farTurnedAway += apart;
+            }
+        }
+        EXPECT_GT(within, 20000u);  // the test saw many pairs within reach
+        EXPECT_GT(turnedAway, 20000u);
+        if (fine) EXPECT_EQ(farTurnedAway, far);
     }
 }
 

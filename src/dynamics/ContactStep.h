@@ -47,6 +47,25 @@ namespace deme {
 #endif
 #endif
 
+// A large set's sphere pairs that are out of reach by their voxel codes alone are turned away
+// before their centres are decoded (state/OwnerCentre.h, apartByVoxelCodes): on a GPU a partner's
+// centre is four scattered loads from memory, its voxel code one. Only where the GPU's dynamics sets
+// StateView::voxelPretest: spheres that are their owners, no periodic axis, and a set of at least
+// VOXEL_PRETEST_MIN_PAIRS (state/StateView.h) pairs of which fewer than half touched in the step before it was
+// installed. Measured on one H100 (2026-12-07, BENCHMARKS.md, MEMORY): the early mixer (45.8 M
+// spheres, all its pairs apart) 1.91e9 -> 2.29e9 sphere-steps/s, its force pass 0.738 -> 0.481 s;
+// SMALL-SYSTEMS' drum and impact (about 200,000 pairs, held in the GPU's L2, where a scattered load
+// is cheap) 2-5 % slower with it, hence the set's size. The same pairs, the same bits: the test
+// never turns away a pair the exact overlap finds touching. The CPU's vectorised sweep decodes both
+// centres anyway and keeps its exact test alone (above).
+#ifndef DEME_VOXEL_PRETEST
+#ifdef __CUDA_ARCH__
+#define DEME_VOXEL_PRETEST 1
+#else
+#define DEME_VOXEL_PRETEST 0
+#endif
+#endif
+
 // Histories of at most this many floats are copied into registers for the model (contactStepWithHistory).
 constexpr unsigned int MAX_COPIED_HISTORY = 8;
 
@@ -149,6 +168,11 @@ DEME_HD_INLINE bool contactStepWithHistory(S& s, const Model& model, size_t i, c
                              ? (stored == SPHERE_SPHERE ? (uint8_t)SPHERE_SPHERE : (uint8_t)SPHERE_ANALYTICAL)
                              : stored;
     bool gather = type != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
+    if constexpr (DEME_VOXEL_PRETEST && !Model::kSeesApartPairs) {
+        if ((SphereSphere || type == SPHERE_SPHERE) && s.voxelPretest)
+            gather =
+                !apartByVoxelCodes(s, ids.a, ids.b, (double)s.spheres.radius[ids.a] + (double)s.spheres.radius[ids.b]);
+    }
     if (DEME_CENTRE_PRETEST && !Model::kSeesApartPairs && (SphereSphere || type == SPHERE_SPHERE)) {
         const double3 pA = sphereCentre(s, ids.a);
         const double3 d = pA - nearestImage(s.frame.periodic, pA, sphereCentre(s, ids.b));

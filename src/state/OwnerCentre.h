@@ -38,6 +38,28 @@ DEME_HD_INLINE double3 ownerCentreOfCode(voxelID_t v, subVoxelPos_t sx, subVoxel
     const double3 x = decodePosition(v, sx, sy, sz, f);
     return f.parks && (v & PARKED_VOXEL) ? parkedPosition(f.parking, o) : x;
 }
+// Whether spheres a and b, each its own owner, are farther apart than `reach` by their voxel codes
+// alone: along each axis two centres whose voxels are d apart are more than (d - 1) voxels apart
+// (a sub-voxel offset moves a centre by less than a voxel). One 8-byte load a sphere, where a
+// decoded centre is four loads from four arrays: on a GPU the force pass turns a large set's apart
+// pairs away with it before their centres are decoded (dynamics/ContactStep.h). Never true for a
+// pair the exact test finds within reach (a millionth of the reach is left for rounding); not
+// across a periodic face. A parked clump's code keeps its last voxel: the decoded centre, far
+// away, settles a pair this passes.
+template <class S>
+DEME_HD_INLINE bool apartByVoxelCodes(const S& s, size_t a, size_t b, double reach) {
+    uint64_t ax, ay, az, bx, by, bz;
+    unpackVoxel(s.owners.voxel[a], ax, ay, az);
+    unpackVoxel(s.owners.voxel[b], bx, by, bz);
+    auto gap = [](uint64_t p, uint64_t q) {
+        const uint64_t d = p > q ? p - q : q - p;
+        return d > 1u ? (double)(d - 1u) : 0.0;
+    };
+    const double v = s.frame.voxelSize;
+    const double3 g = make_double3(gap(ax, bx) * v, gap(ay, by) * v, gap(az, bz) * v);
+    return dot(g, g) > reach * reach * (1.0 + 1e-6);
+}
+
 template <class S>
 DEME_HD_INLINE double3 ownerCentre(const S& s, size_t o) {
     const auto& ow = s.owners;

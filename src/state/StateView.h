@@ -27,6 +27,11 @@ using ContactView = ContactFields<ViewPointer>;
 using CacheView = CacheFields<ViewPointer>;
 using IntegrationScratchView = ScratchFields<ViewPointer>;
 
+// The smallest set whose pairs the GPU's force pass turns away by their voxel codes (voxelPretest
+// below; dynamics/ContactStep.h): a smaller one is held in the GPU's L2, where decoding a centre costs
+// less than the test.
+constexpr uint32_t VOXEL_PRETEST_MIN_PAIRS = 1u << 20;
+
 struct StateView {
     DomainFrame frame;
     double3 domainSize;
@@ -41,6 +46,10 @@ struct StateView {
     IntegrationScratchView integrationScratch;
     unsigned int numWildcards;
     bool spheresAreOwners;  // as SimState's (state/SphereLayout.h)
+    // The force pass turns sphere pairs away by their voxel codes before it decodes their centres
+    // (dynamics/ContactStep.h, DEME_VOXEL_PRETEST): set by the GPU's dynamics for a large set of
+    // mostly apart pairs; never read on the host.
+    bool voxelPretest;
     uint32_t numOwners, numSpheres, numAnalytical, numTriangles, numContacts;
     DEME_HD bodyID_t analyticalIdBase() const { return numSpheres; }
     DEME_HD bodyID_t triangleIdBase() const { return numSpheres + numAnalytical; }

@@ -14,6 +14,7 @@ inline void setViewScalars(StateView& v, const SimState& s) {
     v.domainSize = s.domainSize;
     v.numWildcards = s.numWildcards;
     v.spheresAreOwners = s.spheresAreOwners;
+    v.voxelPretest = false;  // the GPU's dynamics sets it for each set it installs (CudaDynamics::refreshView)
     v.numOwners = (uint32_t)s.owners.size();
     v.numSpheres = (uint32_t)s.spheres.size();
     v.numAnalytical = (uint32_t)s.analytical.size();

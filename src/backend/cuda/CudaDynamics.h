@@ -185,6 +185,9 @@ class CudaDynamics : public DynamicsBackend {
     DeviceBuffer<FamilyStepMotion> m_motion;
     DeviceBuffer<StepReduction> m_reduction;
     DeviceBuffer<unsigned long long> m_maxTravelBits;
+    // The pairs that touched in the last step run (0 before any): whether a set installed now is
+    // mostly apart (StateView::voxelPretest).
+    unsigned long long m_lastRealContacts = 0;
     // gatherOwnerLoads's rows and their forces then torques (let go after a batch of more than
     // GATHER_KEPT_ROWS rows).
     static constexpr size_t GATHER_KEPT_ROWS = 4096;

@@ -153,6 +153,7 @@ StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Setting
     if (historyPooled() && m_poolControlHost.paused)
         finishPausedStep(settings, batch.storeContactForcesAtEnd && m_controlHost->stepsDone + 1 == n);
     const StepBatchControl c = *m_controlHost;
+    if (c.stepsDone) m_lastRealContacts = c.last.realContacts;
 
     // The force phases' device time, summed over the batch's steps by the kernels themselves.
     const double batchSeconds = now() - t0;
