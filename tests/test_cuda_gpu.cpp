@@ -267,6 +267,24 @@ TEST(CudaPrimitives, ExclusiveSums) {
     EXPECT_EQ(d.download(), expected64);
 }
 
+// Counts summed in 64 bits: detection checks its 32-bit offsets' total against this sum
+// (runtime/IndexLimits.h), so counts whose total passes 2^32 must come back whole, not wrapped.
+TEST(CudaPrimitives, SumsCountsIn64Bits) {
+    SKIP_WITHOUT_GPU();
+    DevicePrimitives prim;
+    const std::vector<uint32_t> in = randomValues<uint32_t>(100003, 5);  // each up to 2^32 - 1
+    uint64_t expected = 0;
+    for (uint32_t v : in) expected += v;
+    ASSERT_GT(expected, uint64_t(1) << 40);  // a 32-bit sum would have wrapped many times
+    DeviceBuffer<uint32_t> a;
+    a.upload(in);
+    DeviceBuffer<uint64_t> total(1);
+    prim.sum(a.data(), total.data(), in.size(), nullptr);
+    EXPECT_EQ(total.download(), std::vector<uint64_t>{expected});
+    prim.sum(a.data(), total.data(), 0, nullptr);  // nothing to sum: zero
+    EXPECT_EQ(total.download(), std::vector<uint64_t>{0});
+}
+
 TEST(CudaPrimitives, Reductions) {
     SKIP_WITHOUT_GPU();
     DevicePrimitives prim;

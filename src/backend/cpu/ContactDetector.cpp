@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "parallel/Parallel.h"
+#include "runtime/IndexLimits.h"
 #include "runtime/MemoryEstimate.h"
 
 namespace deme {
@@ -112,6 +113,7 @@ void ContactDetector::detect(const SimState& s, const BinGrid& sceneGrid, double
     // together, the two fields and the threads' B were a later detection's peak, docs/memory.md).
     size_t total = 0;
     for (const ThreadPairs& t : m_threadOut) total += t.size();
+    requireIndexable(total, "contact pairs", FEWER_PAIRS_REMEDY, "DoDynamics");
     out.geomB.resize(total);
     size_t at = 0;
     for (ThreadPairs& t : m_threadOut) {

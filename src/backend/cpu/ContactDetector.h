@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "backend/cpu/DormantCache.h"
+#include "runtime/IndexLimits.h"
 #include "runtime/MemoryAccounting.h"
 #include "kinematics/DetectionRules.h"
 #include "state/SimState.h"
@@ -54,7 +55,14 @@ void BinRegistry::build(const BinGrid& grid, const bodyID_t* ids, size_t n, Box&
     auto id = [ids](size_t k) { return ids ? (size_t)ids[k] : k; };
     for (size_t k = 0; k < n; k++)
         forEachBinOf(grid, box(id(k)), [&](int x, int y, int z) { start[binIndex(grid, x, y, z) + 1]++; });
-    for (size_t b = 0; b < nBins; b++) start[b + 1] += start[b];
+    // The offsets are 32-bit: their total is kept in 64 bits too (runtime/IndexLimits.h), so that a
+    // wrapped sum is an error.
+    uint64_t total = 0;
+    for (size_t b = 0; b < nBins; b++) {
+        total += start[b + 1];
+        start[b + 1] += start[b];
+    }
+    requireIndexable(total, "bin entries", FEWER_BIN_ENTRIES_REMEDY, "DoDynamics");
     entries.resize(start[nBins]);
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     for (size_t k = 0; k < n; k++) {

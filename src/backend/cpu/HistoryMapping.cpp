@@ -9,6 +9,7 @@
 #include "backend/cpu/HistoryForm.h"
 #include "kinematics/HistoryRules.h"
 #include "parallel/Parallel.h"
+#include "runtime/IndexLimits.h"
 #include "runtime/MemoryAccounting.h"
 
 namespace deme {
@@ -35,6 +36,8 @@ void mergePersistentPairs(const ContactArrays& c, DetectedContacts& fresh) {
         sum += v;
     }
     if (sum == 0) return;
+    requireIndexable((uint64_t)nFresh + sum, "contact pairs (found, and kept as persistent)", FEWER_PAIRS_REMEDY,
+                     "DoDynamics");
     DetectedContacts merged;
     merged.geomA.resize(nFresh + sum);
     merged.geomB.resize(nFresh + sum);

@@ -16,6 +16,7 @@
 #include "backend/cuda/EmbeddedKernel.h"
 #include "backend/cuda/NvrtcCompiler.h"
 #include "kinematics/DetectionRules.h"
+#include "runtime/IndexLimits.h"
 #include "runtime/RebuiltArrays.h"
 #include "state/StateView.h"
 
@@ -93,12 +94,16 @@ struct CudaKinematics::Work {
     DeviceBuffer<unsigned int> pairOffset;  // each searched sphere's pair count, then (in place) offset
     DeviceBuffer<unsigned int> wideCursor;  // each wide sphere's partners written so far
     DeviceBuffer<unsigned int> laneCursor;  // each sphere's, where several threads search it
+    DeviceBuffer<uint64_t> countSum;        // scanCounts's total in 64 bits
 
     ~Work() {
         if (stream && cudaStreamDestroy(toCuda(stream)) != cudaSuccess) cudaGetLastError();
     }
     void upload(const Geometry& g);
-    unsigned int readCount(const DeviceBuffer<unsigned int>& offsets, size_t at);
+    // Counts [0, entries) (the last one zero) into their exclusive sum in place; returns the total
+    // (the last entry's offset). A total past 2^32 - 1, which the 32-bit sum would wrap, is a
+    // deme::Error naming `what` (runtime/IndexLimits.h).
+    unsigned int scanCounts(DeviceBuffer<unsigned int>& counts, size_t entries, const char* what, const char* remedy);
     // inPlace: reads dT's state (shared), not the inbox, and lets go of the scratch at the end
     // where it holds more than keepScratchUpTo bytes.
     void detect(const DetectionOrder& o, bool inPlace, size_t keepScratchUpTo, void* submitted, KinematicsInbox& in,
@@ -178,18 +183,25 @@ void CudaKinematics::Work::upload(const Geometry& g) {
     synchronize(stream);
 }
 
-unsigned int CudaKinematics::Work::readCount(const DeviceBuffer<unsigned int>& offsets, size_t at) {
-    unsigned int n = 0;
-    offsets.downloadAsync(&n, 1, stream, at);
+unsigned int CudaKinematics::Work::scanCounts(DeviceBuffer<unsigned int>& counts, size_t entries, const char* what,
+                                              const char* remedy) {
+    countSum.resizeDiscarding(1);
+    prim.sum(counts.data(), countSum.data(), entries, stream);
+    prim.exclusiveSum(counts.data(), counts.data(), entries, stream);
+    uint64_t wide = 0;
+    unsigned int total = 0;
+    countSum.downloadAsync(&wide, 1, stream);
+    counts.downloadAsync(&total, 1, stream, entries - 1);
     synchronize(stream);
-    return n;
+    requireIndexable(wide, what, remedy, CALL);
+    return total;
 }
 
 // What a detection keeps from one to the next that the next rebuilds anyway.
 size_t CudaKinematics::Work::scratchBytes() const {
     return sphereBins.start.capacityBytes() + sphereBins.items.capacityBytes() + triBins.start.capacityBytes() +
            triBins.items.capacityBytes() + triLo.capacityBytes() + triHi.capacityBytes() + pairOffset.capacityBytes() +
-           wideCursor.capacityBytes() + laneCursor.capacityBytes() + prim.scratchBytes();
+           wideCursor.capacityBytes() + laneCursor.capacityBytes() + countSum.capacityBytes() + prim.scratchBytes();
 }
 
 void CudaKinematics::Work::releaseScratch() {
@@ -202,6 +214,7 @@ void CudaKinematics::Work::releaseScratch() {
     pairOffset.release();
     wideCursor.release();
     laneCursor.release();
+    countSum.release();
     prim.releaseScratch();
 }
 
@@ -301,8 +314,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
         if (n)
             launch(kBinCount, blocksFor(threads, THREADS), THREADS, 0, stream, v, args, (unsigned int)kind, ids, n,
                    itemLanes, b.start.data());
-        prim.exclusiveSum(b.start.data(), b.start.data(), numBins + 2, stream);
-        const unsigned int entries = readCount(b.start, numBins + 1);
+        const unsigned int entries = scanCounts(b.start, numBins + 2, "bin entries", FEWER_BIN_ENTRIES_REMEDY);
         b.items.resizeDiscarding(entries);
         if (entries) {
             launch(kBinScatter, blocksFor(threads, THREADS), THREADS, 0, stream, v, args, (unsigned int)kind, ids,
@@ -341,8 +353,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
         launch(kPairSearchWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, args,
                (const bodyID_t*)wideSpheres.data(), nWide, WIDE_SPHERE_LANES, pairOffset.data(),
                (const unsigned int*)nullptr, (unsigned int*)nullptr, (bodyID_t*)nullptr);
-    prim.exclusiveSum(pairOffset.data(), pairOffset.data(), nSearched + 1, stream);
-    const unsigned int total = readCount(pairOffset, nSearched);
+    const unsigned int total = scanCounts(pairOffset, nSearched + 1, "contact pairs", FEWER_PAIRS_REMEDY);
     // The outbox is on dT's GPU: size it there.
     onDevice(dTDevice, device, [&] {
         out.geomA.resizeDiscarding(total);

@@ -92,6 +92,7 @@ void DevicePrimitives::exclusiveSum(const uint32_t*, uint32_t*, size_t, Stream) 
 void DevicePrimitives::exclusiveSum(const uint64_t*, uint64_t*, size_t, Stream) {
     notBuilt("DevicePrimitives::exclusiveSum");
 }
+void DevicePrimitives::sum(const uint32_t*, uint64_t*, size_t, Stream) { notBuilt("DevicePrimitives::sum"); }
 void DevicePrimitives::reduceMax(const float*, float*, size_t, Stream) { notBuilt("DevicePrimitives::reduceMax"); }
 void DevicePrimitives::reduceMax(const double*, double*, size_t, Stream) { notBuilt("DevicePrimitives::reduceMax"); }
 void DevicePrimitives::reduceMin(const uint32_t*, uint32_t*, size_t, Stream) {

@@ -7,6 +7,7 @@
 
 #include "backend/cuda/EmbeddedKernel.h"
 #include "kinematics/CarriedPairsRule.h"
+#include "runtime/IndexLimits.h"
 
 namespace deme::cuda {
 
@@ -137,6 +138,8 @@ unsigned int DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, uns
     m_missingBefore.downloadAsync(&missing, 1, stream, nOld);
     synchronize(stream);
     if (missing == 0) return nFresh;
+    requireIndexable((uint64_t)nFresh + missing, "contact pairs (found, and kept as persistent)", FEWER_PAIRS_REMEDY,
+                     "DoDynamics");
     const unsigned int total = nFresh + missing;
     m_mergedA.resize(total, stream);
     m_mergedB.resize(total, stream);

@@ -93,6 +93,16 @@ void DevicePrimitives::exclusiveSum(const uint8_t* in, uint32_t* out, size_t n, 
     });
 }
 
+void DevicePrimitives::sum(const uint32_t* in, uint64_t* out, size_t n, Stream stream) {
+    const char* call = "DevicePrimitives::sum";
+    const uint32_t count = itemCount(call, n);
+    // The initial value's type is the accumulator's: 64 bits.
+    withScratch(scratch_, call, stream, [&](void* temp, size_t& bytes) {
+        return cub::DeviceReduce::Reduce(temp, bytes, in, out, count, ::cuda::std::plus<uint64_t>{}, uint64_t(0),
+                                         toCuda(stream));
+    });
+}
+
 void DevicePrimitives::reduceMax(const float* in, float* out, size_t n, Stream stream) {
     const char* call = "DevicePrimitives::reduceMax";
     const uint32_t count = itemCount(call, n);

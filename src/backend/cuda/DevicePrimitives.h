@@ -31,6 +31,10 @@ class DevicePrimitives {
     // The same of bytes, summed in 32 bits (marks 0 or 1 into indices).
     void exclusiveSum(const uint8_t* in, uint32_t* out, size_t n, Stream stream);
 
+    // *out = in[0] + ... + in[n-1], summed in 64 bits (no wrap: what a 32-bit exclusiveSum of the
+    // same counts would wrap is seen here).
+    void sum(const uint32_t* in, uint64_t* out, size_t n, Stream stream);
+
     // *out = the largest (smallest) of in[0..n); for n = 0 the lowest (highest) value of the type.
     // A NaN among floats is not reliably reported: check for NaN separately.
     void reduceMax(const float* in, float* out, size_t n, Stream stream);
