@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "BackendFixture.h"
+#include "MeshBuilders.h"
 #include "TestHelpers.h"
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
@@ -19,6 +20,7 @@
 #include "runtime/SceneEdits.h"
 #include "runtime/SceneFingerprint.h"
 #include "state/SphereIds.h"
+#include "state/OwnerTypeOf.h"
 #include "state/SphereLayoutChoice.h"
 
 using namespace deme;
@@ -192,4 +194,28 @@ TEST(SceneAssembly, OneSphereClumpsAreTheirOwnersFromTheStart) {
     sc.batches.push_back(std::make_shared<DEMClumpBatch>(
         std::vector<std::shared_ptr<DEMClumpTemplate>>{clumpOf(2, mat)}, std::vector<float3>{make_float3(0.f)}));
     EXPECT_FALSE(assembleScene(sc, layout).spheresAreOwners);
+}
+
+// An owner's type is its place among the owners (state/OwnerTypeOf.h): the assembly puts the clumps
+// first, then the external objects' owners, then the meshes, whatever order they were added in.
+TEST(SceneAssembly, OwnerTypesFollowTheOwnersOrder) {
+    Scene sc = sceneWithOneMaterial();
+    const auto mat = sc.materials[0];
+    auto mesh = std::make_shared<DEMMeshConnected>(boxMesh(make_float3(0.5f), make_float3(0.6f), mat));
+    sc.meshes.push_back(mesh);
+    for (int k = 0; k < 2; k++) {
+        auto wall = std::make_shared<DEMExternObj>();
+        wall->AddPlane(make_float3(0.f, 0.f, -0.9f + 0.1f * (float)k), make_float3(0.f, 0.f, 1.f), mat);
+        sc.externObjs.push_back(wall);
+    }
+    sc.batches.push_back(std::make_shared<DEMClumpBatch>(
+        std::vector<std::shared_ptr<DEMClumpTemplate>>{clumpOf(1, mat), clumpOf(3, mat), clumpOf(1, mat)},
+        std::vector<float3>{make_float3(-0.5f), make_float3(0.f), make_float3(0.3f)}));
+    const SimState s = assembleScene(sc, ModelLayout{});
+    ASSERT_EQ(s.owners.size(), 6u);
+    const uint8_t expected[] = {OWNER_CLUMP, OWNER_CLUMP, OWNER_CLUMP, OWNER_ANALYTICAL, OWNER_ANALYTICAL, OWNER_MESH};
+    for (size_t o = 0; o < 6; o++) EXPECT_EQ(ownerTypeOf(s, o), expected[o]) << "owner " << o;
+    EXPECT_EQ(s.analytical.owner[0], 3u);  // the walls' components name the owners typed analytical
+    EXPECT_EQ(s.analytical.owner[1], 4u);
+    EXPECT_EQ(s.triangles.owner[0], 5u);  // and the mesh's triangles the one typed mesh
 }

@@ -11,6 +11,7 @@
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
 #include "runtime/SceneEdits.h"
+#include "state/OwnerTypeOf.h"
 
 using namespace deme;
 
@@ -89,6 +90,13 @@ void expectConsistent(const SimState& s) {
     EXPECT_EQ(s.wildcards.geometry[0][s.analyticalIdBase()], 5000.f);
     EXPECT_EQ(s.analytical.owner[0], s.numClumps) << "the plane's owner follows the clumps";
     EXPECT_EQ(s.ownerInternalToUser[s.analytical.owner[0]], 3u) << "and keeps its user id";
+    // Owner types follow from the owners' order (state/OwnerTypeOf.h): the plane (user id 3) is the
+    // analytical one, every other live owner a clump.
+    for (size_t u = 0; u < s.ownerUserToInternal.size(); u++) {
+        const bodyID_t o = s.ownerUserToInternal[u];
+        if (o == R) continue;
+        EXPECT_EQ(ownerTypeOf(s, o), u == 3 ? OWNER_ANALYTICAL : OWNER_CLUMP) << "owner " << u;
+    }
     const ContactArrays& c = s.contacts;
     for (size_t k = 0; k < c.size(); k++) {
         EXPECT_EQ(c.geomB[k], s.analyticalIdBase());

@@ -93,20 +93,18 @@ void resizeOwnerInputs(OwnerArrays& o, size_t n) {
     o.vel.resize(n);
     o.angVel.resize(n);
     o.family.resize(n);
-    o.type.resize(n);
     o.inertia.resize(n);
 }
 
 // Owner k's values (its rows exist); false where its position is outside the frame.
 bool setOwner(SimState& s, size_t k, const double3& pos, const float4& q, const float3& v, const float3& w,
-              family_t fam, OwnerType type, inertiaID_t inertia) {
+              family_t fam, inertiaID_t inertia) {
     OwnerArrays& o = s.owners;
     if (!encodePosition(pos, s.frame, o.voxel[k], o.subX[k], o.subY[k], o.subZ[k])) return false;
     o.oriQ[k] = quatNormalize(q);
     o.vel[k] = v;
     o.angVel[k] = w;
     o.family[k] = fam;
-    o.type[k] = (uint8_t)type;
     o.inertia[k] = inertia;
     return true;
 }
@@ -118,10 +116,10 @@ bool setOwner(SimState& s, size_t k, const double3& pos, const float4& q, const 
 }
 
 void addOwner(SimState& s, const double3& pos, const float4& q, const float3& v, const float3& w, family_t fam,
-              OwnerType type, inertiaID_t inertia, size_t ownerIndex, const char* what) {
+              inertiaID_t inertia, size_t ownerIndex, const char* what) {
     const size_t k = s.owners.voxel.size();
     resizeOwnerInputs(s.owners, k + 1);
-    if (!setOwner(s, k, pos, q, v, w, fam, type, inertia)) throwOutsideDomain(what, ownerIndex, pos);
+    if (!setOwner(s, k, pos, q, v, w, fam, inertia)) throwOutsideDomain(what, ownerIndex, pos);
 }
 
 // Appends a mesh's triangles; vertices with bit-identical coordinates are welded into one id.
@@ -290,7 +288,7 @@ void placeClumps(const Scene& scene, const std::map<const DEMClumpTemplate*, ine
         s.ownerUserToInternal[u] = (bodyID_t)owner;
         s.ownerInternalToUser[owner] = (bodyID_t)u;
         if (!setOwner(s, owner, to_double3(positionOf(c)), BatchValues::oriQ(*b, i), BatchValues::vel(*b, i),
-                      BatchValues::angVel(*b, i), BatchValues::family(*b, i), OWNER_CLUMP, templateIndex.at(&t)))
+                      BatchValues::angVel(*b, i), BatchValues::family(*b, i), templateIndex.at(&t)))
             firstUnencoded = std::min(firstUnencoded, owner);
         if (compact) {
             s.spheres.radius[owner] = t.radii[0];
@@ -349,7 +347,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model, bool sphere
         s.massProps.extent.push_back(0.f);
         s.massProps.dynamic.push_back(0);
         addOwner(s, to_double3(obj->GetInitPos()), obj->GetInitQuat(), make_float3(0.f), make_float3(0.f),
-                 obj->GetFamily(), OWNER_ANALYTICAL, inertia, owner, "external object");
+                 obj->GetFamily(), inertia, owner, "external object");
         for (const auto& c : obj->GetComponents()) {
             s.analytical.owner.push_back((bodyID_t)owner);
             s.analytical.type.push_back((uint8_t)c.type);
@@ -376,7 +374,7 @@ SimState assembleScene(const Scene& scene, const ModelLayout& model, bool sphere
         s.massProps.extent.push_back(extent);
         s.massProps.dynamic.push_back(mesh->IsFree() ? 1 : 0);
         addOwner(s, to_double3(mesh->GetInitPos()), mesh->GetInitQuat(), make_float3(0.f), make_float3(0.f),
-                 mesh->GetFamily(), OWNER_MESH, inertia, owner, "mesh");
+                 mesh->GetFamily(), inertia, owner, "mesh");
         appendMeshTriangles(s, *mesh, (bodyID_t)owner);
     }
     finishTriangleTopology(s);

@@ -7,6 +7,7 @@
 
 #include "state/FamilyStepMotion.h"
 #include "state/OwnerCentre.h"
+#include "state/OwnerTypeOf.h"
 
 namespace deme {
 
@@ -34,7 +35,7 @@ DEME_HD_INLINE void familyConditionInputs(const S& s, size_t o, double t, double
 // otherwise catch the floor, whose centre is a point of the plane).
 template <class S>
 DEME_HD_INLINE bool applyFamilyRule(S& s, size_t o, family_t from, family_t to, double holds) {
-    if (s.owners.type[o] != OWNER_CLUMP || s.owners.family[o] != from || holds == 0.0) return false;
+    if (ownerTypeOf(s, o) != OWNER_CLUMP || s.owners.family[o] != from || holds == 0.0) return false;
     s.owners.family[o] = to;
     return true;
 }

@@ -8,6 +8,7 @@
 #include "physics/RigidBody.h"
 #include "state/FamilyStepMotion.h"
 #include "state/OwnerCentre.h"
+#include "state/OwnerTypeOf.h"
 
 namespace deme {
 
@@ -128,7 +129,7 @@ DEME_HD_INLINE OwnerStepInputs loadOwnerStepInputs(const S& s, size_t o, const F
     // The decoded position alone: a parked clump's (PARKED_VOXEL) is not read (it parks again,
     // stepOwner), and the select ownerCentre makes for it cost the CPU's sweep a tenth.
     in.x0 = decodePosition(in.voxel, in.subX, in.subY, in.subZ, c.frame);
-    in.type = ow.type[o];
+    in.type = ownerTypeOf(s, o);
     in.extent = s.massProps.extent[inertia];
     in.travel0 = ow.travel[o];
     in.moi = s.massProps.moi[inertia];

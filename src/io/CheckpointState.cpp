@@ -171,6 +171,8 @@ void readStateSection(ByteReader& in, SimState& s, const std::string& call, cons
     records.erase("contacts.type");
     // ... and each owner's range of triangles (nothing reads them: a mesh's triangles are one run).
     records.erase("ownerTriStart");
+    // ... and each owner's type (its place among the owners, state/OwnerTypeOf.h).
+    records.erase("owners.type");
     // Owner and geometry wildcards: as many as the force model declares (the fingerprint checked it).
     for (size_t i = 0; i < s.wildcards.owner.size(); i++) fill("wildcards.owner." + std::to_string(i), s.wildcards.owner[i]);
     for (size_t i = 0; i < s.wildcards.geometry.size(); i++)

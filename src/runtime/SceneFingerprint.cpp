@@ -5,6 +5,8 @@
 #include <map>
 #include <type_traits>
 
+#include "state/OwnerTypeOf.h"
+
 namespace deme {
 
 namespace {
@@ -117,7 +119,12 @@ SceneFingerprint sceneFingerprint(const SimState& s, const ModelLayout& model) {
     auto mass = [](const auto& a, const auto& b, auto&& f) { forEachMassField(a, b, f); };
     auto anal = [](const auto& a, const auto& b, auto&& f) { forEachAnalyticalField(a, b, f); };
     auto tris = [](const auto& a, const auto& b, auto&& f) { forEachTriangleField(a, b, f); };
-    fp.ownerInputs = hashInputs(owners, s.owners);
+    // The owners' types stood first among their INPUT fields until they were derived (2026-12-07,
+    // state/OwnerTypeOf.h): hashed as that array, so that checkpoints written before still match.
+    Hash ownerHash;
+    ownerHash.value((uint64_t)s.owners.size());
+    for (size_t o = 0; o < s.owners.size(); o++) ownerHash.value(ownerTypeOf(s, o));
+    fp.ownerInputs = hashInputs(owners, s.owners, ownerHash);
     fp.templateInputs = hashInputs(mass, s.massProps);
     Hash g;
     g.value(hashSphereInputs(s));

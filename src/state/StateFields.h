@@ -36,7 +36,6 @@ struct WindowLoad {
     X(vel, float3, EVOLVES)          /* global frame */                                              \
     X(angVel, float3, EVOLVES)       /* local (body) frame */                                        \
     X(family, family_t, EVOLVES)     /* ChangeFamilyWhen changes it on the device */                 \
-    X(type, uint8_t, INPUT)          /* OwnerType */                                                 \
     X(inertia, inertiaID_t, INPUT)   /* index into the mass properties (extent, dynamic) */          \
     X(contactForce, float3, RESULT)  /* contact force of the last step (global), for trackers */     \
     X(contactTorque, float3, RESULT) /* contact torque of the last step (global) */                  \

@@ -51,6 +51,7 @@ struct StateView {
     // mostly apart pairs; never read on the host.
     bool voxelPretest;
     uint32_t numOwners, numSpheres, numAnalytical, numTriangles, numContacts;
+    uint32_t numClumps, numAnalyticalOwners;  // as SimState's: an owner's type (state/OwnerTypeOf.h)
     DEME_HD bodyID_t analyticalIdBase() const { return numSpheres; }
     DEME_HD bodyID_t triangleIdBase() const { return numSpheres + numAnalytical; }
 };

@@ -19,6 +19,8 @@ inline void setViewScalars(StateView& v, const SimState& s) {
     v.numSpheres = (uint32_t)s.spheres.size();
     v.numAnalytical = (uint32_t)s.analytical.size();
     v.numTriangles = (uint32_t)s.triangles.size();
+    v.numClumps = (uint32_t)s.numClumps;
+    v.numAnalyticalOwners = (uint32_t)s.numAnalyticalOwners;
 }
 
 }  // namespace deme
