@@ -64,6 +64,10 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
             s.owners.family.push_back((family_t)(i % 3));
         }
         s.owners.voxel.assign(spheres, 0);  // one owner per sphere (installing a set indexes their contacts)
+        // One triangle after the spheres in the id space (no pair names it): a scene with triangles,
+        // whose sets keep their mesh state (a scene without keeps none: ContactMeshState.*), carried
+        // here for every pair.
+        s.triangles.owner.assign(1, 0);
         s.numWildcards = 1;
         s.wildcards.contactInit.push_back({0, 1, 0, 7.f});
         const Pairs old = randomPairs(rng, spheres, std::uniform_int_distribution<size_t>(0, 60)(rng));

@@ -122,7 +122,7 @@ DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const 
     if (at < old.keys.n) {
         const float* h = oldPairHistory(old, at);
         for (unsigned int w = 0; w < old.W; w++) wildcards[w] = h ? h[w] : 0.f;
-        meshState = old.meshState[at];
+        meshState = old.meshState ? old.meshState[at] : (uint8_t)0;  // (none kept: a scene without triangles)
         persistent = old.persistent ? old.persistent[at] : (uint8_t)0;
         return;
     }

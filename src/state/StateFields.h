@@ -101,7 +101,8 @@ struct WindowLoad {
     /* clears the flag or the user removes it (DEMSolver::MarkPersistentContact). The CPU's steps */    \
     /* keep none where no pair has it and the model sets none (every pair's is then 0).           */    \
     X(persistent, uint8_t, EVOLVES)                                                                     \
-    /* Sphere-triangle contacts: bit 0 set if it counted this step, bit 1 if in the previous one. */    \
+    /* Sphere-triangle contacts: bit 0 set if it counted this step, bit 1 if in the previous one   */   \
+    /* (the CPU's set keeps none in a scene without triangles: every pair's is then 0).           */    \
     X(meshState, uint8_t, EVOLVES)                                                                      \
     X(force, float3, EVOLVES)            /* on A, global, of a storing step (ContactForceView.h) */     \
     X(meshContacts, uint32_t, HOST)      /* indices of the sphere-triangle contacts */                  \

@@ -220,7 +220,9 @@ void installDetectedContacts(SimState& s, DetectedContacts& fresh, bool modelWri
     releaseVector(persistent);
     if (mapDense) chooseHistoryForm(s);
     indexContactSet(s);
-    meshStates.into(c.meshState, nNew);
+    // A scene without triangles has no sphere-triangle pair: its set keeps no mesh state (1 B a pair;
+    // every reader takes it only for such a pair, and the GPU's upload starts an absent one at zero).
+    if (s.triangles.size() != 0) meshStates.into(c.meshState, nNew);
 }
 
 void keepPersistentFlagsWhereUsed(ContactArrays& c, bool modelWritesPersistent) {
