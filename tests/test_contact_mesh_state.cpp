@@ -6,9 +6,11 @@
 
 #include <vector>
 
+#include "DetectedPairs.h"
 #include "backend/cpu/HistoryMapping.h"
 
 using namespace deme;
+using namespace deme_test;
 
 namespace {
 
@@ -20,12 +22,6 @@ SimState spheresAndTriangles(size_t triangles) {
     s.owners.family.assign(s.owners.voxel.size(), 0);
     s.triangles.owner.assign(triangles, 4);
     return s;
-}
-
-DetectedContacts detected(const std::vector<std::pair<bodyID_t, bodyID_t>>& pairs) {
-    DetectedContacts d;
-    for (const auto& p : pairs) d.geomA.push_back(p.first), d.geomB.push_back(p.second);
-    return d;
 }
 
 }  // namespace

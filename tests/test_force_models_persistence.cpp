@@ -10,6 +10,7 @@
 #include "BondedCompression.h"
 #include "ForceModelTestUtil.h"
 #include "backend/cpu/HistoryForm.h"
+#include "DetectedPairs.h"
 #include "backend/cpu/HistoryMapping.h"
 
 using namespace deme;
@@ -38,12 +39,6 @@ void setContacts(SimState& s, const std::vector<std::pair<bodyID_t, bodyID_t>>& 
     c.wildcards = wildcards;
     c.persistent = persistent;
     c.meshState.assign(pairs.size(), 0);
-}
-
-DetectedContacts detected(const std::vector<std::pair<bodyID_t, bodyID_t>>& pairs) {
-    DetectedContacts d;
-    for (const auto& p : pairs) d.geomA.push_back(p.first), d.geomB.push_back(p.second);
-    return d;
 }
 
 }  // namespace
