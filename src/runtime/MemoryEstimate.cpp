@@ -198,7 +198,7 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
         const size_t crossing = (size_t)(ESTIMATED_CROSSING_PAIR_SHARE * (double)pairs);
         const size_t pool = pooled ? (pairs + 63) / 64 * 12 + historySlots * 4 * (size_t)W : 0;
         // A scene without triangles keeps no mesh state (backend/cpu/HistoryMapping.cpp).
-        const size_t meshState = s.triangles.size() == 0 ? sizeof(uint8_t) : 0;
+        const size_t meshState = s.triangles.size() == 0 ? sizeof(s.contacts.meshState[0]) : 0;
         return pairs * (bytesPerPair(s.contacts, W, true, form.persistentFlags) - historyPerPair - meshState) + pool +
                crossing * sizeof(uint16_t) + 8 * (s.owners.size() + 1) + (s.owners.size() + 63) / 64 * 8 +
                slots * (2 * sizeof(float3) + sizeof(uint32_t));

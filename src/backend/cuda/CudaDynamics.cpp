@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <cstdlib>
-#include <cstring>
 
 #include <cuda_runtime_api.h>
 
@@ -13,23 +11,16 @@
 
 namespace deme::cuda {
 
-namespace {
-// Whether the force pass turns a set's sphere pairs away by their voxel codes (dynamics/ContactStep.h):
-// for a large set of mostly apart pairs, the pairs that touched in the last step run standing for
-// the set's (none before any step: a scene assembled with gaps, as most are). DEME_CUDA_VOXEL_PRETEST
-// "0" never, "1" for every set (the tests' bit-for-bit check; timing trials).
-bool voxelPretestFor(uint32_t pairs, unsigned long long lastTouching) {
-    const char* v = std::getenv("DEME_CUDA_VOXEL_PRETEST");
-    if (v && *v) return std::strcmp(v, "0") != 0;
-    return pairs >= VOXEL_PRETEST_MIN_PAIRS && 2 * lastTouching < (unsigned long long)pairs;
-}
-}  // namespace
-
 void CudaDynamics::refreshView() {
     m_state.viewInto(m_view);
     viewContacts(m_contacts[m_current], m_numContacts, m_view);
-    m_view.voxelPretest =
-        m_view.spheresAreOwners && !m_view.frame.periodic.axes && voxelPretestFor(m_numContacts, m_lastRealContacts);
+    // The voxel pretest (dynamics/ContactStep.h) for a large set of mostly apart pairs, the pairs that
+    // touched in the last step run standing for the set's (none before any step: a scene assembled
+    // with gaps, as most are), unless DEME_CUDA_VOXEL_PRETEST chose (m_voxelPretestForced).
+    const bool byRule =
+        m_numContacts >= VOXEL_PRETEST_MIN_PAIRS && 2 * m_lastRealContacts < (unsigned long long)m_numContacts;
+    m_view.voxelPretest = m_view.spheresAreOwners && !m_view.frame.periodic.axes &&
+                          (m_voxelPretestForced < 0 ? byRule : m_voxelPretestForced == 1);
     DeviceHistoryPool& p = m_pools[m_current];
     m_view.historyPool =
         p.active ? HistoryPoolView{p.slot.data(), p.pool.data(), m_poolControl.data(), p.capacity} : HistoryPoolView{};
@@ -76,8 +67,6 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
     if (s.frame.periodic.shear)
         m_view.frame.periodic.shearClock = reinterpret_cast<const double*>(
             reinterpret_cast<const char*>(m_control.data()) + offsetof(StepBatchControl, time));
-    m_numClumps = (uint32_t)s.numClumps;
-    m_numAnalyticalOwners = (uint32_t)s.numAnalyticalOwners;
     m_domainDiagonal = length(s.domainSize);
     refreshView();
     m_subsetStale = true;

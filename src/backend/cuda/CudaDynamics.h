@@ -188,6 +188,9 @@ class CudaDynamics : public DynamicsBackend {
     // The pairs that touched in the last step run (0 before any): whether a set installed now is
     // mostly apart (StateView::voxelPretest).
     unsigned long long m_lastRealContacts = 0;
+    // DEME_CUDA_VOXEL_PRETEST: "0" never (0), "1" for every set the layout allows (1: the tests'
+    // bit-for-bit check, timing trials), unset by the rule (-1). Read once, as the other switches.
+    int m_voxelPretestForced = -1;
     // gatherOwnerLoads's rows and their forces then torques (let go after a batch of more than
     // GATHER_KEPT_ROWS rows).
     static constexpr size_t GATHER_KEPT_ROWS = 4096;
@@ -206,7 +209,6 @@ class CudaDynamics : public DynamicsBackend {
     // Host-side copies of what the loop needs.
     StateView m_view{};
     unsigned int m_W = 0;
-    uint32_t m_numClumps = 0, m_numAnalyticalOwners = 0;
     double m_domainDiagonal = 0.0;
 };
 

@@ -1,6 +1,7 @@
 // CudaDynamics' set-up: the kernels it runs, compiled (or found in the kernel cache) by NVRTC for its
 // GPU, and the families' prescription kernel, recompiled whenever the prescriptions change.
 #include <cstdlib>
+#include <cstring>
 
 #include <cuda_runtime_api.h>
 
@@ -24,6 +25,8 @@ CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(devi
     m_analyticalInBlock = analyticalInBlockEnabled();
     m_inputsBeforeWait = inputsBeforeWaitEnabled();
     m_graphSteps = stepsPerGraph();
+    if (const char* v = std::getenv("DEME_CUDA_VOXEL_PRETEST"); v && *v)
+        m_voxelPretestForced = std::strcmp(v, "0") != 0;
     // Both contact sets' fields, their per-contact wildcards (the history) included.
     for (DeviceContacts& set : m_contacts)
         forEachContactField(set, set, [](auto& field, auto&, FieldRole) { field.setGroup(MemoryGroup::CONTACTS); });

@@ -60,8 +60,8 @@ void CudaDynamics::finishPausedStep(const Settings& settings, bool storing) {
     LaunchList pass;
     pass.overlapLaunches(false);
     const unsigned int tForce = settings.threadsPerBlock ? settings.threadsPerBlock : 256u;
-    m_model.record(pass, fillView, m_control.data(), m_numClumps, m_view.numOwners - m_numClumps, m_reduction.data(),
-                   tForce);
+    m_model.record(pass, fillView, m_control.data(), m_view.numClumps, m_view.numOwners - m_view.numClumps,
+                   m_reduction.data(), tForce);
     pass.enqueue(st);
     HistoryPoolControl done = fill;
     done.filling = 0u;

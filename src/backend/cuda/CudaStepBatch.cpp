@@ -69,7 +69,7 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     if (!afterPass) {
         if (nT && m_numContacts) list.kernel(kResolveMesh, blocksFor(m_numContacts, tMesh), tMesh, 0, m_view, ctl, red);
         const unsigned int tForce = settings.threadsPerBlock ? settings.threadsPerBlock : stepThreadsFor(m_numContacts);
-        m_model.record(list, stepView, ctl, m_numClumps, nO - m_numClumps, red, tForce);
+        m_model.record(list, stepView, ctl, m_view.numClumps, nO - m_view.numClumps, red, tForce);
     }
     // Contact forces were summed onto every owner (dormant ones too: trackers read them); only the
     // stepped owners are integrated and placed. Right after a force pass, which writes none of an
@@ -81,13 +81,13 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
         // At least one block: it also ends the step. Where every owner is stepped, owner o is
         // thread o, so the analytical owners (after the clumps) are one block's where their ids
         // share a block: that block places their components.
-        const unsigned int firstBlock = m_numClumps / tStepped;
-        const bool oneBlock = m_subsetAll && m_numAnalyticalOwners > 0 && m_analyticalInBlock &&
-                              (m_numClumps + m_numAnalyticalOwners - 1) / tStepped == firstBlock;
+        const unsigned int firstBlock = m_view.numClumps / tStepped;
+        const bool oneBlock = m_subsetAll && m_view.numAnalyticalOwners > 0 && m_analyticalInBlock &&
+                              (m_view.numClumps + m_view.numAnalyticalOwners - 1) / tStepped == firstBlock;
         list.kernel(kIntegrateAndPlace, std::max(1u, blocksFor(nStepped, tStepped)), tStepped, 0, m_view,
                     m_control.data(), (const FamilyStepMotion*)m_motion.data(), consts, ownerIds, nStepped,
-                    inputsBeforeWait, clearLoads, (const uint32_t*)m_ownerSphereStart.data(), m_numClumps,
-                    m_numAnalyticalOwners, oneBlock ? firstBlock : NO_ANALYTICAL_BLOCK, m_domainDiagonal, red,
+                    inputsBeforeWait, clearLoads, (const uint32_t*)m_ownerSphereStart.data(), m_view.numClumps,
+                    m_view.numAnalyticalOwners, oneBlock ? firstBlock : NO_ANALYTICAL_BLOCK, m_domainDiagonal, red,
                     m_componentSpeed.data(), m_blocksDone.data());
         return;
     }
@@ -97,9 +97,9 @@ void CudaDynamics::recordStep(LaunchList& list, const Settings& settings, bool s
     // At least one block: it also ends the step.
     const unsigned int tPlaced = stepThreadsFor((unsigned long long)nPlaced + nT);
     const unsigned int placeBlocks = std::max(1u, blocksFor((unsigned long long)nPlaced + nT, tPlaced));
-    list.kernel(kPlaceAndFinish, placeBlocks, tPlaced, 0, m_view, m_control.data(), sphereIds, nPlaced, nT, m_numClumps,
-                m_numAnalyticalOwners, (float)settings.dt, m_domainDiagonal, red, m_componentSpeed.data(),
-                m_blocksDone.data());
+    list.kernel(kPlaceAndFinish, placeBlocks, tPlaced, 0, m_view, m_control.data(), sphereIds, nPlaced, nT,
+                m_view.numClumps, m_view.numAnalyticalOwners, (float)settings.dt, m_domainDiagonal, red,
+                m_componentSpeed.data(), m_blocksDone.data());
 }
 
 StepBatchResult CudaDynamics::steps(const StepBatchRequest& batch, const Settings& settings, const FamilyRules&,
