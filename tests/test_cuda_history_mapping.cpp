@@ -21,6 +21,7 @@
 #include "kinematics/CarriedPairsRule.h"
 #include "state/HistoryPoolExpand.h"
 
+#include "HostHistoryPool.h"
 #include "HostKernelEmulation.h"
 #include "backend/cuda/kernels/HistoryMapping.cu"
 #include "HostKernelEmulationEnd.h"
@@ -32,6 +33,41 @@ namespace {
 struct Pairs {
     std::vector<bodyID_t> a, b;
 };
+
+// Byte marks ranked as DeviceHistoryMapping ranks them (deme_pack_marks, then an exclusive sum of the
+// words' counts), and each pair's slot read back through slotOf.
+struct Ranked {
+    std::vector<uint64_t> words;
+    std::vector<uint32_t> rankBase;
+    size_t n = 0;
+    uint32_t count() const { return rankBase.back(); }
+    std::vector<uint32_t> slots() const {
+        RankedSlotsView v;
+        v.ranked = words.data();
+        v.rankBase = rankBase.data();
+        std::vector<uint32_t> s(n);
+        for (size_t i = 0; i < n; i++) s[i] = slotOf(v, i);
+        return s;
+    }
+};
+Ranked rankMarks(const std::vector<uint8_t>& marks) {
+    Ranked r;
+    r.n = marks.size();
+    const size_t words = (r.n + 63) / 64;
+    std::vector<unsigned long long> bits(words, 77ull);
+    r.rankBase.assign(words + 1, 99u);
+    runThreads(words + 1, [&] {
+        deme_pack_marks(marks.data(), (unsigned int)r.n, bits.data(), r.rankBase.data(), (unsigned int)words);
+    });
+    uint32_t sum = 0;
+    for (uint32_t& v : r.rankBase) {
+        const uint32_t count = v;
+        v = sum;
+        sum += count;
+    }
+    r.words.assign(bits.begin(), bits.end());
+    return r;
+}
 
 // `n` distinct sphere pairs (a < b) among `spheres`, sorted by key.
 Pairs randomPairs(std::mt19937& rng, unsigned int spheres, size_t n) {
@@ -150,28 +186,25 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
                 oldSlot[j] = (uint32_t)oldPool.size();
                 oldPool.push_back(oldWildcards[j]);
             }
+        deme_test::HostHistoryPool oldGpuPool = deme_test::HostHistoryPool::allLate(oldSlot, 1);
         for (const bool oldPooled : {false, true}) {
             SCOPED_TRACE(oldPooled ? "old set pooled" : "old set dense");
             OldContactHistory from = history;
             if (oldPooled) {
                 from.wildcards = oldPool.data();
-                from.slot = oldSlot.data();
+                from.slots = oldGpuPool.view().slots();
             }
-            std::vector<uint32_t> slots(total + 1, 77u);
-            runThreads(total + 1, [&] { deme_mark_history_slots(view, mergedKeys, from, slots.data()); });
-            uint32_t sum = 0;
-            for (uint32_t& k : slots) {
-                const uint32_t mark = k;
-                k = sum;
-                sum += mark;
-            }
-            const uint32_t withSlot = slots[total];
+            std::vector<uint8_t> slotMarks(total, 9);
+            runThreads(total, [&] { deme_mark_history_slots(view, mergedKeys, from, slotMarks.data()); });
+            const Ranked r = rankMarks(slotMarks);
+            const uint32_t withSlot = r.count();
             std::vector<float> pool(withSlot, -9.f), expanded(total);
-            std::vector<uint8_t> pMesh(total, 9), pPersistent(total, 9);
+            std::vector<uint8_t> pMesh = slotMarks, pPersistent(total, 9);
             runThreads(total, [&] {
-                deme_map_history_pooled(view, mergedKeys, from, slots.data(), pool.data(), pMesh.data(),
-                                        pPersistent.data());
+                deme_map_history_pooled(view, mergedKeys, from, r.words.data(), r.rankBase.data(), pool.data(),
+                                        pMesh.data(), pPersistent.data());
             });
+            const std::vector<uint32_t> slots = r.slots();
             expandPooledHistory(slots.data(), total, pool.data(), 1, expanded.data());
             EXPECT_EQ(expanded, wildcards);
             EXPECT_EQ(pMesh, c.meshState);
@@ -195,18 +228,15 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
             std::vector<uint8_t> marks(total, 9);
             runThreads(total, [&] { deme_mark_mesh_pairs(view, mergedKeys, marks.data()); });
             runThreads(nOld, [&] { deme_mark_carried_pairs(mergedKeys, plain, marks.data()); });
-            std::vector<uint32_t> marked(total, 77u);
-            uint32_t count = 0;
-            for (size_t i = 0; i < total; i++) {
-                marked[i] = count;
-                count += marks[i];
-            }
+            const Ranked m = rankMarks(marks);
+            const uint32_t count = m.count();
             std::vector<float> markedPool(count, -9.f), markedExpanded(total);
             std::vector<uint8_t> markedPersistent(total, 9);
             runThreads(total, [&] {
-                deme_map_marked_history(view, mergedKeys, plain, marked.data(), markedPool.data(), marks.data(),
-                                        markedPersistent.data());
+                deme_map_marked_history(view, mergedKeys, plain, m.words.data(), m.rankBase.data(), markedPool.data(),
+                                        marks.data(), markedPersistent.data());
             });
+            const std::vector<uint32_t> marked = m.slots();
             expandPooledHistory(marked.data(), total, markedPool.data(), 1, markedExpanded.data());
             EXPECT_EQ(markedExpanded, plainWildcards);
             EXPECT_EQ(marks, plainMesh);  // the marks became the mesh states
@@ -256,7 +286,7 @@ TEST(CudaHistoryMapping, PairsHandedOnAreThoseTheCpuKeeps) {
         const std::vector<uint8_t> meshState = c.meshState, persistent = c.persistent;
         const bool cpuTrimmed = keepOnlyCarriedPairs(s);
 
-        // Dense, then pooled (the nonzero histories in slots, in reverse order).
+        // Dense, then pooled (the nonzero histories in slots, in reverse order, as late pairs).
         std::vector<uint32_t> slot(n, NO_HISTORY_SLOT);
         std::vector<float> pool;
         for (size_t j = n; j-- > 0;)
@@ -264,6 +294,7 @@ TEST(CudaHistoryMapping, PairsHandedOnAreThoseTheCpuKeeps) {
                 slot[j] = (uint32_t)(pool.size() / W);
                 pool.insert(pool.end(), wildcards.begin() + j * W, wildcards.begin() + (j + 1) * W);
             }
+        deme_test::HostHistoryPool gpuPool = deme_test::HostHistoryPool::allLate(slot, W);
         for (const bool pooled : {false, true}) {
             SCOPED_TRACE(pooled ? "pooled" : "dense");
             OldContactHistory set{ContactKeys{a.data(), b.data(), (unsigned int)n},
@@ -273,7 +304,7 @@ TEST(CudaHistoryMapping, PairsHandedOnAreThoseTheCpuKeeps) {
                                   W,
                                   nullptr,
                                   0u};
-            if (pooled) set.slot = slot.data();
+            if (pooled) set.slots = gpuPool.view().slots();
             // The marks (a bit a pair), each word's count and their exclusive sum.
             const size_t words = (n + 63) / 64;
             std::vector<unsigned long long> marks(words, 0ull);
@@ -294,11 +325,27 @@ TEST(CudaHistoryMapping, PairsHandedOnAreThoseTheCpuKeeps) {
             std::vector<bodyID_t> ka(kept), kb(kept);
             std::vector<uint8_t> km(kept), kp(kept);
             std::vector<float> kw(pooled ? 0 : kept * W);
-            std::vector<uint32_t> ks(pooled ? kept : 0);
+            // A pooled set's kept pairs become the trimmed set's late pairs (DeviceHistoryMapping).
+            const size_t keptWords = (kept + 63) / 64;
+            std::vector<unsigned long long> keptLate(pooled ? keptWords : 0, 0ull),
+                keptTable(pooled ? lateTableEntriesFor(kept, 0) : 0, 0ull);
             runThreads(n, [&] {
                 deme_keep_pairs_handed_on(set, marks.data(), rankBase.data(), ka.data(), kb.data(), km.data(),
-                                          kp.data(), kw.data(), ks.data());
+                                          kp.data(), kw.data(), keptLate.data(), keptTable.data(),
+                                          pooled ? (uint32_t)(keptTable.size() - 1) : 0u);
             });
+            std::vector<uint32_t> ks(kept, NO_HISTORY_SLOT);
+            if (pooled) {
+                const std::vector<uint64_t> noneRanked(keptWords, 0ull);
+                const std::vector<uint32_t> noRanks(keptWords + 1, 0u);
+                RankedSlotsView v;
+                v.ranked = noneRanked.data();
+                v.rankBase = noRanks.data();
+                v.late = (const uint64_t*)keptLate.data();
+                v.lateTable = keptTable.data();
+                v.lateMask = (uint32_t)(keptTable.size() - 1);
+                for (size_t k = 0; k < kept; k++) ks[k] = slotOf(v, k);
+            }
             EXPECT_EQ(ka, c.geomA);
             EXPECT_EQ(kb, c.geomB);
             EXPECT_EQ(km, c.meshState);

@@ -30,10 +30,10 @@ TEST(MemoryEstimateBins, SpheresByCentreAreOneEntryEachWhereTheBackendBinsSo) {
 
 // A synchronous detection in place on the GPU runs while the set in use holds only the pairs it kept
 // (trimmed before it), and a large scratch is let go before the installation: the run's peak is the
-// larger of the trim's or installation's (the whole set of ids, mesh bytes and 4-byte slots, and
-// the trim's marks, 12 B per 64 pairs, beside the kept pairs) and the detection's (its scratch and
-// the outbox's A and B, 8 B a pair, beside the kept pairs), not their sum. Measured on an H100 at
-// 45.8 M spheres (BENCHMARKS.md, MEMORY): a peak of 175.5 device B/sphere where the sum counted 208.7.
+// larger of the trim's or installation's (the whole set of ids and mesh bytes, its slots' bits and
+// ranks, 20 B per 64 pairs, and the trim's marks, 12 B per 64 pairs, beside the kept pairs) and the detection's (its
+// scratch and the outbox's A and B, 8 B a pair, beside the kept pairs), not their sum. Measured on an H100 at 45.8 M
+// spheres (BENCHMARKS.md, MEMORY): a peak of 175.5 device B/sphere where the sum counted 208.7.
 TEST(MemoryEstimateBins, ADetectionInPlaceCountsWhatItHoldsBeyondTheWholeSet) {
     const Scene scene = randomScene(3, 1500);
     SimState s = detectionState(scene, "MemoryEstimateBins");
@@ -46,7 +46,7 @@ TEST(MemoryEstimateBins, ADetectionInPlaceCountsWhatItHoldsBeyondTheWholeSet) {
     trimmed.persistentFlags = false;
     ContactSetForm whole = trimmed;
     whole.trimmedBeforeDetection = false;
-    const size_t wholeSetPerPair = 2 * sizeof(bodyID_t) + 1 + sizeof(uint32_t);  // ids, mesh state, slot
+    const size_t wholeSetPerPair = 2 * sizeof(bodyID_t) + 1;  // ids, mesh state
     for (size_t pairs : {(size_t)6 * s.spheres.size(), s.spheres.size() / 4}) {
         SCOPED_TRACE("pairs " + std::to_string(pairs));
         auto estimate = [&](const ContactSetForm& form, bool snapshotKept, size_t keptUpTo) {
@@ -55,7 +55,7 @@ TEST(MemoryEstimateBins, ADetectionInPlaceCountsWhatItHoldsBeyondTheWholeSet) {
         };
         const MemoryEstimate kept = estimate(trimmed, false, SIZE_MAX), released = estimate(trimmed, false, 0);
         EXPECT_EQ(released.bytes[con], kept.bytes[con]);
-        const size_t wholeSet = pairs * wholeSetPerPair + (pairs + 63) / 64 * 12;
+        const size_t wholeSet = pairs * wholeSetPerPair + (pairs + 63) / 64 * (20 + 12);
         const size_t detecting = kept.bytes[det] + 2 * sizeof(bodyID_t) * pairs;
         EXPECT_EQ(released.bytes[det], detecting > wholeSet ? detecting - wholeSet : 0);
         EXPECT_LT(released.total(), kept.total());

@@ -3,15 +3,18 @@
 // of a CPU state, against the step over W floats per pair (the dense form) that both backends run.
 // Pass after pass (time advancing, the spheres' radii changing so that pairs begin and stop touching), every pair's
 // load is the same to the bit, and the pool read back per pair (state/HistoryPoolExpand.h) is the dense history, to the
-// bit; a pool too small for the pairs that take a history leaves them pending, and growing it and filling the pending
-// pairs (what CudaDynamics::finishPausedStep runs) gives the same histories and forces.
+// bit; a pool too small for the pairs that take a history leaves them without a slot, and growing it and filling
+// those pairs (what CudaDynamics::finishPausedStep runs) gives the same histories and forces. Some pairs are ranked
+// (their slots given at an installation), the others take late slots (tests/HostHistoryPool.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
 
 #include "BackendFixture.h"
+#include "HostHistoryPool.h"
 #include "api/ForceModelSetup.h"
 #include "api/Scene.h"
 #include "api/SceneAssembly.h"
@@ -91,24 +94,6 @@ StateView hostView(SimState& s) {
 
 bool sameBits(const float3& a, const float3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-// The pool as a host GPU would hold it: slots, W floats a slot, the counters; `capacity` slots.
-struct HostPool {
-    std::vector<uint32_t> slot;
-    std::vector<float> pool;
-    std::vector<float3> force;  // per slot
-    HistoryPoolControl control{};
-    uint32_t capacity = 0;
-    void grow(uint32_t to, unsigned int W) {
-        capacity = to;
-        pool.resize((size_t)to * W, -7.f);  // new slots hold garbage until written
-        force.resize(to, make_float3(-7.f));
-    }
-    void into(StateView& v) {
-        v.historyPool = HistoryPoolView{slot.data(), pool.data(), &control, capacity};
-        v.contacts.force = force.data();
-    }
-};
-
 }  // namespace
 
 TEST(PooledContactStep, SameLoadsAndHistoriesAsTheDenseFormThroughPausesAndFills) {
@@ -136,8 +121,18 @@ TEST(PooledContactStep, SameLoadsAndHistoriesAsTheDenseFormThroughPausesAndFills
     std::vector<float> denseHistory = s.contacts.wildcards;
     StateView pv = hostView(s);
     pv.contacts.wildcards = nullptr;
-    HostPool hp;
-    hp.slot.assign(n, NO_HISTORY_SLOT);
+    // Every fifth pair ranked (a slot from the installation, its history zeros), the others late
+    // once they take a history.
+    std::vector<bool> ranked(n);
+    for (size_t i = 0; i < n; i++) ranked[i] = i % 5 == 0;
+    deme_test::HostHistoryPool hp(n, ranked, W);
+    std::fill(hp.pool.begin(), hp.pool.end(), 0.f);
+    const uint32_t rankedSlots = hp.rankedSlots;
+    ASSERT_GT(rankedSlots, 10u);
+    const auto into = [&](StateView& v) {
+        v.historyPool = hp.view();
+        v.contacts.force = hp.force.data();
+    };
     dv.contacts.wildcards = denseHistory.data();
 
     size_t touching = 0, apart = 0, pauses = 0, claimedWithRoom = 0;
@@ -151,7 +146,7 @@ TEST(PooledContactStep, SameLoadsAndHistoriesAsTheDenseFormThroughPausesAndFills
         const float time = (float)pass * dt;
         for (size_t k = 0; k < radius0.size(); k++) s.spheres.radius[k] = scale[pass] * radius0[k];
         const uint32_t usedBefore = hp.control.used, capacityBefore = hp.capacity;
-        hp.into(pv);
+        into(pv);
         std::vector<ContactLoad> dl(n), pl(n);
         std::vector<bool> da(n), pa(n);
         for (size_t i = 0; i < n; i++) {
@@ -175,29 +170,42 @@ TEST(PooledContactStep, SameLoadsAndHistoriesAsTheDenseFormThroughPausesAndFills
         }
         if (hp.control.used > usedBefore && usedBefore < capacityBefore) claimedWithRoom++;
         if (hp.control.paused) {
-            // What finishPausedStep does: room for every claimed slot, then the pending pairs again.
+            // What finishPausedStep does: room for every claim, the counter set back to the old
+            // capacity, then the pairs left without a slot again.
             pauses++;
             ASSERT_GT(hp.control.used, hp.capacity);
-            hp.grow(hp.control.used + (pass % 2 ? 0u : 40u), W);
+            const uint32_t kept = hp.capacity;
+            hp.grow(hp.control.used + (pass % 2 ? 0u : 40u));
+            hp.control.used = kept;
             hp.control.paused = 0;
             hp.control.filling = 1;
-            hp.into(pv);
+            into(pv);
             for (size_t i = 0; i < n; i++)
                 fillPendingHistory<FrictionalHertzModel, ANY_CONTACT_TYPE>(
                     pv, model, i, contactIds<ANY_CONTACT_TYPE>(pv, i), time, dt);
             hp.control.filling = 0;
+            ASSERT_EQ(hp.control.paused, 0u);
+            ASSERT_LE(hp.control.used, hp.capacity);
         }
-        for (size_t i = 0; i < n; i++) ASSERT_TRUE(hp.slot[i] == NO_HISTORY_SLOT || hp.slot[i] < hp.capacity);
+        ASSERT_EQ(hp.control.lost, 0u);
+        const std::vector<uint32_t> slot = hp.slots(n);
+        for (size_t i = 0; i < n; i++) {
+            ASSERT_TRUE(slot[i] == NO_HISTORY_SLOT || slot[i] < hp.capacity);
+            if (ranked[i]) ASSERT_LT(slot[i], rankedSlots) << "pair " << i;  // a ranked pair keeps its rank
+        }
         std::vector<float> expanded(n * W);
-        expandPooledHistory(hp.slot.data(), n, hp.pool.data(), W, expanded.data());
+        expandPooledHistory(slot.data(), n, hp.pool.data(), W, expanded.data());
         ASSERT_EQ(0, std::memcmp(expanded.data(), denseHistory.data(), expanded.size() * sizeof(float)));
         std::vector<float3> forces(n);
-        expandPooledForces(hp.slot.data(), n, hp.force.data(), forces.data());
+        expandPooledForces(slot.data(), n, hp.force.data(), forces.data());
         for (size_t i = 0; i < n; i++) ASSERT_TRUE(sameBits(forces[i], denseForce[i])) << "pair " << i;
-        // Every claimed slot is a pair's (a pair keeps its slot once its history has ended).
-        size_t withSlot = 0;
-        for (uint32_t k : hp.slot) withSlot += k != NO_HISTORY_SLOT;
-        EXPECT_EQ(withSlot, (size_t)hp.control.used);
+        // Every claimed slot is a pair's, each once (a pair keeps its slot once its history has ended).
+        std::vector<uint32_t> taken;
+        for (uint32_t k : slot)
+            if (k != NO_HISTORY_SLOT) taken.push_back(k);
+        std::sort(taken.begin(), taken.end());
+        EXPECT_TRUE(std::adjacent_find(taken.begin(), taken.end()) == taken.end());
+        EXPECT_EQ(taken.size(), (size_t)hp.control.used);
     }
     // The scene has both kinds of pairs, and the empty pool paused the first pass.
     EXPECT_GT(touching, 50u);

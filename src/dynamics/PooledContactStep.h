@@ -1,13 +1,15 @@
 // The per-contact step where the set keeps its history pooled (state/HistoryPool.h): the GPU's
 // force pass for large sets of mostly apart pairs. A pair with a slot works on its W floats in the
 // pool; a pair without one starts from zeros (what it has), and where the step leaves it a history
-// or a load it claims the pool's next slot. Where the pool is full the pair is left pending: its
-// load has been added like any other's, but its history has nowhere to go. The step then stops
-// before integration (the integration kernels see HistoryPoolControl::paused), the host grows the
-// pool, and fillPendingHistory makes the pending pairs' histories again: from zeros, on the same
-// state and clock, so to the bit what the pass made (the model reads nothing the pass writes). The
-// rest of the step then runs as it would have. Only models that write nothing but the pair's
-// history and loads take this form (the built-in ones; CudaDynamics chooses).
+// or a load it claims the pool's next slot and enters the late table. Where the pool is full the
+// pair records nothing: its load has been added like any other's, but its history has nowhere to
+// go. The step then stops before integration (the integration kernels see
+// HistoryPoolControl::paused), the host grows the pool, sets the counter back to the old capacity
+// (the claims past it were not kept), and fillPendingHistory makes the histories of the pairs that
+// still have no slot again: from zeros, on the same state and clock, so to the bit what the pass
+// made (the model reads nothing the pass writes), and exactly those pairs need one. The rest of the
+// step then runs as it would have. Only models that write nothing but the pair's history and loads
+// take this form (the built-in ones; CudaDynamics chooses).
 #pragma once
 
 #include "dynamics/ContactStep.h"
@@ -22,6 +24,22 @@ DEME_HD_INLINE bool needsHistorySlot(const float* h, bool applied, const Contact
     return applied && !(isZero(load.force) && isZero(load.torqueA) && isZero(load.torqueB));
 }
 
+// Where pair i, its step made from zeros (`h`, its load), needs a slot: claims one and puts the
+// history (and its force, in a storing step) there; where the pool is full, pauses the step.
+template <unsigned int W>
+DEME_HD_INLINE void giveHistorySlot(const HistoryPoolView& hp, float3* force, size_t i, const float* h, bool applied,
+                                    const ContactLoad& load) {
+    if (!needsHistorySlot<W>(h, applied, load)) return;
+    const uint32_t k = claimHistorySlot(hp.control);
+    if (k >= hp.capacity) {
+        hp.control->paused = 1u;
+        return;
+    }
+    storeHistory<W>(h, hp.pool + (size_t)k * W);
+    if (force) force[k] = applied ? load.force : make_float3(0.f);
+    hp.giveLateSlot(i, k);
+}
+
 // Contact i's step in the pooled form (ids read: contactIds). Returns whether the pair touches; the
 // force on A goes to contacts.force[slot] where the view asks for it (a storing step).
 template <class Model, uint8_t KnownType, class S>
@@ -32,8 +50,8 @@ DEME_HD_INLINE bool pooledContactStep(S& s, const Model& model, size_t i, const 
                   "the pooled form holds histories of 1 to 8 floats");
     const HistoryPoolView& hp = s.historyPool;
     float3* force = s.contacts.force;
-    const uint32_t slot = hp.slot[i];
-    if (slot < hp.capacity) {
+    const uint32_t slot = hp.slotOf(i);
+    if (slot != NO_HISTORY_SLOT) {
         const bool touching = contactStepWithHistory<Model, KnownType>(s, model, i, ids, hp.pool + (size_t)slot * W,
                                                                        time, dt, applied, load);
         if (force) force[slot] = applied ? load.force : make_float3(0.f);
@@ -42,37 +60,25 @@ DEME_HD_INLINE bool pooledContactStep(S& s, const Model& model, size_t i, const 
     float h[W];
     for (unsigned int w = 0; w < W; w++) h[w] = 0.f;
     const bool touching = contactStepWithHistory<Model, KnownType>(s, model, i, ids, h, time, dt, applied, load);
-    if (!needsHistorySlot<W>(h, applied, load)) return touching;
-    const uint32_t k = claimHistorySlot(hp.control);
-    if (k < hp.capacity) {
-        storeHistory<W>(h, hp.pool + (size_t)k * W);
-        hp.slot[i] = k;
-        if (force) force[k] = applied ? load.force : make_float3(0.f);
-    } else {
-        hp.slot[i] = k | PENDING_HISTORY_SLOT;
-        hp.control->paused = 1u;
-    }
+    giveHistorySlot<W>(hp, force, i, h, applied, load);
     return touching;
 }
 
-// After the pool has grown past every claimed slot: pending pair i's history (and its force, in a
-// storing step) made again and put in its slot. Nothing else is written: its load is in its owners'.
+// After a paused pass, the pool grown past every claim and the counter set back to the old
+// capacity: pair i's history (and its force, in a storing step) made again where it has no slot and
+// needs one, and put in a slot. Nothing else is written: its load is in its owners'.
 template <class Model, uint8_t KnownType, class S>
 DEME_HD_INLINE void fillPendingHistory(S& s, const Model& model, size_t i, const ContactIds& ids, float time,
                                        float dt) {
     constexpr unsigned int W = Model::kNumContactWildcards;
     const HistoryPoolView& hp = s.historyPool;
-    const uint32_t slot = hp.slot[i];
-    if (slot == NO_HISTORY_SLOT || !(slot & PENDING_HISTORY_SLOT)) return;
-    const uint32_t k = slot & ~PENDING_HISTORY_SLOT;
+    if (hp.slotOf(i) != NO_HISTORY_SLOT) return;
     float h[W];
     for (unsigned int w = 0; w < W; w++) h[w] = 0.f;
     bool applied = false;
     ContactLoad load;
     contactStepWithHistory<Model, KnownType>(s, model, i, ids, h, time, dt, applied, load);
-    storeHistory<W>(h, hp.pool + (size_t)k * W);
-    if (s.contacts.force) s.contacts.force[k] = applied ? load.force : make_float3(0.f);
-    hp.slot[i] = k;
+    giveHistorySlot<W>(hp, s.contacts.force, i, h, applied, load);
 }
 
 }  // namespace deme

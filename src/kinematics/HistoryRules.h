@@ -79,21 +79,14 @@ struct OldContactHistory {
     unsigned int W;
     const ContactInitRule* rules;  // initial wildcards of pairs new to the set
     unsigned int numRules;
-    // The CPU's pooled history (state/PooledHistory.h): each pair's slot in `wildcards`, or
-    // NO_HISTORY_SLOT where it has none; none (slots.ranked null) where `wildcards` has W floats
-    // per pair.
+    // A pooled history (the CPU's, state/PooledHistory.h, or the GPU's, state/HistoryPool.h): each
+    // pair's slot in `wildcards`, or NO_HISTORY_SLOT where it has none; none (slots.ranked null)
+    // where `wildcards` has W floats per pair.
     RankedSlotsView slots = {};
-    // The GPU's pooled history (state/HistoryPool.h): each pair's slot in `wildcards`, or
-    // NO_HISTORY_SLOT; null where the GPU's set keeps W floats per pair.
-    const uint32_t* slot = nullptr;
 };
 
 // Old pair `at`'s W floats, or null where it has no history (all zeros).
 DEME_HD_INLINE const float* oldPairHistory(const OldContactHistory& old, unsigned int at) {
-    if (old.slot) {
-        const uint32_t k = old.slot[at];
-        return k == NO_HISTORY_SLOT ? nullptr : old.wildcards + (size_t)k * old.W;
-    }
     if (!old.slots.ranked) return old.wildcards + (size_t)at * old.W;
     const uint32_t k = slotOf(old.slots, at);
     return k == NO_HISTORY_SLOT ? nullptr : old.wildcards + (size_t)k * old.W;

@@ -46,4 +46,14 @@ struct HistoryPoolPolicy {
     }
 };
 
+// The entries of a late table (state/HistorySlot.h) for a pool of `capacity` slots of which
+// `ranked` are the installation's: a power of two at least twice the late slots the pool can give
+// (each a late pair's entry), so that probes stay short and an insertion always finds room.
+inline size_t lateTableEntriesFor(size_t capacity, size_t ranked) {
+    const size_t late = capacity > ranked ? capacity - ranked : 0;
+    size_t entries = 64;
+    while (entries < 2 * late) entries *= 2;
+    return entries;
+}
+
 }  // namespace deme

@@ -13,6 +13,7 @@
 #include "dynamics/StepBatch.h"
 #include "kinematics/DetectionRules.h"
 #include "runtime/EnvironmentCount.h"
+#include "runtime/HistoryPoolPolicy.h"
 #include "runtime/MemoryAccounting.h"
 #include "state/FamilyStepMotion.h"
 
@@ -58,11 +59,16 @@ size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host, bool pers
     return b;
 }
 
-// A pair's bytes in a GPU set that pools its history: its ids, mesh state and flag where kept, and
-// its 4-byte slot instead of W floats (state/HistoryPool.h).
+// A pair's bytes in a GPU set that pools its history: its ids, mesh state and flag where kept, no
+// W floats (state/HistoryPool.h); its slot is pooledSlotBytes'.
 size_t pooledPairBytes(const SimState& s, unsigned int W, const ContactSetForm& form) {
-    return bytesPerPair(s.contacts, W, false, form.persistentFlags) - 4 * (size_t)W + sizeof(uint32_t);
+    return bytesPerPair(s.contacts, W, false, form.persistentFlags) - 4 * (size_t)W;
 }
+// The slots of a pooled GPU set of `pairs` pairs: a ranked bit and a late bit a pair and each 64
+// pairs' first rank, 20 B per 64 pairs.
+size_t pooledSlotBytes(size_t pairs) { return (pairs + 63) / 64 * 20; }
+// A late table for a pool of `slots` slots, at most (none of them ranked).
+size_t lateTableBytes(size_t slots) { return lateTableEntriesFor(slots, 0) * sizeof(unsigned long long); }
 
 // What the GPU's trim and installation hold beside the kept pairs where a pooled set is trimmed
 // before each synchronous detection (contactSetBytes): the whole set and the trim's marks (a bit a
@@ -71,7 +77,7 @@ size_t trimmedWholeSetBytes(const SimState& s, size_t pairs, const ContactSetFor
     const unsigned int W = s.numWildcards;
     const size_t historySlots = form.historySlots;
     if (!form.trimmedBeforeDetection || historySlots == DENSE_HISTORY || W == 0 || 2 * historySlots > pairs) return 0;
-    return pairs * pooledPairBytes(s, W, form) + (pairs + 63) / 64 * 12;
+    return pairs * pooledPairBytes(s, W, form) + pooledSlotBytes(pairs) + (pairs + 63) / 64 * 12;
 }
 
 // Detection's bin entries: a box of extent d overlaps on average 1 + d / edge bins along each axis
@@ -208,19 +214,20 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
     // (the old set's buffers) and the idle set's wildcards, which hold the per-contact forces
     // (grown to hold them where a pair has fewer than three wildcards): at most as much
     // (backend/cuda/CudaContactSets.cpp, DeviceHistoryMapping). Pooled (state/HistoryPool.h):
-    // a 4-byte slot per pair in each set, and at an installation the old pool and the fresh one;
-    // the forces are kept per slot.
+    // each set's slots (pooledSlotBytes), and at an installation the old pool and the fresh one,
+    // each with its late table; the forces are kept per slot.
     const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
     if (pooled) {
         const size_t perPair = pooledPairBytes(s, W, form);
-        const size_t pools = historySlots * (2 * 4 * (size_t)W + forceBytes);
+        const size_t pools = historySlots * (2 * 4 * (size_t)W + forceBytes) + 2 * lateTableBytes(historySlots);
         // Trimmed before a synchronous detection (CudaDynamics::beforeDetectNow), where at most half
-        // of the pairs have a slot and so at most about half are kept: the whole set and the trim's
-        // marks (a bit a pair and each 64 pairs' first rank: 12 B per 64 pairs), then an
-        // installation's fresh set beside the pairs kept.
+        // of the pairs have a slot and so at most about half are kept (as late pairs, in a table of
+        // their own): the whole set and the trim's marks (a bit a pair and each 64 pairs' first
+        // rank: 12 B per 64 pairs), then an installation's fresh set beside the pairs kept.
         if (const size_t wholeSet = trimmedWholeSetBytes(s, pairs, form))
-            return wholeSet + historySlots * perPair + pools;
-        return pairs * 2 * perPair + pools;
+            return wholeSet + historySlots * perPair + pooledSlotBytes(historySlots) + lateTableBytes(historySlots) +
+                   pools;
+        return pairs * 2 * perPair + 2 * pooledSlotBytes(pairs) + pools;
     }
     const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;
     return pairs * (2 * bytesPerPair(s.contacts, W, false, form.persistentFlags) + forceGrowth);

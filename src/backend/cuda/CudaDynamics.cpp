@@ -22,8 +22,7 @@ void CudaDynamics::refreshView() {
     m_view.voxelPretest = m_view.spheresAreOwners && !m_view.frame.periodic.axes &&
                           (m_voxelPretestForced < 0 ? byRule : m_voxelPretestForced == 1);
     DeviceHistoryPool& p = m_pools[m_current];
-    m_view.historyPool =
-        p.active ? HistoryPoolView{p.slot.data(), p.pool.data(), m_poolControl.data(), p.capacity} : HistoryPoolView{};
+    m_view.historyPool = p.view(m_poolControl.data());
 }
 
 void CudaDynamics::upload(const SimState& s, bool withContacts) {

@@ -108,6 +108,7 @@ class CudaDynamics : public DynamicsBackend {
     void finishPausedStep(const Settings& settings, bool storing);
     void downloadPooledHistory(ContactArrays& c);
     void resetHistoryPoolControl(uint32_t used);
+    [[noreturn]] void lateTableFull() const;
     // The owners and spheres a step integrates and places (CudaStepSubset.cpp).
     void updateStepSubset();
     void updateLoadOwners(bool flagStepped);

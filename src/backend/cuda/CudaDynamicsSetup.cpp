@@ -31,7 +31,10 @@ CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(devi
     for (DeviceContacts& set : m_contacts)
         forEachContactField(set, set, [](auto& field, auto&, FieldRole) { field.setGroup(MemoryGroup::CONTACTS); });
     for (DeviceHistoryPool& p : m_pools) {
-        p.slot.setGroup(MemoryGroup::CONTACTS);
+        p.ranked.setGroup(MemoryGroup::CONTACTS);
+        p.rankBase.setGroup(MemoryGroup::CONTACTS);
+        p.late.setGroup(MemoryGroup::CONTACTS);
+        p.lateTable.setGroup(MemoryGroup::CONTACTS);
         p.pool.setGroup(MemoryGroup::CONTACTS);
     }
     m_poolPolicy = HistoryPoolPolicy::fromEnvironment();

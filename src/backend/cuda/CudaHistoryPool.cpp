@@ -20,16 +20,16 @@ void CudaDynamics::resetHistoryPoolControl(uint32_t used) {
 void CudaDynamics::growHistoryPool(size_t capacity, bool withForces) {
     DeviceHistoryPool& p = m_pools[m_current];
     if (capacity <= p.capacity) return;
-    if (capacity >= PENDING_HISTORY_SLOT)
+    if (capacity >= HISTORY_SLOT_LIMIT)
         throwError("DoDynamics", "the contact set's pooled history needs " + std::to_string(capacity) +
-                                     " slots; at most " + std::to_string(PENDING_HISTORY_SLOT - 1) +
-                                     " fit a slot's 31 bits");
+                                     " slots; a pool holds at most " + std::to_string(HISTORY_SLOT_LIMIT - 1));
     const MemoryGroupScope group(MemoryGroup::CONTACTS);
     // Kept: the slots' histories, and the forces a storing step paused in its pass has written.
     p.pool.resize(capacity * m_W, m_stream);
     DeviceBuffer<float3>& force = m_contacts[m_current].force;
     if (withForces || !force.empty()) force.resize(capacity, m_stream);
     p.capacity = (uint32_t)capacity;
+    m_history.fitLateTable(p, m_stream);  // room for every late slot the pool can give
     refreshView();
 }
 
@@ -44,11 +44,15 @@ void CudaDynamics::makeHistoryRoomBeforeBatch() {
 void CudaDynamics::finishPausedStep(const Settings& settings, bool storing) {
     const Stream st = m_stream;
     m_historyPauses++;
-    // Every claimed slot fits: the pending pairs' (the slots beyond the old capacity) too.
+    if (m_poolControlHost.lost) lateTableFull();
+    // Every claim fits: those the pass kept (below the old capacity) and those it could not (the
+    // pairs left without a slot), which the fill claims again from the old capacity on.
+    const uint32_t keptClaims = m_pools[m_current].capacity;
     growHistoryPool(m_poolPolicy.capacityFor(m_poolControlHost.used, m_numContacts), storing);
-    // The pass again, over the pending pairs only (the pooled pass while `filling` is set), on the
-    // state the paused pass read: the integration kernels stopped the batch before changing it.
+    // The pass again, over the pairs without a slot only (the pooled pass while `filling` is set),
+    // on the state the paused pass read: the integration kernels stopped the batch before changing it.
     HistoryPoolControl fill = m_poolControlHost;
+    fill.used = keptClaims;
     fill.paused = 0u;
     fill.filling = 1u;
     m_poolControl.uploadAsync(&fill, 1, st);
@@ -73,19 +77,47 @@ void CudaDynamics::finishPausedStep(const Settings& settings, bool storing) {
     m_control.downloadAsync(m_controlHost, 1, st);
     m_poolControl.downloadAsync(&m_poolControlHost, 1, st);
     synchronize(st);  // the host copies above stay alive until here
+    // The fill's claims are the pass's lost ones, within the grown pool: never paused again.
+    if (m_poolControlHost.lost) lateTableFull();
+    if (m_poolControlHost.used > m_pools[m_current].capacity)
+        throwError("DoDynamics", "internal: the pooled history's fill claimed " +
+                                     std::to_string(m_poolControlHost.used) + " slots of a pool of " +
+                                     std::to_string(m_pools[m_current].capacity));
+}
+
+void CudaDynamics::lateTableFull() const {
+    const DeviceHistoryPool& p = m_pools[m_current];
+    throwError("DoDynamics", "internal: the pooled history's late table (" + std::to_string(p.lateTable.size()) +
+                                 " entries, for a pool of " + std::to_string(p.capacity) + " slots, " +
+                                 std::to_string(p.rankedSlots) + " of them ranked) is full");
 }
 
 void CudaDynamics::downloadPooledHistory(ContactArrays& c) {
     const DeviceHistoryPool& p = m_pools[m_current];
     const size_t n = m_numContacts;
-    std::vector<uint32_t> slots(n);
+    // The slots' form (12 bytes per 64 pairs, two bits a pair and the late table), read on the host
+    // as the kernels read it: each pair's slot.
+    std::vector<uint64_t> ranked(p.ranked.size()), late(p.late.size());
+    std::vector<uint32_t> rankBase(p.rankBase.size());
+    std::vector<unsigned long long> lateTable(p.lateTable.size());
     std::vector<float> pool((size_t)p.capacity * m_W);
-    if (n) p.slot.downloadAsync(slots.data(), n, m_stream);
+    p.ranked.downloadAsync((unsigned long long*)ranked.data(), ranked.size(), m_stream);
+    p.rankBase.downloadAsync(rankBase.data(), rankBase.size(), m_stream);
+    p.late.downloadAsync((unsigned long long*)late.data(), late.size(), m_stream);
+    p.lateTable.downloadAsync(lateTable.data(), lateTable.size(), m_stream);
     if (!pool.empty()) p.pool.downloadAsync(pool.data(), pool.size(), m_stream);
     const DeviceBuffer<float3>& force = m_contacts[m_current].force;
     std::vector<float3> forces(force.size() >= p.capacity ? p.capacity : 0);
     if (!forces.empty()) force.downloadAsync(forces.data(), forces.size(), m_stream);
     synchronize(m_stream);
+    RankedSlotsView v;
+    v.ranked = ranked.data();
+    v.rankBase = rankBase.data();
+    v.late = late.data();
+    v.lateTable = lateTable.data();
+    v.lateMask = (uint32_t)(lateTable.size() - 1);
+    std::vector<uint32_t> slots(n);
+    for (size_t i = 0; i < n; i++) slots[i] = slotOf(v, i);
     c.wildcards.resize(n * m_W);
     expandPooledHistory(slots.data(), n, pool.data(), m_W, c.wildcards.data());
     c.force.resize(n);

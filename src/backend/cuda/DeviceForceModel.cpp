@@ -134,8 +134,8 @@ void DeviceForceModel::record(LaunchList& list, const StateView& view, const Ste
                               unsigned int threadsPerBlock) const {
     if (view.numContacts == 0) return;
     const bool noMesh = view.numTriangles == 0 && m_noMeshKernel.handle;
-    const CudaKernel& pass =
-        view.historyPool.slot ? (noMesh ? m_pooledNoMeshKernel : m_pooledKernel) : (noMesh ? m_noMeshKernel : m_kernel);
+    const CudaKernel& pass = view.historyPool.ranked ? (noMesh ? m_pooledNoMeshKernel : m_pooledKernel)
+                                                     : (noMesh ? m_noMeshKernel : m_kernel);
     if (!pass.handle)
         throwError("DoDynamics", "internal: the contact set's history is pooled, but the model has no pooled pass");
     list.kernel(pass, blocksFor(view.numContacts, threadsPerBlock), threadsPerBlock, 0, view, ctl, m_params,

@@ -36,6 +36,8 @@ void DeviceHistoryMapping::load(const std::string& call, const CudaCompileOption
     m_markHandedOn = m_module.kernel("deme_mark_pairs_handed_on");
     m_countMarks = m_module.kernel("deme_count_marks");
     m_keepHandedOn = m_module.kernel("deme_keep_pairs_handed_on");
+    m_packMarks = m_module.kernel("deme_pack_marks");
+    m_rehashLate = m_module.kernel("deme_rehash_late_slots");
 }
 
 void DeviceHistoryMapping::uploadRules(const std::vector<ContactInitRule>& rules) {
@@ -54,8 +56,8 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
                         set.persistent.empty() ? nullptr : set.persistent.data(),
                         W,
                         nullptr,
-                        0u};
-    if (pool.active) h.slot = pool.slot.data();
+                        0u,
+                        pool.slots()};
     // The marks, a bit a pair, and each word's first rank (12 B per 64 pairs beside the whole set:
     // this is the detection's peak, without the outbox that an installation in this mode lets go;
     // kernels/HistoryMapping.cu).
@@ -80,28 +82,45 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
     DeviceBuffer<bodyID_t> a, b;
     DeviceBuffer<uint8_t> meshState, persistent;
     DeviceBuffer<float> wildcards;
-    DeviceBuffer<uint32_t> slot;
+    // A pooled set's kept pairs are its late pairs, their slots as they were (the trimmed set serves
+    // no step: only the next installation reads it, through slotOf).
+    DeviceBuffer<unsigned long long> ranked, late, lateTable;
+    DeviceBuffer<uint32_t> keptRankBase;
+    const size_t keptWords = ((size_t)kept + 63) / 64;
     sized(a, kept);
     sized(b, kept);
     sized(meshState, kept);
     if (h.persistent) sized(persistent, kept);  // a set without flags keeps none
-    if (pool.active)
-        sized(slot, kept);
-    else
+    if (pool.active) {
+        sized(ranked, keptWords);
+        sized(keptRankBase, keptWords + 1);
+        sized(late, keptWords);
+        sized(lateTable, lateTableEntriesFor(kept, 0));
+        ranked.zeroAsync(stream);
+        keptRankBase.zeroAsync(stream);
+        late.zeroAsync(stream);
+        lateTable.zeroAsync(stream);
+    } else {
         sized(wildcards, (size_t)kept * W);
+    }
     if (kept)
         launch(m_keepHandedOn, blocksFor(n, THREADS), THREADS, 0, stream, h, (const unsigned long long*)marks.data(),
                (const uint32_t*)rankBase.data(), a.data(), b.data(), meshState.data(), persistent.data(),
-               wildcards.data(), slot.data());
+               wildcards.data(), late.data(), lateTable.data(), (uint32_t)(lateTable.size() - 1));
     synchronize(stream);  // the whole set's buffers are read; they go as the trimmed ones take their place
     std::swap(set.geomA, a);
     std::swap(set.geomB, b);
     std::swap(set.meshState, meshState);
     std::swap(set.persistent, persistent);
-    if (pool.active)
-        std::swap(pool.slot, slot);
-    else
+    if (pool.active) {
+        std::swap(pool.ranked, ranked);
+        std::swap(pool.rankBase, keptRankBase);
+        std::swap(pool.late, late);
+        std::swap(pool.lateTable, lateTable);
+        pool.rankedSlots = 0;
+    } else {
         std::swap(set.wildcards, wildcards);
+    }
     n = kept;
     return true;
 }
@@ -179,47 +198,40 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
                               m_oldHadPersistent ? old.persistent.data() : nullptr,
                               W,
                               m_rules.data(),
-                              m_numRules};
-    if (oldPool.active) history.slot = oldPool.slot.data();
+                              m_numRules,
+                              oldPool.slots()};
     const ContactKeys keys = keysOf(fresh, total);
     if (policy.considers(total)) {
-        // Which pairs keep a slot, and each one's slot: the marks' exclusive sum. Where no new pair
-        // takes an initial value and no old pair is persistent, from the old set's side (the
-        // marks in the new set's mesh state; kernels/HistoryMapping.cu), else every new pair is
-        // searched for (the marks in the slots, summed in place).
+        // Which pairs keep a slot, a byte each in the new set's mesh state: where no new pair takes
+        // an initial value and no old pair is persistent, from the old set's side, else every new
+        // pair is searched for (kernels/HistoryMapping.cu). Then as bits, each pair's slot its rank.
         const bool fromOldSide = m_numRules == 0 && !m_oldHadPersistent;
-        freshPool.slot.resizeDiscarding((size_t)total + 1);
-        uint32_t* slots = freshPool.slot.data();
-        uint32_t withSlot = 0;
+        uint8_t* marks = fresh.meshState.data();
         if (fromOldSide) {
-            uint8_t* marks = fresh.meshState.data();
             launch(m_markMesh, blocksFor(total, THREADS), THREADS, 0, stream, view, keys, marks);
             if (nOld) launch(m_markCarried, blocksFor(nOld, THREADS), THREADS, 0, stream, keys, history, marks);
-            prim.exclusiveSum(marks, slots, total, stream);
-            uint32_t lastSlot = 0;
-            uint8_t lastMark = 0;
-            freshPool.slot.downloadAsync(&lastSlot, 1, stream, total - 1);
-            fresh.meshState.downloadAsync(&lastMark, 1, stream, total - 1);
-            synchronize(stream);
-            withSlot = lastSlot + lastMark;
         } else {
-            launch(m_markSlots, blocksFor((size_t)total + 1, THREADS), THREADS, 0, stream, view, keys, history, slots);
-            prim.exclusiveSum(slots, slots, (size_t)total + 1, stream);
-            freshPool.slot.downloadAsync(&withSlot, 1, stream, total);
-            synchronize(stream);
+            launch(m_markSlots, blocksFor(total, THREADS), THREADS, 0, stream, view, keys, history, marks);
         }
+        const uint32_t withSlot = rankMarkedPairs(marks, total, freshPool, prim, stream);
         if (policy.chooses(total, withSlot)) {
             const size_t capacity = policy.capacityFor(withSlot, total);
-            if (capacity >= PENDING_HISTORY_SLOT)
+            if (capacity >= HISTORY_SLOT_LIMIT)
                 throwError("DoDynamics", "a contact set of " + std::to_string(total) + " pairs needs " +
-                                             std::to_string(capacity) + " history slots; at most " +
-                                             std::to_string(PENDING_HISTORY_SLOT - 1) + " fit a slot's 31 bits");
+                                             std::to_string(capacity) + " history slots; a pool holds at most " +
+                                             std::to_string(HISTORY_SLOT_LIMIT - 1));
             fresh.wildcards.release();
             freshPool.pool.resizeDiscarding(capacity * W);
             freshPool.capacity = (uint32_t)capacity;
+            freshPool.rankedSlots = withSlot;
+            freshPool.late.resizeDiscarding(freshPool.ranked.size());
+            freshPool.late.zeroAsync(stream);
+            freshPool.lateTable.resizeDiscarding(lateTableEntriesFor(capacity, withSlot));
+            freshPool.lateTable.zeroAsync(stream);
             freshPool.active = true;
             launch(fromOldSide ? m_mapMarked : m_mapPooled, blocksFor(total, THREADS), THREADS, 0, stream, view, keys,
-                   history, slots, freshPool.pool.data(), fresh.meshState.data(), freshPersistent);
+                   history, (const uint64_t*)freshPool.ranked.data(), (const uint32_t*)freshPool.rankBase.data(),
+                   freshPool.pool.data(), fresh.meshState.data(), freshPersistent);
             slotsUsed = withSlot;
             return total;
         }
@@ -229,6 +241,35 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
     launch(m_map, blocksFor(total, THREADS), THREADS, 0, stream, view, keys, history, fresh.wildcards.data(),
            fresh.meshState.data(), freshPersistent);
     return total;
+}
+
+uint32_t DeviceHistoryMapping::rankMarkedPairs(const uint8_t* marks, unsigned int n, DeviceHistoryPool& pool,
+                                               DevicePrimitives& prim, Stream stream) {
+    const size_t numWords = ((size_t)n + 63) / 64;
+    pool.ranked.resizeDiscarding(numWords);
+    pool.rankBase.resizeDiscarding(numWords + 1);
+    launch(m_packMarks, blocksFor(numWords + 1, THREADS), THREADS, 0, stream, marks, n, pool.ranked.data(),
+           pool.rankBase.data(), (unsigned int)numWords);
+    prim.exclusiveSum(pool.rankBase.data(), pool.rankBase.data(), numWords + 1, stream);
+    uint32_t marked = 0;
+    pool.rankBase.downloadAsync(&marked, 1, stream, numWords);
+    synchronize(stream);
+    return marked;
+}
+
+void DeviceHistoryMapping::fitLateTable(DeviceHistoryPool& pool, Stream stream) {
+    const size_t entries = lateTableEntriesFor(pool.capacity, pool.rankedSlots);
+    if (entries <= pool.lateTable.size()) return;
+    DeviceBuffer<unsigned long long> table;
+    table.setGroup(MemoryGroup::CONTACTS);
+    table.resize(entries, stream);
+    table.zeroAsync(stream);
+    const size_t oldEntries = pool.lateTable.size();
+    launch(m_rehashLate, blocksFor(oldEntries, THREADS), THREADS, 0, stream,
+           (const unsigned long long*)pool.lateTable.data(), (unsigned int)oldEntries, table.data(),
+           (uint32_t)(entries - 1));
+    synchronize(stream);  // the old table is read before it goes
+    std::swap(pool.lateTable, table);
 }
 
 }  // namespace deme::cuda

@@ -48,12 +48,20 @@ class DeviceHistoryMapping {
     // keeps only the pairs that hand something to the next set (pairHandsOn), where the rules of
     // kinematics/CarriedPairsRule.h allow it and it pays; n becomes the count kept. Returns whether
     // it trimmed: the set then serves no step, only the next installation (the pool keeps its
-    // slots, and the trimmed pairs theirs). `beforeTrim` runs once it is decided, before the set
+    // slots, and the trimmed pairs theirs, as late pairs). `beforeTrim` runs once it is decided, before the set
     // changes.
     bool keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHistoryPool& pool, unsigned int& n, unsigned int W,
                                DevicePrimitives& prim, Stream stream, const std::function<void()>& beforeTrim);
 
+    // `pool`'s late table made lateTableEntriesFor(pool.capacity, pool.rankedSlots) entries where it
+    // has fewer, its entries kept (CudaDynamics::growHistoryPool).
+    void fitLateTable(DeviceHistoryPool& pool, Stream stream);
+
   private:
+    // The byte marks of `n` pairs (`marks`) as `pool`'s ranked bits and their words' first ranks;
+    // returns the marked pairs' count.
+    uint32_t rankMarkedPairs(const uint8_t* marks, unsigned int n, DeviceHistoryPool& pool, DevicePrimitives& prim,
+                             Stream stream);
     // Adds the missing persistent pairs to fresh's pair arrays; returns the new count. Sets
     // m_oldHadPersistent.
     unsigned int mergePersistent(DeviceContacts& fresh, unsigned int nFresh, const DeviceContacts& old,
@@ -61,7 +69,7 @@ class DeviceHistoryMapping {
 
     CudaModule m_module;
     CudaKernel m_missing, m_merge, m_map, m_markSlots, m_mapPooled, m_markMesh, m_markCarried, m_mapMarked,
-        m_markHandedOn, m_countMarks, m_keepHandedOn;
+        m_markHandedOn, m_countMarks, m_keepHandedOn, m_packMarks, m_rehashLate;
     DeviceBuffer<unsigned int> m_isMissing, m_missingBefore, m_any;
     DeviceBuffer<bodyID_t> m_mergedA, m_mergedB;
     DeviceBuffer<ContactInitRule> m_rules;

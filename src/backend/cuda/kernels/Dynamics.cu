@@ -124,9 +124,9 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
     MeshCandidate cand[MAX_MESH_CANDIDATES];
     // In the pooled form every sphere-triangle pair has a slot (DeviceHistoryMapping).
     const HistoryPoolView& hp = s.historyPool;
-    const bool resolved = hp.slot ? resolveSphereMeshContactsWith(s, c.geomA[i], i, n, cand, MAX_MESH_CANDIDATES,
-                                                                  HistoryInPool{hp.slot, hp.pool, s.numWildcards})
-                                  : resolveSphereMeshContacts(s, i, n, cand, MAX_MESH_CANDIDATES);
+    const bool resolved = hp.ranked ? resolveSphereMeshContactsWith(s, c.geomA[i], i, n, cand, MAX_MESH_CANDIDATES,
+                                                                    HistoryInPool{hp, s.numWildcards})
+                                    : resolveSphereMeshContacts(s, i, n, cand, MAX_MESH_CANDIDATES);
     if (!resolved) raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, c.geomA[i]);
 }
 

@@ -4,17 +4,20 @@
 //   2. deme_persistent_merge: the new set with those pairs merged in, still in key order;
 //   3. deme_map_history: wildcards, mesh state and persistent flag of every pair of the new set;
 //      or, where the new set keeps its history pooled (state/HistoryPool.h), deme_mark_history_slots
-//      (which pairs keep a slot), an exclusive sum of the marks (each such pair's slot), then
-//      deme_map_history_pooled (the slots, the pool, mesh state and persistent flags). Where no
-//      contact-init rule gives new pairs values and no old pair is persistent, only the pairs that
-//      carry a history (and the sphere-triangle pairs) keep a slot, and they are found from the old
-//      set's side: deme_mark_mesh_pairs, deme_mark_carried_pairs (a search per old pair with a
-//      history, not one per new pair), a sum of the marks, deme_map_marked_history (a search per
-//      marked pair). The marks live in the new set's mesh state until the last kernel writes it.
+//      (which pairs keep a slot, a byte each in the new set's mesh state), deme_pack_marks (a bit
+//      each, and each 64 pairs' count), an exclusive sum of the counts (each 64 pairs' first rank),
+//      then deme_map_history_pooled (the pool, mesh state and persistent flags; a marked pair's slot
+//      is its rank). Where no contact-init rule gives new pairs values and no old pair is
+//      persistent, only the pairs that carry a history (and the sphere-triangle pairs) keep a slot,
+//      and they are found from the old set's side: deme_mark_mesh_pairs, deme_mark_carried_pairs
+//      (a search per old pair with a history, not one per new pair), deme_pack_marks and the sum,
+//      deme_map_marked_history (a search per marked pair). The marks live in the new set's mesh
+//      state until the last kernel writes it.
 // Before a synchronous detection, the set in use may keep only the pairs that hand something to
 // the next set (CudaDynamics::beforeDetectNow, as the CPU's backend/cpu/CarriedPairs.h):
 // deme_mark_pairs_handed_on (a bit a pair), deme_count_marks, an exclusive sum of the counts (each
-// word's first rank), deme_keep_pairs_handed_on.
+// word's first rank), deme_keep_pairs_handed_on. A pooled pool's late table is made larger by
+// deme_rehash_late_slots.
 // Compiled at run time by NVRTC.
 #include "kinematics/HistoryRules.h"
 #include "state/HistoryPool.h"
@@ -73,17 +76,12 @@ extern "C" __global__ void deme_map_history(StateView s, ContactKeys fresh, OldC
     if (freshPersistent) freshPersistent[i] = persistent;
 }
 
-// Pooled form, 1: marks[i] = 1 where pair i of the new set keeps a slot (pairKeepsHistorySlot), for
-// i < fresh.n; marks[fresh.n] = 0, so that the marks' exclusive sum ends with the slots' count.
-// old.W is at most MAX_POOLED_HISTORY.
+// Pooled form, 1: marks[i] = 1 where pair i of the new set keeps a slot (pairKeepsHistorySlot), else
+// 0. old.W is at most MAX_POOLED_HISTORY.
 extern "C" __global__ void deme_mark_history_slots(StateView s, ContactKeys fresh, OldContactHistory old,
-                                                   uint32_t* marks) {
+                                                   uint8_t* marks) {
     const size_t t = globalIndex();
-    if (t > fresh.n) return;
-    if (t == fresh.n) {
-        marks[t] = 0u;
-        return;
-    }
+    if (t >= fresh.n) return;
     const unsigned int i = (unsigned int)t;
     float h[MAX_POOLED_HISTORY];
     uint8_t meshState, persistent;
@@ -91,11 +89,30 @@ extern "C" __global__ void deme_mark_history_slots(StateView s, ContactKeys fres
     marks[i] = pairKeepsHistorySlot(s, fresh, i, h, old.W) ? 1u : 0u;
 }
 
-// Pooled form, 2: `slots` holds the marks' exclusive sum; each pair that keeps a slot takes its
-// entry as its slot and puts its history there, the others get NO_HISTORY_SLOT.
+// Both ways, 2: the byte marks of n pairs as bits, 64 pairs a word, and each word's count (0 past the
+// last word: numWords + 1 entries, so that their exclusive sum gives each word's first rank and, at
+// the end, the slots' count).
+extern "C" __global__ void deme_pack_marks(const uint8_t* marks, unsigned int n, unsigned long long* words,
+                                           uint32_t* counts, unsigned int numWords) {
+    const size_t w = globalIndex();
+    if (w > numWords) return;
+    if (w == numWords) {
+        counts[w] = 0u;
+        return;
+    }
+    unsigned long long bits = 0ull;
+    const size_t first = w * 64;
+    for (unsigned int b = 0; b < 64 && first + b < n; b++)
+        if (marks[first + b]) bits |= 1ull << b;
+    words[w] = bits;
+    counts[w] = popcount64(bits);
+}
+
+// Pooled form, 3: each pair marked in `ranked` takes its rank as its slot and puts its history
+// there; every pair takes its mesh state and flag.
 extern "C" __global__ void deme_map_history_pooled(StateView s, ContactKeys fresh, OldContactHistory old,
-                                                   uint32_t* slots, float* pool, uint8_t* freshMeshState,
-                                                   uint8_t* freshPersistent) {
+                                                   const uint64_t* ranked, const uint32_t* rankBase, float* pool,
+                                                   uint8_t* freshMeshState, uint8_t* freshPersistent) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
     const unsigned int i = (unsigned int)t;
@@ -103,11 +120,7 @@ extern "C" __global__ void deme_map_history_pooled(StateView s, ContactKeys fres
     uint8_t persistent;
     carryPairHistory(s, fresh, old, i, h, freshMeshState[i], persistent);
     if (freshPersistent) freshPersistent[i] = persistent;
-    if (!pairKeepsHistorySlot(s, fresh, i, h, old.W)) {
-        slots[i] = NO_HISTORY_SLOT;
-        return;
-    }
-    putInPool(pool, slots[i], h, old.W);
+    if (pairBit(ranked, i)) putInPool(pool, rankAt(ranked, rankBase, i), h, old.W);
 }
 
 // Pooled form, from the old set's side, 1: marks[i] = 1 for the new set's sphere-triangle pairs,
@@ -130,18 +143,17 @@ extern "C" __global__ void deme_mark_carried_pairs(ContactKeys fresh, OldContact
     if (keyAt(fresh, at, key)) marks[at] = 1u;
 }
 
-// 3: `slots` holds the marks' exclusive sum, `meshState` the marks. A marked pair takes its entry
-// as its slot and its history, mesh state and flag from the old set; the others keep no slot, no
-// mesh state (only sphere-triangle pairs have one, and they are marked) and no flag (no old pair
-// is persistent on this path).
+// 3: a pair marked in `ranked` takes its rank as its slot and its history, mesh state and flag from
+// the old set; the others keep no slot, no mesh state (only sphere-triangle pairs have one, and they
+// are marked) and no flag (no old pair is persistent on this path).
 extern "C" __global__ void deme_map_marked_history(StateView s, ContactKeys fresh, OldContactHistory old,
-                                                   uint32_t* slots, float* pool, uint8_t* meshState,
-                                                   uint8_t* freshPersistent) {
+                                                   const uint64_t* ranked, const uint32_t* rankBase, float* pool,
+                                                   uint8_t* meshState, uint8_t* freshPersistent) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
     const unsigned int i = (unsigned int)t;
-    if (!meshState[i]) {
-        slots[i] = NO_HISTORY_SLOT;
+    if (!pairBit(ranked, i)) {
+        meshState[i] = 0u;
         if (freshPersistent) freshPersistent[i] = 0u;
         return;
     }
@@ -149,7 +161,7 @@ extern "C" __global__ void deme_map_marked_history(StateView s, ContactKeys fres
     uint8_t persistent;
     carryPairHistory(s, fresh, old, i, h, meshState[i], persistent);
     if (freshPersistent) freshPersistent[i] = persistent;
-    putInPool(pool, slots[i], h, old.W);
+    putInPool(pool, rankAt(ranked, rankBase, i), h, old.W);
 }
 
 // Before a synchronous detection the pairs of the set in use (`set`, its keys, history, mesh state
@@ -174,11 +186,13 @@ extern "C" __global__ void deme_count_marks(const unsigned long long* marks, uns
 
 // 3: `rankBase` holds the counts' exclusive sum; each kept pair's ids, mesh state and flag (where the
 // set has flags), and its W floats of history (a dense set, `wildcards` given) or its slot in the
-// pool (a pooled set, `slot` given), go to entry rankAt(j) of the trimmed arrays.
+// pool (a pooled set: a late pair of the trimmed set, `keptLate` and its table given, the pool
+// unchanged), go to entry rankAt(j) of the trimmed arrays.
 extern "C" __global__ void deme_keep_pairs_handed_on(OldContactHistory set, const unsigned long long* marks,
                                                      const uint32_t* rankBase, bodyID_t* keptA, bodyID_t* keptB,
                                                      uint8_t* keptMeshState, uint8_t* keptPersistent,
-                                                     float* keptWildcards, uint32_t* keptSlot) {
+                                                     float* keptWildcards, unsigned long long* keptLate,
+                                                     unsigned long long* keptTable, uint32_t keptMask) {
     const size_t j = globalIndex();
     if (j >= set.keys.n || !((marks[j >> 6] >> (j & 63)) & 1ull)) return;
     const uint32_t k = rankAt((const uint64_t*)marks, rankBase, j);
@@ -186,12 +200,21 @@ extern "C" __global__ void deme_keep_pairs_handed_on(OldContactHistory set, cons
     keptB[k] = set.keys.geomB[j];
     keptMeshState[k] = set.meshState[j];
     if (set.persistent) keptPersistent[k] = set.persistent[j];
-    if (set.slot) {
-        keptSlot[k] = set.slot[j];
+    if (set.slots.ranked) {
+        const uint32_t slot = slotOf(set.slots, j);
+        if (slot != NO_HISTORY_SLOT && insertLateSlot(keptTable, keptMask, k, slot)) setPairBit(keptLate, k);
     } else {
         for (unsigned int w = 0; w < set.W; w++)
             keptWildcards[(size_t)k * set.W + w] = set.wildcards[(size_t)j * set.W + w];
     }
+}
+
+// A late table made larger: each entry of the old one (`oldEntries`) put in the new one (zeroed).
+extern "C" __global__ void deme_rehash_late_slots(const unsigned long long* old, unsigned int oldEntries,
+                                                  unsigned long long* table, uint32_t mask) {
+    const size_t e = globalIndex();
+    if (e >= oldEntries || old[e] == 0ull) return;
+    insertLateSlot(table, mask, (size_t)((old[e] >> 32) - 1), (uint32_t)old[e]);
 }
 
 }  // namespace deme
