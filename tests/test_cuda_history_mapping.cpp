@@ -34,40 +34,42 @@ struct Pairs {
     std::vector<bodyID_t> a, b;
 };
 
-// Byte marks ranked as DeviceHistoryMapping ranks them (deme_pack_marks, then an exclusive sum of the
-// words' counts), and each pair's slot read back through slotOf.
+// A new set's marks, a bit a pair, ranked as DeviceHistoryMapping ranks them (deme_count_marks, then
+// an exclusive sum of the words' counts); each pair's slot and mesh state (kept per slot) read back.
 struct Ranked {
-    std::vector<uint64_t> words;
+    std::vector<unsigned long long> words;
     std::vector<uint32_t> rankBase;
     size_t n = 0;
+    explicit Ranked(size_t pairs) : words((pairs + 63) / 64, 0ull), rankBase((pairs + 63) / 64 + 1, 99u), n(pairs) {}
+    // After the mark kernels: the ranks.
+    void rank() {
+        const size_t numWords = words.size();
+        runThreads(numWords + 1, [&] { deme_count_marks(words.data(), (unsigned int)numWords, rankBase.data()); });
+        uint32_t sum = 0;
+        for (uint32_t& v : rankBase) {
+            const uint32_t count = v;
+            v = sum;
+            sum += count;
+        }
+    }
+    const uint64_t* ranked() const { return (const uint64_t*)words.data(); }
     uint32_t count() const { return rankBase.back(); }
     std::vector<uint32_t> slots() const {
         RankedSlotsView v;
-        v.ranked = words.data();
+        v.ranked = ranked();
         v.rankBase = rankBase.data();
         std::vector<uint32_t> s(n);
         for (size_t i = 0; i < n; i++) s[i] = slotOf(v, i);
         return s;
     }
-};
-Ranked rankMarks(const std::vector<uint8_t>& marks) {
-    Ranked r;
-    r.n = marks.size();
-    const size_t words = (r.n + 63) / 64;
-    std::vector<unsigned long long> bits(words, 77ull);
-    r.rankBase.assign(words + 1, 99u);
-    runThreads(words + 1, [&] {
-        deme_pack_marks(marks.data(), (unsigned int)r.n, bits.data(), r.rankBase.data(), (unsigned int)words);
-    });
-    uint32_t sum = 0;
-    for (uint32_t& v : r.rankBase) {
-        const uint32_t count = v;
-        v = sum;
-        sum += count;
+    std::vector<uint8_t> meshStates(const std::vector<uint8_t>& perSlot) const {
+        const std::vector<uint32_t> s = slots();
+        std::vector<uint8_t> m(n, 0);
+        for (size_t i = 0; i < n; i++)
+            if (s[i] != NO_HISTORY_SLOT) m[i] = perSlot.at(s[i]);
+        return m;
     }
-    r.words.assign(bits.begin(), bits.end());
-    return r;
-}
+};
 
 // `n` distinct sphere pairs (a < b) among `spheres`, sorted by key.
 Pairs randomPairs(std::mt19937& rng, unsigned int spheres, size_t n) {
@@ -186,28 +188,38 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
                 oldSlot[j] = (uint32_t)oldPool.size();
                 oldPool.push_back(oldWildcards[j]);
             }
-        deme_test::HostHistoryPool oldGpuPool = deme_test::HostHistoryPool::allLate(oldSlot, 1);
-        for (const bool oldPooled : {false, true}) {
-            SCOPED_TRACE(oldPooled ? "old set pooled" : "old set dense");
+        // The old set pooled as late pairs (a trimmed set's form: mesh states per pair), and ranked
+        // (an installed set's: mesh states per slot; every old pair has a history, so every one is
+        // ranked and can keep its mesh state there).
+        deme_test::HostHistoryPool oldLate = deme_test::HostHistoryPool::allLate(oldSlot, 1);
+        deme_test::HostHistoryPool oldRanked(nOld, std::vector<bool>(nOld, true), 1);
+        ASSERT_EQ(std::count(oldWildcards.begin(), oldWildcards.end(), 0.f), 0);
+        std::copy(oldWildcards.begin(), oldWildcards.end(), oldRanked.pool.begin());
+        for (const int oldForm : {0, 1, 2}) {
+            SCOPED_TRACE(oldForm == 0 ? "old set dense" : oldForm == 1 ? "old set pooled, late" : "old set ranked");
             OldContactHistory from = history;
-            if (oldPooled) {
+            if (oldForm == 1) {
                 from.wildcards = oldPool.data();
-                from.slots = oldGpuPool.view().slots();
+                from.slots = oldLate.view().slots();
+            } else if (oldForm == 2) {
+                from.wildcards = oldRanked.pool.data();
+                from.slots = oldRanked.view().slots();
+                from.meshStateBySlot = true;  // slot j is pair j's: the per-pair states serve as per-slot ones
             }
-            std::vector<uint8_t> slotMarks(total, 9);
-            runThreads(total, [&] { deme_mark_history_slots(view, mergedKeys, from, slotMarks.data()); });
-            const Ranked r = rankMarks(slotMarks);
+            Ranked r(total);
+            runThreads(total, [&] { deme_mark_history_slots(view, mergedKeys, from, r.words.data()); });
+            r.rank();
             const uint32_t withSlot = r.count();
             std::vector<float> pool(withSlot, -9.f), expanded(total);
-            std::vector<uint8_t> pMesh = slotMarks, pPersistent(total, 9);
+            std::vector<uint8_t> slotMesh(withSlot, 9), pPersistent(total, 9);
             runThreads(total, [&] {
-                deme_map_history_pooled(view, mergedKeys, from, r.words.data(), r.rankBase.data(), pool.data(),
-                                        pMesh.data(), pPersistent.data());
+                deme_map_history_pooled(view, mergedKeys, from, r.ranked(), r.rankBase.data(), pool.data(),
+                                        slotMesh.data(), pPersistent.data());
             });
             const std::vector<uint32_t> slots = r.slots();
             expandPooledHistory(slots.data(), total, pool.data(), 1, expanded.data());
             EXPECT_EQ(expanded, wildcards);
-            EXPECT_EQ(pMesh, c.meshState);
+            EXPECT_EQ(r.meshStates(slotMesh), c.meshState);
             EXPECT_EQ(pPersistent, c.persistent);
             EXPECT_EQ((size_t)withSlot, total - (size_t)std::count(wildcards.begin(), wildcards.end(), 0.f));
             for (size_t i = 0; i < total; i++)
@@ -225,21 +237,21 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
                 deme_map_history(view, mergedKeys, plain, plainWildcards.data(), plainMesh.data(),
                                  plainPersistent.data());
             });
-            std::vector<uint8_t> marks(total, 9);
-            runThreads(total, [&] { deme_mark_mesh_pairs(view, mergedKeys, marks.data()); });
-            runThreads(nOld, [&] { deme_mark_carried_pairs(mergedKeys, plain, marks.data()); });
-            const Ranked m = rankMarks(marks);
+            Ranked m(total);
+            runThreads(total, [&] { deme_mark_mesh_pairs(view, mergedKeys, m.words.data()); });
+            runThreads(nOld, [&] { deme_mark_carried_pairs(mergedKeys, plain, m.words.data()); });
+            m.rank();
             const uint32_t count = m.count();
             std::vector<float> markedPool(count, -9.f), markedExpanded(total);
-            std::vector<uint8_t> markedPersistent(total, 9);
+            std::vector<uint8_t> markedMesh(count, 9), markedPersistent(total, 9);
             runThreads(total, [&] {
-                deme_map_marked_history(view, mergedKeys, plain, m.words.data(), m.rankBase.data(), markedPool.data(),
-                                        marks.data(), markedPersistent.data());
+                deme_map_marked_history(view, mergedKeys, plain, m.ranked(), m.rankBase.data(), markedPool.data(),
+                                        markedMesh.data(), markedPersistent.data());
             });
             const std::vector<uint32_t> marked = m.slots();
             expandPooledHistory(marked.data(), total, markedPool.data(), 1, markedExpanded.data());
             EXPECT_EQ(markedExpanded, plainWildcards);
-            EXPECT_EQ(marks, plainMesh);  // the marks became the mesh states
+            EXPECT_EQ(m.meshStates(markedMesh), plainMesh);
             EXPECT_EQ(markedPersistent, plainPersistent);
             EXPECT_EQ((size_t)count, total - (size_t)std::count(plainWildcards.begin(), plainWildcards.end(), 0.f));
             fromOldSide++;

@@ -30,8 +30,8 @@ TEST(MemoryEstimateBins, SpheresByCentreAreOneEntryEachWhereTheBackendBinsSo) {
 
 // A synchronous detection in place on the GPU runs while the set in use holds only the pairs it kept
 // (trimmed before it), and a large scratch is let go before the installation: the run's peak is the
-// larger of the trim's or installation's (the whole set of ids and mesh bytes, its slots' bits and
-// ranks, 20 B per 64 pairs, and the trim's marks, 12 B per 64 pairs, beside the kept pairs) and the detection's (its
+// larger of the trim's or installation's (the whole set of ids, its slots' bits and ranks, 20 B per
+// 64 pairs, and the trim's marks, 12 B per 64 pairs, beside the kept pairs) and the detection's (its
 // scratch and the outbox's A and B, 8 B a pair, beside the kept pairs), not their sum. Measured on an H100 at 45.8 M
 // spheres (BENCHMARKS.md, MEMORY): a peak of 175.5 device B/sphere where the sum counted 208.7.
 TEST(MemoryEstimateBins, ADetectionInPlaceCountsWhatItHoldsBeyondTheWholeSet) {
@@ -46,7 +46,7 @@ TEST(MemoryEstimateBins, ADetectionInPlaceCountsWhatItHoldsBeyondTheWholeSet) {
     trimmed.persistentFlags = false;
     ContactSetForm whole = trimmed;
     whole.trimmedBeforeDetection = false;
-    const size_t wholeSetPerPair = 2 * sizeof(bodyID_t) + 1;  // ids, mesh state
+    const size_t wholeSetPerPair = 2 * sizeof(bodyID_t);  // ids (the mesh states are per slot)
     for (size_t pairs : {(size_t)6 * s.spheres.size(), s.spheres.size() / 4}) {
         SCOPED_TRACE("pairs " + std::to_string(pairs));
         auto estimate = [&](const ContactSetForm& form, bool snapshotKept, size_t keptUpTo) {

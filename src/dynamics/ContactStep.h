@@ -153,7 +153,8 @@ DEME_HD_INLINE ContactIds contactIds(const S& s, size_t i) {
 // geometry branches drop out of that path), else ANY_CONTACT_TYPE.
 template <class Model, uint8_t KnownType, class S>
 DEME_HD_INLINE bool contactStepWithHistory(S& s, const Model& model, size_t i, const ContactIds& ids, float* wc,
-                                           float time, float dt, bool& applied, ContactLoad& load) {
+                                           const MeshStateAt& mesh, float time, float dt, bool& applied,
+                                           ContactLoad& load) {
     constexpr bool SphereSphere = KnownType == SPHERE_SPHERE;
     auto& c = s.contacts;
     // The wildcard count is a constant of the model, so history loops unroll. A short history is
@@ -167,7 +168,7 @@ DEME_HD_INLINE bool contactStepWithHistory(S& s, const Model& model, size_t i, c
     const uint8_t type = KnownType == NO_TRIANGLE_CONTACT
                              ? (stored == SPHERE_SPHERE ? (uint8_t)SPHERE_SPHERE : (uint8_t)SPHERE_ANALYTICAL)
                              : stored;
-    bool gather = type != SPHERE_TRIANGLE || (c.meshState[i] & 1u);
+    bool gather = type != SPHERE_TRIANGLE || (mesh.states[mesh.at] & 1u);
     if constexpr (DEME_VOXEL_PRETEST && !Model::kSeesApartPairs) {
         if ((SphereSphere || type == SPHERE_SPHERE) && s.voxelPretest)
             gather =
@@ -228,13 +229,14 @@ DEME_HD_INLINE bool contactStepWithHistory(S& s, const Model& model, size_t i, c
     return touching;
 }
 
-// The same, with the history where the set keeps it, per pair (the GPU's sets; the CPU's dense form).
+// The same, with the history and mesh state where the set keeps them, per pair (the GPU's dense sets).
 template <class Model, uint8_t KnownType, class S>
 DEME_HD_INLINE bool contactStepOfType(S& s, const Model& model, size_t i, const ContactIds& ids, float time, float dt,
                                       bool& applied, ContactLoad& load) {
     constexpr unsigned int W = Model::kNumContactWildcards;
     float* wc = W ? &s.contacts.wildcards[i * W] : nullptr;
-    return contactStepWithHistory<Model, KnownType>(s, model, i, ids, wc, time, dt, applied, load);
+    return contactStepWithHistory<Model, KnownType>(s, model, i, ids, wc, MeshStateAt{s.contacts.meshState, i}, time,
+                                                    dt, applied, load);
 }
 
 }  // namespace deme

@@ -68,8 +68,8 @@ DEME_HD_INLINE bool isLocalMinimum(const S& s, const double3& x, const MeshCandi
 // sphere's triangle contacts are the n contacts from `first` on (contacts are sorted by sphere, and a
 // sphere's triangle contacts come last). Only overlapping contacts can count; those are sorted in
 // `cand`, which has room for `capacity`. Returns false (changing nothing) if they do not fit.
-// `historyAt(i)`: contact i's W history floats (the CPU's pooled form gives every sphere-triangle
-// pair a slot, state/PooledHistory.h).
+// `historyAt(i)`: contact i's W history floats, `historyAt.meshState(i)` its mesh state (the pooled
+// forms give every sphere-triangle pair a slot, state/PooledHistory.h and state/HistoryPool.h).
 template <class S, class HistoryAt>
 DEME_HD_INLINE bool resolveSphereMeshContactsWith(S& s, bodyID_t a, size_t first, size_t n, MeshCandidate* cand,
                                                   size_t capacity, const HistoryAt& historyAt) {
@@ -107,21 +107,24 @@ DEME_HD_INLINE bool resolveSphereMeshContactsWith(S& s, bodyID_t a, size_t first
             }
     }
     // Bit 1: counted in the previous step; bit 0: counts now (only candidates can).
-    for (size_t k = 0; k < n; k++) c.meshState[first + k] = (uint8_t)((c.meshState[first + k] & 1u) << 1);
+    for (size_t k = 0; k < n; k++) {
+        uint8_t& state = historyAt.meshState(first + k);
+        state = (uint8_t)((state & 1u) << 1);
+    }
     for (size_t k = 0; k < m; k++)
-        if (cand[k].counts) c.meshState[cand[k].contact] |= 1u;
+        if (cand[k].counts) historyAt.meshState(cand[k].contact) |= 1u;
     // Hand-over: a contact that starts counting takes the history of the nearest contact of the
     // same mesh that stopped counting in this step, so friction carries across edges.
     const unsigned int W = s.numWildcards;
     for (size_t k = 0; k < m; k++) {
         const MeshCandidate& start = cand[k];
-        if (c.meshState[start.contact] != 1u) continue;
+        if (historyAt.meshState(start.contact) != 1u) continue;
         size_t best = n;
         double bestDist = 0.0;
         uint32_t bestTri = 0;
         for (size_t j = 0; j < n; j++) {
             const uint32_t i = (uint32_t)(first + j);
-            if (c.meshState[i] != 2u) continue;
+            if (historyAt.meshState(i) != 2u) continue;
             const uint32_t t = c.geomB[i] - triBase;
             if (s.triangles.owner[t] != start.mesh) continue;
             double3 onTri, bary;
@@ -140,17 +143,19 @@ DEME_HD_INLINE bool resolveSphereMeshContactsWith(S& s, bodyID_t a, size_t first
     return true;
 }
 
-// A contact's history where the set keeps W floats per pair.
+// A contact's history where the set keeps W floats per pair, and its mesh state (per pair).
 struct HistoryInSet {
     float* wildcards;
+    uint8_t* meshStates;
     unsigned int W;
     DEME_HD_INLINE float* operator()(size_t i) const { return wildcards + i * W; }
+    DEME_HD_INLINE uint8_t& meshState(size_t i) const { return meshStates[i]; }
 };
 
 template <class S>
 DEME_HD_INLINE bool resolveSphereMeshContacts(S& s, size_t first, size_t n, MeshCandidate* cand, size_t capacity) {
     return resolveSphereMeshContactsWith(s, s.contacts.geomA[first], first, n, cand, capacity,
-                                         HistoryInSet{s.contacts.wildcards, s.numWildcards});
+                                         HistoryInSet{s.contacts.wildcards, s.contacts.meshState, s.numWildcards});
 }
 
 }  // namespace deme

@@ -51,15 +51,17 @@ DEME_HD_INLINE bool pooledContactStep(S& s, const Model& model, size_t i, const 
     const HistoryPoolView& hp = s.historyPool;
     float3* force = s.contacts.force;
     const uint32_t slot = hp.slotOf(i);
+    const MeshStateAt mesh = hp.meshStateAt(s.contacts.meshState, i, slot);
     if (slot != NO_HISTORY_SLOT) {
         const bool touching = contactStepWithHistory<Model, KnownType>(s, model, i, ids, hp.pool + (size_t)slot * W,
-                                                                       time, dt, applied, load);
+                                                                       mesh, time, dt, applied, load);
         if (force) force[slot] = applied ? load.force : make_float3(0.f);
         return touching;
     }
     float h[W];
     for (unsigned int w = 0; w < W; w++) h[w] = 0.f;
-    const bool touching = contactStepWithHistory<Model, KnownType>(s, model, i, ids, h, time, dt, applied, load);
+    // (A pair without a slot is no sphere-triangle pair: its mesh state is not read.)
+    const bool touching = contactStepWithHistory<Model, KnownType>(s, model, i, ids, h, mesh, time, dt, applied, load);
     giveHistorySlot<W>(hp, force, i, h, applied, load);
     return touching;
 }
@@ -72,12 +74,14 @@ DEME_HD_INLINE void fillPendingHistory(S& s, const Model& model, size_t i, const
                                        float dt) {
     constexpr unsigned int W = Model::kNumContactWildcards;
     const HistoryPoolView& hp = s.historyPool;
-    if (hp.slotOf(i) != NO_HISTORY_SLOT) return;
+    const uint32_t slot = hp.slotOf(i);
+    if (slot != NO_HISTORY_SLOT) return;
     float h[W];
     for (unsigned int w = 0; w < W; w++) h[w] = 0.f;
     bool applied = false;
     ContactLoad load;
-    contactStepWithHistory<Model, KnownType>(s, model, i, ids, h, time, dt, applied, load);
+    contactStepWithHistory<Model, KnownType>(s, model, i, ids, h, hp.meshStateAt(s.contacts.meshState, i, slot), time,
+                                             dt, applied, load);
     giveHistorySlot<W>(hp, s.contacts.force, i, h, applied, load);
 }
 

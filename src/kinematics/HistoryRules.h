@@ -74,7 +74,7 @@ DEME_HD_INLINE bool pairCarriesHistory(const float* h, unsigned int W, uint8_t m
 struct OldContactHistory {
     ContactKeys keys;
     const float* wildcards;  // W per pair, or W per slot where `slot` is given
-    const uint8_t* meshState;
+    const uint8_t* meshState;   // per pair, or per ranked slot (meshStateBySlot); null: none kept
     const uint8_t* persistent;  // null: none of the old pairs is persistent
     unsigned int W;
     const ContactInitRule* rules;  // initial wildcards of pairs new to the set
@@ -83,7 +83,18 @@ struct OldContactHistory {
     // pair's slot in `wildcards`, or NO_HISTORY_SLOT where it has none; none (slots.ranked null)
     // where `wildcards` has W floats per pair.
     RankedSlotsView slots = {};
+    // The GPU's pooled form keeps the sphere-triangle pairs' mesh states per ranked slot (every such
+    // pair is ranked: state/HistoryPool.h).
+    bool meshStateBySlot = false;
 };
+
+// Old pair `at`'s mesh state.
+DEME_HD_INLINE uint8_t oldMeshState(const OldContactHistory& old, unsigned int at) {
+    if (!old.meshState) return 0;  // (none kept: a scene without triangles)
+    if (!old.meshStateBySlot) return old.meshState[at];
+    const uint64_t* ranked = old.slots.ranked;
+    return pairBit(ranked, at) ? old.meshState[rankAt(ranked, old.slots.rankBase, at)] : (uint8_t)0;
+}
 
 // Old pair `at`'s W floats, or null where it has no history (all zeros).
 DEME_HD_INLINE const float* oldPairHistory(const OldContactHistory& old, unsigned int at) {
@@ -95,8 +106,7 @@ DEME_HD_INLINE const float* oldPairHistory(const OldContactHistory& old, unsigne
 // Whether pair j of a set (read as history mapping reads an old set) hands anything to the next set.
 DEME_HD_INLINE bool pairHandsOn(const OldContactHistory& set, unsigned int j) {
     const float* h = oldPairHistory(set, j);
-    return pairCarriesHistory(h, h ? set.W : 0u, set.meshState ? set.meshState[j] : (uint8_t)0,
-                              set.persistent ? set.persistent[j] : (uint8_t)0);
+    return pairCarriesHistory(h, h ? set.W : 0u, oldMeshState(set, j), set.persistent ? set.persistent[j] : (uint8_t)0);
 }
 
 // 2a. Where pair i of the new set (keys `fresh`) was in the old set, or old.keys.n where it is new.
@@ -115,7 +125,7 @@ DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const 
     if (at < old.keys.n) {
         const float* h = oldPairHistory(old, at);
         for (unsigned int w = 0; w < old.W; w++) wildcards[w] = h ? h[w] : 0.f;
-        meshState = old.meshState ? old.meshState[at] : (uint8_t)0;  // (none kept: a scene without triangles)
+        meshState = oldMeshState(old, at);
         persistent = old.persistent ? old.persistent[at] : (uint8_t)0;
         return;
     }

@@ -59,10 +59,10 @@ size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host, bool pers
     return b;
 }
 
-// A pair's bytes in a GPU set that pools its history: its ids, mesh state and flag where kept, no
-// W floats (state/HistoryPool.h); its slot is pooledSlotBytes'.
+// A pair's bytes in a GPU set that pools its history: its ids and flag where kept, no W floats and
+// no mesh state (kept per ranked slot: state/HistoryPool.h); its slot is pooledSlotBytes'.
 size_t pooledPairBytes(const SimState& s, unsigned int W, const ContactSetForm& form) {
-    return bytesPerPair(s.contacts, W, false, form.persistentFlags) - 4 * (size_t)W;
+    return bytesPerPair(s.contacts, W, false, form.persistentFlags) - 4 * (size_t)W - sizeof(s.contacts.meshState[0]);
 }
 // The slots of a pooled GPU set of `pairs` pairs: a ranked bit and a late bit a pair and each 64
 // pairs' first rank, 20 B per 64 pairs.
@@ -215,18 +215,21 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
     // (grown to hold them where a pair has fewer than three wildcards): at most as much
     // (backend/cuda/CudaContactSets.cpp, DeviceHistoryMapping). Pooled (state/HistoryPool.h):
     // each set's slots (pooledSlotBytes), and at an installation the old pool and the fresh one,
-    // each with its late table; the forces are kept per slot.
+    // each with its late table and a mesh state per slot; the forces are kept per slot.
     const size_t forceBytes = sizeof(float3), idleWildcardBytes = 4 * (size_t)W;
     if (pooled) {
         const size_t perPair = pooledPairBytes(s, W, form);
-        const size_t pools = historySlots * (2 * 4 * (size_t)W + forceBytes) + 2 * lateTableBytes(historySlots);
+        const size_t meshState = sizeof(s.contacts.meshState[0]);
+        const size_t pools =
+            historySlots * (2 * (4 * (size_t)W + meshState) + forceBytes) + 2 * lateTableBytes(historySlots);
         // Trimmed before a synchronous detection (CudaDynamics::beforeDetectNow), where at most half
         // of the pairs have a slot and so at most about half are kept (as late pairs, in a table of
-        // their own): the whole set and the trim's marks (a bit a pair and each 64 pairs' first
-        // rank: 12 B per 64 pairs), then an installation's fresh set beside the pairs kept.
+        // their own, with their mesh states per pair): the whole set and the trim's marks (a bit a
+        // pair and each 64 pairs' first rank: 12 B per 64 pairs), then an installation's fresh set
+        // beside the pairs kept.
         if (const size_t wholeSet = trimmedWholeSetBytes(s, pairs, form))
-            return wholeSet + historySlots * perPair + pooledSlotBytes(historySlots) + lateTableBytes(historySlots) +
-                   pools;
+            return wholeSet + historySlots * (perPair + meshState) + pooledSlotBytes(historySlots) +
+                   lateTableBytes(historySlots) + pools;
         return pairs * 2 * perPair + 2 * pooledSlotBytes(pairs) + pools;
     }
     const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;

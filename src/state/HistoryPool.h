@@ -46,6 +46,9 @@ struct HistoryPoolView {
     unsigned long long* lateTable = nullptr;
     uint32_t lateMask = 0;
     float* pool = nullptr;  // W floats per slot
+    // The sphere-triangle pairs' mesh states, per ranked slot (every such pair is ranked); null: per
+    // pair, in ContactView::meshState (a trimmed set's).
+    uint8_t* meshState = nullptr;
     HistoryPoolControl* control = nullptr;
     uint32_t capacity = 0;  // slots the pool holds
 
@@ -60,6 +63,10 @@ struct HistoryPoolView {
     }
     // Pair i's slot, or NO_HISTORY_SLOT.
     DEME_HD_INLINE uint32_t slotOf(size_t i) const { return deme::slotOf(slots(), i); }
+    // Where pair i's mesh state is, `slot` its slot, `perPair` the set's per-pair states.
+    DEME_HD_INLINE MeshStateAt meshStateAt(uint8_t* perPair, size_t i, uint32_t slot) const {
+        return meshState ? MeshStateAt{meshState, slot} : MeshStateAt{perPair, i};
+    }
     // Pair i takes slot k as a late pair; false where the table is full (flagged for the host).
     DEME_HD_INLINE bool giveLateSlot(size_t i, uint32_t k) const {
         if (!insertLateSlot(lateTable, lateMask, i, k)) {
@@ -85,11 +92,16 @@ DEME_HD_INLINE bool historyPoolPaused(const HistoryPoolView& v) {
     return v.control && *static_cast<volatile const uint32_t*>(&v.control->paused) != 0u;
 }
 
-// A contact's history where the pool keeps it (every sphere-triangle pair has a slot there).
+// A contact's history where the pool keeps it (every sphere-triangle pair has a slot there), and
+// Its mesh state: per ranked slot, or per pair where the pool keeps none (perPair).
 struct HistoryInPool {
     HistoryPoolView pool;
+    uint8_t* perPair;
     unsigned int W;
     DEME_HD_INLINE float* operator()(size_t i) const { return pool.pool + (size_t)pool.slotOf(i) * W; }
+    DEME_HD_INLINE uint8_t& meshState(size_t i) const {
+        return pool.meshState ? pool.meshState[pool.slotOf(i)] : perPair[i];
+    }
 };
 
 }  // namespace deme

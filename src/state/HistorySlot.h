@@ -105,6 +105,14 @@ DEME_HD_INLINE uint32_t slotOf(const RankedSlotsView& v, size_t i) {
     return k < v.lateCount && v.latePair[k] == i ? v.lateSlot[k] : NO_HISTORY_SLOT;
 }
 
+// Where a pair's mesh state is (read for a sphere-triangle pair only): states[at], at the pair's
+// index where the set keeps a state per pair, at its slot where the GPU's pooled form keeps them per
+// ranked slot (state/HistoryPool.h); `states` may be null where the set has no sphere-triangle pair.
+struct MeshStateAt {
+    const uint8_t* states;
+    size_t at;
+};
+
 // Whether a float is +0, bit for bit (a -0 is not).
 DEME_HD_INLINE bool isPositiveZero(float v) {
 #ifdef __CUDA_ARCH__

@@ -27,8 +27,9 @@ DEME_HD_INLINE bool forcePassContact(SimState& s, const Model& model, size_t i, 
     constexpr uint8_t kType = SphereSphere ? (uint8_t)SPHERE_SPHERE : ANY_CONTACT_TYPE;
     bool applied;
     ContactLoad load;
-    const bool touching = contactStepWithHistory<Model, kType>(s, model, i, contactIdsWithA<kType>(s, i, a), history,
-                                                               time, dt, applied, load);
+    const bool touching =
+        contactStepWithHistory<Model, kType>(s, model, i, contactIdsWithA<kType>(s, i, a), history,
+                                             MeshStateAt{s.contacts.meshState.data(), i}, time, dt, applied, load);
     force = applied ? load.force : make_float3(0.f);
     torqueA = applied ? load.torqueA : make_float3(0.f);
     torqueB = applied ? load.torqueB : make_float3(0.f);

@@ -12,8 +12,10 @@ namespace {
 // A sphere-triangle pair's slot in the pooled form (every such pair has one: backend/cpu/HistoryForm.h).
 struct HistoryInPool {
     PooledHistory* pool;
+    uint8_t* meshStates;
     unsigned int W;
     float* operator()(size_t i) const { return pool->values.data() + (size_t)pool->slotOf(i) * W; }
+    uint8_t& meshState(size_t i) const { return meshStates[i]; }
 };
 
 }  // namespace
@@ -35,10 +37,11 @@ void resolveMeshContacts(SimState& s) {
             const uint32_t first = c.meshContacts[groups[g]], n = groups[g + 1] - groups[g];
             const bodyID_t a = c.pairA(first);
             if (pooled)
-                resolveSphereMeshContactsWith(s, a, first, n, cand.data(), largest, HistoryInPool{&c.pooled, W});
+                resolveSphereMeshContactsWith(s, a, first, n, cand.data(), largest,
+                                              HistoryInPool{&c.pooled, c.meshState.data(), W});
             else
                 resolveSphereMeshContactsWith(s, a, first, n, cand.data(), largest,
-                                              HistoryInSet{c.wildcards.data(), W});
+                                              HistoryInSet{c.wildcards.data(), c.meshState.data(), W});
         }
     }
 }

@@ -36,6 +36,7 @@ CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(devi
         p.late.setGroup(MemoryGroup::CONTACTS);
         p.lateTable.setGroup(MemoryGroup::CONTACTS);
         p.pool.setGroup(MemoryGroup::CONTACTS);
+        p.meshState.setGroup(MemoryGroup::CONTACTS);
     }
     m_poolPolicy = HistoryPoolPolicy::fromEnvironment();
     m_poolPolicy.modelPools = m_model.poolsHistory();

@@ -96,11 +96,13 @@ void CudaDynamics::downloadPooledHistory(ContactArrays& c) {
     const DeviceHistoryPool& p = m_pools[m_current];
     const size_t n = m_numContacts;
     // The slots' form (12 bytes per 64 pairs, two bits a pair and the late table), read on the host
-    // as the kernels read it: each pair's slot.
+    // as the kernels read it: each pair's slot; and the mesh states, per ranked slot.
     std::vector<uint64_t> ranked(p.ranked.size()), late(p.late.size());
     std::vector<uint32_t> rankBase(p.rankBase.size());
     std::vector<unsigned long long> lateTable(p.lateTable.size());
     std::vector<float> pool((size_t)p.capacity * m_W);
+    std::vector<uint8_t> meshStates(p.meshStateBySlot ? p.meshState.size() : 0);
+    if (!meshStates.empty()) p.meshState.downloadAsync(meshStates.data(), meshStates.size(), m_stream);
     p.ranked.downloadAsync((unsigned long long*)ranked.data(), ranked.size(), m_stream);
     p.rankBase.downloadAsync(rankBase.data(), rankBase.size(), m_stream);
     p.late.downloadAsync((unsigned long long*)late.data(), late.size(), m_stream);
@@ -120,6 +122,11 @@ void CudaDynamics::downloadPooledHistory(ContactArrays& c) {
     for (size_t i = 0; i < n; i++) slots[i] = slotOf(v, i);
     c.wildcards.resize(n * m_W);
     expandPooledHistory(slots.data(), n, pool.data(), m_W, c.wildcards.data());
+    if (p.meshStateBySlot) {  // per ranked slot (every sphere-triangle pair is ranked); 0 for the rest
+        c.meshState.assign(n, 0);
+        for (size_t i = 0; i < n; i++)
+            if (pairBit(v.ranked, i)) c.meshState[i] = meshStates[slots[i]];
+    }
     c.force.resize(n);
     if (forces.empty())
         std::fill(c.force.begin(), c.force.end(), float3{0.f, 0.f, 0.f});

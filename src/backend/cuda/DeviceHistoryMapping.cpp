@@ -36,7 +36,6 @@ void DeviceHistoryMapping::load(const std::string& call, const CudaCompileOption
     m_markHandedOn = m_module.kernel("deme_mark_pairs_handed_on");
     m_countMarks = m_module.kernel("deme_count_marks");
     m_keepHandedOn = m_module.kernel("deme_keep_pairs_handed_on");
-    m_packMarks = m_module.kernel("deme_pack_marks");
     m_rehashLate = m_module.kernel("deme_rehash_late_slots");
 }
 
@@ -50,14 +49,8 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
                                                  const std::function<void()>& beforeTrim) {
     if (n == 0 || !mayKeepOnlyPairsHandedOn(m_numRules > 0)) return false;
     const MemoryGroupScope group(MemoryGroup::CONTACTS);  // the marks
-    OldContactHistory h{keysOf(set, n),
-                        pool.active ? pool.pool.data() : set.wildcards.data(),
-                        set.meshState.data(),
-                        set.persistent.empty() ? nullptr : set.persistent.data(),
-                        W,
-                        nullptr,
-                        0u,
-                        pool.slots()};
+    const OldContactHistory h =
+        pool.oldHistory(set, n, W, set.persistent.empty() ? nullptr : set.persistent.data(), nullptr, 0u);
     // The marks, a bit a pair, and each word's first rank (12 B per 64 pairs beside the whole set:
     // this is the detection's peak, without the outbox that an installation in this mode lets go;
     // kernels/HistoryMapping.cu).
@@ -118,6 +111,8 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
         std::swap(pool.late, late);
         std::swap(pool.lateTable, lateTable);
         pool.rankedSlots = 0;
+        pool.meshState.release();  // the kept pairs' mesh states are per pair now
+        pool.meshStateBySlot = false;
     } else {
         std::swap(set.wildcards, wildcards);
     }
@@ -178,7 +173,6 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
                                            uint32_t& slotsUsed) {
     const unsigned int total = mergePersistent(fresh, nFresh, old, nOld, prim, stream);
     slotsUsed = 0;
-    fresh.meshState.resizeDiscarding(total);
     // Flags only where a pair may have one: an old pair had, or the model may set one.
     const bool flags = m_oldHadPersistent || m_modelWritesPersistent;
     if (flags)
@@ -190,30 +184,28 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
     // Not the per-contact forces: only the set in use holds them (CudaDynamics::install).
     if (total == 0) {
         fresh.wildcards.resizeDiscarding(0);
+        fresh.meshState.resizeDiscarding(0);
         return 0;
     }
-    OldContactHistory history{keysOf(old, nOld),
-                              oldPool.active ? oldPool.pool.data() : old.wildcards.data(),
-                              old.meshState.data(),
-                              m_oldHadPersistent ? old.persistent.data() : nullptr,
-                              W,
-                              m_rules.data(),
-                              m_numRules,
-                              oldPool.slots()};
+    const OldContactHistory history = oldPool.oldHistory(
+        old, nOld, W, m_oldHadPersistent ? old.persistent.data() : nullptr, m_rules.data(), m_numRules);
     const ContactKeys keys = keysOf(fresh, total);
     if (policy.considers(total)) {
-        // Which pairs keep a slot, a byte each in the new set's mesh state: where no new pair takes
-        // an initial value and no old pair is persistent, from the old set's side, else every new
-        // pair is searched for (kernels/HistoryMapping.cu). Then as bits, each pair's slot its rank.
+        // Which pairs keep a slot, a bit each: where no new pair takes an initial value and no old
+        // pair is persistent, from the old set's side, else every new pair is searched for
+        // (kernels/HistoryMapping.cu). Each marked pair's slot is its rank.
         const bool fromOldSide = m_numRules == 0 && !m_oldHadPersistent;
-        uint8_t* marks = fresh.meshState.data();
+        const size_t numWords = ((size_t)total + 63) / 64;
+        freshPool.ranked.resizeDiscarding(numWords);
+        freshPool.ranked.zeroAsync(stream);
+        unsigned long long* marks = freshPool.ranked.data();
         if (fromOldSide) {
             launch(m_markMesh, blocksFor(total, THREADS), THREADS, 0, stream, view, keys, marks);
             if (nOld) launch(m_markCarried, blocksFor(nOld, THREADS), THREADS, 0, stream, keys, history, marks);
         } else {
             launch(m_markSlots, blocksFor(total, THREADS), THREADS, 0, stream, view, keys, history, marks);
         }
-        const uint32_t withSlot = rankMarkedPairs(marks, total, freshPool, prim, stream);
+        const uint32_t withSlot = rankMarkedPairs(freshPool, prim, stream);
         if (policy.chooses(total, withSlot)) {
             const size_t capacity = policy.capacityFor(withSlot, total);
             if (capacity >= HISTORY_SLOT_LIMIT)
@@ -221,6 +213,9 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
                                              std::to_string(capacity) + " history slots; a pool holds at most " +
                                              std::to_string(HISTORY_SLOT_LIMIT - 1));
             fresh.wildcards.release();
+            fresh.meshState.release();  // per ranked slot
+            freshPool.meshState.resizeDiscarding(withSlot);
+            freshPool.meshStateBySlot = true;
             freshPool.pool.resizeDiscarding(capacity * W);
             freshPool.capacity = (uint32_t)capacity;
             freshPool.rankedSlots = withSlot;
@@ -231,25 +226,24 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
             freshPool.active = true;
             launch(fromOldSide ? m_mapMarked : m_mapPooled, blocksFor(total, THREADS), THREADS, 0, stream, view, keys,
                    history, (const uint64_t*)freshPool.ranked.data(), (const uint32_t*)freshPool.rankBase.data(),
-                   freshPool.pool.data(), fresh.meshState.data(), freshPersistent);
+                   freshPool.pool.data(), freshPool.meshState.data(), freshPersistent);
             slotsUsed = withSlot;
             return total;
         }
         freshPool.release();
     }
     fresh.wildcards.resizeDiscarding((size_t)total * W);
+    fresh.meshState.resizeDiscarding(total);
     launch(m_map, blocksFor(total, THREADS), THREADS, 0, stream, view, keys, history, fresh.wildcards.data(),
            fresh.meshState.data(), freshPersistent);
     return total;
 }
 
-uint32_t DeviceHistoryMapping::rankMarkedPairs(const uint8_t* marks, unsigned int n, DeviceHistoryPool& pool,
-                                               DevicePrimitives& prim, Stream stream) {
-    const size_t numWords = ((size_t)n + 63) / 64;
-    pool.ranked.resizeDiscarding(numWords);
+uint32_t DeviceHistoryMapping::rankMarkedPairs(DeviceHistoryPool& pool, DevicePrimitives& prim, Stream stream) {
+    const size_t numWords = pool.ranked.size();
     pool.rankBase.resizeDiscarding(numWords + 1);
-    launch(m_packMarks, blocksFor(numWords + 1, THREADS), THREADS, 0, stream, marks, n, pool.ranked.data(),
-           pool.rankBase.data(), (unsigned int)numWords);
+    launch(m_countMarks, blocksFor(numWords + 1, THREADS), THREADS, 0, stream,
+           (const unsigned long long*)pool.ranked.data(), (unsigned int)numWords, pool.rankBase.data());
     prim.exclusiveSum(pool.rankBase.data(), pool.rankBase.data(), numWords + 1, stream);
     uint32_t marked = 0;
     pool.rankBase.downloadAsync(&marked, 1, stream, numWords);

@@ -58,10 +58,9 @@ class DeviceHistoryMapping {
     void fitLateTable(DeviceHistoryPool& pool, Stream stream);
 
   private:
-    // The byte marks of `n` pairs (`marks`) as `pool`'s ranked bits and their words' first ranks;
-    // returns the marked pairs' count.
-    uint32_t rankMarkedPairs(const uint8_t* marks, unsigned int n, DeviceHistoryPool& pool, DevicePrimitives& prim,
-                             Stream stream);
+    // Each word's first rank of `pool`'s ranked bits (the pairs marked); returns the marked pairs'
+    // count.
+    uint32_t rankMarkedPairs(DeviceHistoryPool& pool, DevicePrimitives& prim, Stream stream);
     // Adds the missing persistent pairs to fresh's pair arrays; returns the new count. Sets
     // m_oldHadPersistent.
     unsigned int mergePersistent(DeviceContacts& fresh, unsigned int nFresh, const DeviceContacts& old,
@@ -69,7 +68,7 @@ class DeviceHistoryMapping {
 
     CudaModule m_module;
     CudaKernel m_missing, m_merge, m_map, m_markSlots, m_mapPooled, m_markMesh, m_markCarried, m_mapMarked,
-        m_markHandedOn, m_countMarks, m_keepHandedOn, m_packMarks, m_rehashLate;
+        m_markHandedOn, m_countMarks, m_keepHandedOn, m_rehashLate;
     DeviceBuffer<unsigned int> m_isMissing, m_missingBefore, m_any;
     DeviceBuffer<bodyID_t> m_mergedA, m_mergedB;
     DeviceBuffer<ContactInitRule> m_rules;

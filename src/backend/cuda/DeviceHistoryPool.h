@@ -6,6 +6,8 @@
 #include <cstdint>
 
 #include "backend/cuda/DeviceBuffer.h"
+#include "backend/cuda/DeviceState.h"
+#include "kinematics/HistoryRules.h"
 #include "runtime/HistoryPoolPolicy.h"
 #include "state/HistoryPool.h"
 
@@ -17,8 +19,12 @@ struct DeviceHistoryPool {
     DeviceBuffer<unsigned long long> late;       // a bit a pair: a slot given since, in lateTable
     DeviceBuffer<unsigned long long> lateTable;  // lateTableEntriesFor(capacity, rankedSlots) entries
     DeviceBuffer<float> pool;                    // W floats per slot, `capacity` slots
+    // The sphere-triangle pairs' mesh states, per ranked slot (rankedSlots of them), where
+    // meshStateBySlot; a trimmed set keeps them per pair (DeviceContacts::meshState).
+    DeviceBuffer<uint8_t> meshState;
     uint32_t capacity = 0, rankedSlots = 0;
     bool active = false;  // false: the set keeps W floats per pair (its wildcards)
+    bool meshStateBySlot = false;
 
     HistoryPoolView view(HistoryPoolControl* control) {
         if (!active) return HistoryPoolView{};
@@ -29,11 +35,13 @@ struct DeviceHistoryPool {
         v.lateTable = lateTable.data();
         v.lateMask = (uint32_t)(lateTable.size() - 1);
         v.pool = pool.data();
+        v.meshState = meshStateBySlot ? meshState.data() : nullptr;
         v.control = control;
         v.capacity = capacity;
         return v;
     }
-    // The slots as history mapping reads an old set's (null ranked where the set is dense).
+    // The slots as history mapping reads an old set's (null ranked where the set is dense); and the
+    // set's history as it reads it, `set` the set's per-pair arrays (n pairs).
     RankedSlotsView slots() const {
         RankedSlotsView v;
         if (!active) return v;
@@ -44,6 +52,20 @@ struct DeviceHistoryPool {
         v.lateMask = (uint32_t)(lateTable.size() - 1);
         return v;
     }
+    OldContactHistory oldHistory(const DeviceContacts& set, unsigned int n, unsigned int W, const uint8_t* persistent,
+                                 const ContactInitRule* rules, unsigned int numRules) const {
+        const bool bySlot = active && meshStateBySlot;
+        OldContactHistory h{ContactKeys{set.geomA.data(), set.geomB.data(), n},
+                            active ? pool.data() : set.wildcards.data(),
+                            bySlot ? meshState.data() : set.meshState.data(),
+                            persistent,
+                            W,
+                            rules,
+                            numRules,
+                            slots()};
+        h.meshStateBySlot = bySlot;
+        return h;
+    }
 
     void release() {
         ranked.release();
@@ -51,8 +73,10 @@ struct DeviceHistoryPool {
         late.release();
         lateTable.release();
         pool.release();
+        meshState.release();
         capacity = rankedSlots = 0;
         active = false;
+        meshStateBySlot = false;
     }
 };
 

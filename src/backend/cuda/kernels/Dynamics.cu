@@ -125,7 +125,7 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
     // In the pooled form every sphere-triangle pair has a slot (DeviceHistoryMapping).
     const HistoryPoolView& hp = s.historyPool;
     const bool resolved = hp.ranked ? resolveSphereMeshContactsWith(s, c.geomA[i], i, n, cand, MAX_MESH_CANDIDATES,
-                                                                    HistoryInPool{hp, s.numWildcards})
+                                                                    HistoryInPool{hp, c.meshState, s.numWildcards})
                                     : resolveSphereMeshContacts(s, i, n, cand, MAX_MESH_CANDIDATES);
     if (!resolved) raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, c.geomA[i]);
 }

@@ -4,15 +4,14 @@
 //   2. deme_persistent_merge: the new set with those pairs merged in, still in key order;
 //   3. deme_map_history: wildcards, mesh state and persistent flag of every pair of the new set;
 //      or, where the new set keeps its history pooled (state/HistoryPool.h), deme_mark_history_slots
-//      (which pairs keep a slot, a byte each in the new set's mesh state), deme_pack_marks (a bit
-//      each, and each 64 pairs' count), an exclusive sum of the counts (each 64 pairs' first rank),
-//      then deme_map_history_pooled (the pool, mesh state and persistent flags; a marked pair's slot
-//      is its rank). Where no contact-init rule gives new pairs values and no old pair is
-//      persistent, only the pairs that carry a history (and the sphere-triangle pairs) keep a slot,
-//      and they are found from the old set's side: deme_mark_mesh_pairs, deme_mark_carried_pairs
-//      (a search per old pair with a history, not one per new pair), deme_pack_marks and the sum,
-//      deme_map_marked_history (a search per marked pair). The marks live in the new set's mesh
-//      state until the last kernel writes it.
+//      (which pairs keep a slot, a bit each), deme_count_marks (each 64 pairs' count), an exclusive
+//      sum of the counts (each 64 pairs' first rank), then deme_map_history_pooled (the pool, the
+//      mesh states per slot and the persistent flags; a marked pair's slot is its rank). Where no
+//      contact-init rule gives new pairs values and no old pair is persistent, only the pairs that
+//      carry a history (and the sphere-triangle pairs) keep a slot, and they are found from the old
+//      set's side: deme_mark_mesh_pairs, deme_mark_carried_pairs (a search per old pair with a
+//      history, not one per new pair), the count and the sum, deme_map_marked_history (a search per
+//      marked pair).
 // Before a synchronous detection, the set in use may keep only the pairs that hand something to
 // the next set (CudaDynamics::beforeDetectNow, as the CPU's backend/cpu/CarriedPairs.h):
 // deme_mark_pairs_handed_on (a bit a pair), deme_count_marks, an exclusive sum of the counts (each
@@ -76,92 +75,78 @@ extern "C" __global__ void deme_map_history(StateView s, ContactKeys fresh, OldC
     if (freshPersistent) freshPersistent[i] = persistent;
 }
 
-// Pooled form, 1: marks[i] = 1 where pair i of the new set keeps a slot (pairKeepsHistorySlot), else
-// 0. old.W is at most MAX_POOLED_HISTORY.
+// Pooled form, 1: bit i of `ranked` (zeroed before) set where pair i of the new set keeps a slot
+// (pairKeepsHistorySlot). old.W is at most MAX_POOLED_HISTORY.
 extern "C" __global__ void deme_mark_history_slots(StateView s, ContactKeys fresh, OldContactHistory old,
-                                                   uint8_t* marks) {
+                                                   unsigned long long* ranked) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
     const unsigned int i = (unsigned int)t;
     float h[MAX_POOLED_HISTORY];
     uint8_t meshState, persistent;
     carryPairHistory(s, fresh, old, i, h, meshState, persistent);
-    marks[i] = pairKeepsHistorySlot(s, fresh, i, h, old.W) ? 1u : 0u;
+    if (pairKeepsHistorySlot(s, fresh, i, h, old.W)) setPairBit(ranked, i);
 }
 
-// Both ways, 2: the byte marks of n pairs as bits, 64 pairs a word, and each word's count (0 past the
-// last word: numWords + 1 entries, so that their exclusive sum gives each word's first rank and, at
-// the end, the slots' count).
-extern "C" __global__ void deme_pack_marks(const uint8_t* marks, unsigned int n, unsigned long long* words,
-                                           uint32_t* counts, unsigned int numWords) {
-    const size_t w = globalIndex();
-    if (w > numWords) return;
-    if (w == numWords) {
-        counts[w] = 0u;
-        return;
-    }
-    unsigned long long bits = 0ull;
-    const size_t first = w * 64;
-    for (unsigned int b = 0; b < 64 && first + b < n; b++)
-        if (marks[first + b]) bits |= 1ull << b;
-    words[w] = bits;
-    counts[w] = popcount64(bits);
-}
-
-// Pooled form, 3: each pair marked in `ranked` takes its rank as its slot and puts its history
-// there; every pair takes its mesh state and flag.
+// Pooled form, 3 (after deme_count_marks and the sum): each pair marked in `ranked` takes its rank as
+// its slot and puts its history and mesh state there; every pair takes its flag.
 extern "C" __global__ void deme_map_history_pooled(StateView s, ContactKeys fresh, OldContactHistory old,
                                                    const uint64_t* ranked, const uint32_t* rankBase, float* pool,
-                                                   uint8_t* freshMeshState, uint8_t* freshPersistent) {
+                                                   uint8_t* slotMeshState, uint8_t* freshPersistent) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
     const unsigned int i = (unsigned int)t;
     float h[MAX_POOLED_HISTORY];
-    uint8_t persistent;
-    carryPairHistory(s, fresh, old, i, h, freshMeshState[i], persistent);
+    uint8_t meshState, persistent;
+    carryPairHistory(s, fresh, old, i, h, meshState, persistent);
     if (freshPersistent) freshPersistent[i] = persistent;
-    if (pairBit(ranked, i)) putInPool(pool, rankAt(ranked, rankBase, i), h, old.W);
+    if (!pairBit(ranked, i)) return;  // (no mesh state: a sphere-triangle pair is marked)
+    const uint32_t k = rankAt(ranked, rankBase, i);
+    putInPool(pool, k, h, old.W);
+    slotMeshState[k] = meshState;
 }
 
-// Pooled form, from the old set's side, 1: marks[i] = 1 for the new set's sphere-triangle pairs,
-// else 0.
-extern "C" __global__ void deme_mark_mesh_pairs(StateView s, ContactKeys fresh, uint8_t* marks) {
+// Pooled form, from the old set's side, 1: the new set's sphere-triangle pairs marked in `ranked`
+// (zeroed before).
+extern "C" __global__ void deme_mark_mesh_pairs(StateView s, ContactKeys fresh, unsigned long long* ranked) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
-    marks[t] = contactTypeOf(s, fresh.geomB[t]) == SPHERE_TRIANGLE ? 1u : 0u;
+    if (contactTypeOf(s, fresh.geomB[t]) == SPHERE_TRIANGLE) setPairBit(ranked, t);
 }
 
 // 2: the new set's pair of old pair j's key, where j has a history that is not all +0 and the new
 // set has the pair, is marked.
-extern "C" __global__ void deme_mark_carried_pairs(ContactKeys fresh, OldContactHistory old, uint8_t* marks) {
+extern "C" __global__ void deme_mark_carried_pairs(ContactKeys fresh, OldContactHistory old,
+                                                   unsigned long long* ranked) {
     const size_t j = globalIndex();
     if (j >= old.keys.n) return;
     const float* h = oldPairHistory(old, (unsigned int)j);
     if (!h || !pairCarriesHistory(h, old.W, 0, 0)) return;
     const uint64_t key = pairKey(old.keys.geomA[j], old.keys.geomB[j]);
     const unsigned int at = keyLowerBound(fresh, key);
-    if (keyAt(fresh, at, key)) marks[at] = 1u;
+    if (keyAt(fresh, at, key)) setPairBit(ranked, at);
 }
 
-// 3: a pair marked in `ranked` takes its rank as its slot and its history, mesh state and flag from
-// the old set; the others keep no slot, no mesh state (only sphere-triangle pairs have one, and they
-// are marked) and no flag (no old pair is persistent on this path).
+// 3 (after deme_count_marks and the sum): a marked pair takes its rank as its slot and its history,
+// mesh state and flag from the old set; the others keep no slot, no mesh state (only sphere-triangle
+// pairs have one, and they are marked) and no flag (no old pair is persistent on this path).
 extern "C" __global__ void deme_map_marked_history(StateView s, ContactKeys fresh, OldContactHistory old,
                                                    const uint64_t* ranked, const uint32_t* rankBase, float* pool,
-                                                   uint8_t* meshState, uint8_t* freshPersistent) {
+                                                   uint8_t* slotMeshState, uint8_t* freshPersistent) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
     const unsigned int i = (unsigned int)t;
     if (!pairBit(ranked, i)) {
-        meshState[i] = 0u;
         if (freshPersistent) freshPersistent[i] = 0u;
         return;
     }
     float h[MAX_POOLED_HISTORY];
-    uint8_t persistent;
-    carryPairHistory(s, fresh, old, i, h, meshState[i], persistent);
+    uint8_t meshState, persistent;
+    carryPairHistory(s, fresh, old, i, h, meshState, persistent);
     if (freshPersistent) freshPersistent[i] = persistent;
-    putInPool(pool, rankAt(ranked, rankBase, i), h, old.W);
+    const uint32_t k = rankAt(ranked, rankBase, i);
+    putInPool(pool, k, h, old.W);
+    slotMeshState[k] = meshState;
 }
 
 // Before a synchronous detection the pairs of the set in use (`set`, its keys, history, mesh state
@@ -176,18 +161,19 @@ extern "C" __global__ void deme_mark_pairs_handed_on(OldContactHistory set, unsi
     atomicOr(&marks[j >> 6], 1ull << (j & 63));
 }
 
-// 2: each word's marks counted, and 0 past the last word (numWords + 1 entries), so that their
-// exclusive sum gives each word's first rank and, at the end, the count kept.
+// 2 (and the pooled mapping's count): each word's marks counted, and 0 past the last word (numWords + 1
+// entries), so that their exclusive sum gives each word's first rank and, at the end, the count
+// marked.
 extern "C" __global__ void deme_count_marks(const unsigned long long* marks, unsigned int numWords, uint32_t* counts) {
     const size_t w = globalIndex();
     if (w > numWords) return;
     counts[w] = w < numWords ? popcount64(marks[w]) : 0u;
 }
 
-// 3: `rankBase` holds the counts' exclusive sum; each kept pair's ids, mesh state and flag (where the
-// set has flags), and its W floats of history (a dense set, `wildcards` given) or its slot in the
-// pool (a pooled set: a late pair of the trimmed set, `keptLate` and its table given, the pool
-// unchanged), go to entry rankAt(j) of the trimmed arrays.
+// 3: `rankBase` holds the counts' exclusive sum; each kept pair's ids, mesh state (per pair in the
+// trimmed set) and flag (where the set has flags), and its W floats of history (a dense set,
+// `wildcards` given) or its slot in the pool (a pooled set: a late pair of the trimmed set,
+// `keptLate` and its table given, the pool unchanged), go to entry rankAt(j) of the trimmed arrays.
 extern "C" __global__ void deme_keep_pairs_handed_on(OldContactHistory set, const unsigned long long* marks,
                                                      const uint32_t* rankBase, bodyID_t* keptA, bodyID_t* keptB,
                                                      uint8_t* keptMeshState, uint8_t* keptPersistent,
@@ -198,7 +184,7 @@ extern "C" __global__ void deme_keep_pairs_handed_on(OldContactHistory set, cons
     const uint32_t k = rankAt((const uint64_t*)marks, rankBase, j);
     keptA[k] = set.keys.geomA[j];
     keptB[k] = set.keys.geomB[j];
-    keptMeshState[k] = set.meshState[j];
+    keptMeshState[k] = oldMeshState(set, (unsigned int)j);
     if (set.persistent) keptPersistent[k] = set.persistent[j];
     if (set.slots.ranked) {
         const uint32_t slot = slotOf(set.slots, j);
