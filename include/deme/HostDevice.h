@@ -28,6 +28,8 @@ typedef unsigned long long uint64_t;
 #if defined(__CUDACC__) || defined(__CUDACC_RTC__)
 #define DEME_HD __host__ __device__
 #define DEME_HD_INLINE __host__ __device__ __forceinline__
+// Kept out of line where inlined code would hold registers that a hot loop needs (a rare path).
+#define DEME_HD_NOINLINE __host__ __device__ __noinline__
 #else
 #define DEME_HD
 #if defined(__GNUC__)
@@ -37,4 +39,5 @@ typedef unsigned long long uint64_t;
 #else
 #define DEME_HD_INLINE inline
 #endif
+#define DEME_HD_NOINLINE inline
 #endif

@@ -230,6 +230,13 @@ class DynamicsBackend {
     // slots only); a later one is expected to have as large a share of its pairs with one as the
     // set in use, and a dense set in use is expected to stay dense.
     virtual size_t expectedHistorySlots(size_t pairs, unsigned int W) const = 0;
+    // Of those slots, the ones the pool keeps spare for pairs that take a history between
+    // installations (the GPU sizes its late table to them: state/HistoryPool.h); 0 where none.
+    virtual size_t expectedLateSlots(size_t pairs, unsigned int W) const {
+        (void)pairs;
+        (void)W;
+        return 0;
+    }
     // Whether the set in use keeps a persistent flag per pair (where some pair has one or the model
     // may set one; none before the first set), for the same checks: a set keeps them where the
     // model may set one or the set it is mapped from has them.

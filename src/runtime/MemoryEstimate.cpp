@@ -67,8 +67,8 @@ size_t pooledPairBytes(const SimState& s, unsigned int W, const ContactSetForm& 
 // The slots of a pooled GPU set of `pairs` pairs: a ranked bit and a late bit a pair and each 64
 // pairs' first rank, 20 B per 64 pairs.
 size_t pooledSlotBytes(size_t pairs) { return (pairs + 63) / 64 * 20; }
-// A late table for a pool of `slots` slots, at most (none of them ranked).
-size_t lateTableBytes(size_t slots) { return lateTableEntriesFor(slots, 0) * sizeof(unsigned long long); }
+// A late table for `late` late slots (state/HistoryPool.h).
+size_t lateTableBytes(size_t late) { return lateTableEntriesFor(late, 0) * sizeof(unsigned long long); }
 
 // What the GPU's trim and installation hold beside the kept pairs where a pooled set is trimmed
 // before each synchronous detection (contactSetBytes): the whole set and the trim's marks (a bit a
@@ -221,7 +221,7 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
         const size_t perPair = pooledPairBytes(s, W, form);
         const size_t meshState = sizeof(s.contacts.meshState[0]);
         const size_t pools =
-            historySlots * (2 * (4 * (size_t)W + meshState) + forceBytes) + 2 * lateTableBytes(historySlots);
+            historySlots * (2 * (4 * (size_t)W + meshState) + forceBytes) + 2 * lateTableBytes(form.lateSlots);
         // Trimmed before a synchronous detection (CudaDynamics::beforeDetectNow), where at most half
         // of the pairs have a slot and so at most about half are kept (as late pairs, in a table of
         // their own, with their mesh states per pair): the whole set and the trim's marks (a bit a
@@ -229,7 +229,7 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
         // beside the pairs kept.
         if (const size_t wholeSet = trimmedWholeSetBytes(s, pairs, form))
             return wholeSet + historySlots * (perPair + meshState) + pooledSlotBytes(historySlots) +
-                   lateTableBytes(historySlots) + pools;
+                   lateTableBytes(historySlots - std::min(historySlots, form.lateSlots)) + pools;
         return pairs * 2 * perPair + 2 * pooledSlotBytes(pairs) + pools;
     }
     const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;

@@ -37,6 +37,7 @@ constexpr size_t DENSE_HISTORY = SIZE_MAX;
 // The form a contact set takes, which the bytes it needs depend on (contactSetBytes).
 struct ContactSetForm {
     size_t historySlots = DENSE_HISTORY;  // its history dense, or pooled in this many slots
+    size_t lateSlots = 0;                 // of them, the spare ones (DynamicsBackend::expectedLateSlots)
     // Detection is synchronous and the set in use keeps only the pairs that hand something on
     // before it (kinematics/CarriedPairsRule.h): a GPU installation then holds one whole set, not two.
     bool trimmedBeforeDetection = false;

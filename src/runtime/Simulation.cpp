@@ -99,6 +99,7 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
 ContactSetForm Simulation::contactSetForm(size_t pairs) const {
     ContactSetForm f;
     f.historySlots = m_backends.dynamics->expectedHistorySlots(pairs, m_state.numWildcards);
+    f.lateSlots = m_backends.dynamics->expectedLateSlots(pairs, m_state.numWildcards);
     f.trimmedBeforeDetection = !settings.asyncDetection &&
                                mayKeepOnlyPairsHandedOn(!m_state.wildcards.contactInit.empty()) &&
                                m_backends.dynamics->trimsBeforeDetection(pairs);

@@ -61,8 +61,12 @@ struct HistoryPoolView {
         v.lateMask = lateMask;
         return v;
     }
-    // Pair i's slot, or NO_HISTORY_SLOT.
-    DEME_HD_INLINE uint32_t slotOf(size_t i) const { return deme::slotOf(slots(), i); }
+    // Pair i's slot, or NO_HISTORY_SLOT (slotOf of the slots() without the CPU's sorted late pairs:
+    // the kernels compile the table's probe only, kept out of line for the many pairs without one).
+    DEME_HD_INLINE uint32_t slotOf(size_t i) const {
+        if (pairBit(ranked, i)) return rankAt(ranked, rankBase, i);
+        return pairBit((const uint64_t*)late, i) ? lateTableSlot(lateTable, lateMask, i) : NO_HISTORY_SLOT;
+    }
     // Where pair i's mesh state is, `slot` its slot, `perPair` the set's per-pair states.
     DEME_HD_INLINE MeshStateAt meshStateAt(uint8_t* perPair, size_t i, uint32_t slot) const {
         return meshState ? MeshStateAt{meshState, slot} : MeshStateAt{perPair, i};

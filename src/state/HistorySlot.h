@@ -45,8 +45,9 @@ DEME_HD_INLINE uint32_t lateTableHome(size_t pair, uint32_t mask) {
 DEME_HD_INLINE unsigned long long lateTableEntry(size_t pair, uint32_t slot) {
     return ((unsigned long long)(pair + 1) << 32) | slot;
 }
-// Pair i's slot in the table, or NO_HISTORY_SLOT.
-DEME_HD_INLINE uint32_t lateTableSlot(const unsigned long long* table, uint32_t mask, size_t i) {
+// Pair i's slot in the table, or NO_HISTORY_SLOT. (Out of line on the GPU, as the insertion: few
+// pairs of a pass take either, and inlined they hold registers the pass's every pair needs.)
+DEME_HD_NOINLINE uint32_t lateTableSlot(const unsigned long long* table, uint32_t mask, size_t i) {
     const unsigned long long key = (unsigned long long)(i + 1);
     for (uint32_t h = lateTableHome(i, mask), probes = 0; probes <= mask; h = (h + 1) & mask, probes++) {
         const unsigned long long e = table[h];
@@ -57,7 +58,7 @@ DEME_HD_INLINE uint32_t lateTableSlot(const unsigned long long* table, uint32_t 
 }
 // Puts pair i's slot in the table (threads at once: each claims an empty entry by a compare and
 // swap). False where the table is full.
-DEME_HD_INLINE bool insertLateSlot(unsigned long long* table, uint32_t mask, size_t i, uint32_t slot) {
+DEME_HD_NOINLINE bool insertLateSlot(unsigned long long* table, uint32_t mask, size_t i, uint32_t slot) {
     const unsigned long long e = lateTableEntry(i, slot);
     for (uint32_t h = lateTableHome(i, mask), probes = 0; probes <= mask; h = (h + 1) & mask, probes++) {
 #ifdef __CUDA_ARCH__

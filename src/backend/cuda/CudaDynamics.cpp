@@ -151,7 +151,7 @@ void CudaDynamics::countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const {
     for (int g = 0; g < NUM_MEMORY_GROUPS; g++) bytes[g] = deviceBytesInGroup((MemoryGroup)g);
 }
 
-size_t CudaDynamics::expectedHistorySlots(size_t pairs, unsigned int W) const {
+size_t CudaDynamics::expectedSlotsWithHistory(size_t pairs, unsigned int W) const {
     HistoryPoolPolicy policy = m_poolPolicy;
     policy.W = W;  // (the set's, known before the first upload)
     if (!policy.considers(pairs)) return DENSE_HISTORY;
@@ -162,7 +162,17 @@ size_t CudaDynamics::expectedHistorySlots(size_t pairs, unsigned int W) const {
         // before any trim, at the new set's size.
         withSlot = (size_t)((double)m_poolControlHost.used * (double)pairs / (double)m_pairsForSlotShare + 0.5);
     }
-    return policy.chooses(pairs, withSlot) ? policy.capacityFor(withSlot, pairs) : DENSE_HISTORY;
+    return policy.chooses(pairs, withSlot) ? withSlot : DENSE_HISTORY;
+}
+
+size_t CudaDynamics::expectedHistorySlots(size_t pairs, unsigned int W) const {
+    const size_t withSlot = expectedSlotsWithHistory(pairs, W);
+    return withSlot == DENSE_HISTORY ? DENSE_HISTORY : m_poolPolicy.capacityFor(withSlot, pairs);
+}
+
+size_t CudaDynamics::expectedLateSlots(size_t pairs, unsigned int W) const {
+    const size_t withSlot = expectedSlotsWithHistory(pairs, W);
+    return withSlot == DENSE_HISTORY ? 0 : m_poolPolicy.capacityFor(withSlot, pairs) - withSlot;
 }
 
 size_t CudaDynamics::memoryAvailable() const {

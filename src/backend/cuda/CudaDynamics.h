@@ -69,6 +69,8 @@ class CudaDynamics : public DynamicsBackend {
     void countRunMemory(size_t bytes[NUM_MEMORY_GROUPS]) const override;
     size_t memoryFree() const override { return memoryAvailable(); }
     size_t expectedHistorySlots(size_t pairs, unsigned int W) const override;
+    size_t expectedLateSlots(size_t pairs, unsigned int W) const override;
+    size_t expectedSlotsWithHistory(size_t pairs, unsigned int W) const;  // DENSE_HISTORY where dense
     bool keepsPersistentFlags() const override { return !m_contacts[m_current].persistent.empty(); }
 
     // What kinematics orders snapshot, on this stream.

@@ -45,6 +45,7 @@ void CudaDynamics::finishPausedStep(const Settings& settings, bool storing) {
     const Stream st = m_stream;
     m_historyPauses++;
     if (m_poolControlHost.lost) lateTableFull();
+    const uint32_t claims = m_poolControlHost.used;
     // Every claim fits: those the pass kept (below the old capacity) and those it could not (the
     // pairs left without a slot), which the fill claims again from the old capacity on.
     const uint32_t keptClaims = m_pools[m_current].capacity;
@@ -67,7 +68,12 @@ void CudaDynamics::finishPausedStep(const Settings& settings, bool storing) {
     m_model.record(pass, fillView, m_control.data(), m_view.numClumps, m_view.numOwners - m_view.numClumps,
                    m_reduction.data(), tForce);
     pass.enqueue(st);
+    // Once filled, the counter is where the paused pass left it: the fill claims exactly the claims
+    // that pass could not keep (the same state and clock give the same decisions; checked below).
+    HistoryPoolControl filled{};
+    m_poolControl.downloadAsync(&filled, 1, st);
     HistoryPoolControl done = fill;
+    done.used = claims;
     done.filling = 0u;
     m_poolControl.uploadAsync(&done, 1, st);
     // The step's rest: integration, placement and the step's end, as the batch would have run them.
@@ -77,12 +83,11 @@ void CudaDynamics::finishPausedStep(const Settings& settings, bool storing) {
     m_control.downloadAsync(m_controlHost, 1, st);
     m_poolControl.downloadAsync(&m_poolControlHost, 1, st);
     synchronize(st);  // the host copies above stay alive until here
-    // The fill's claims are the pass's lost ones, within the grown pool: never paused again.
-    if (m_poolControlHost.lost) lateTableFull();
-    if (m_poolControlHost.used > m_pools[m_current].capacity)
-        throwError("DoDynamics", "internal: the pooled history's fill claimed " +
-                                     std::to_string(m_poolControlHost.used) + " slots of a pool of " +
-                                     std::to_string(m_pools[m_current].capacity));
+    if (filled.lost) lateTableFull();
+    if (filled.used != claims || filled.paused)
+        throwError("DoDynamics", "internal: the pooled history's fill left " + std::to_string(filled.used) +
+                                     " slots claimed where the paused pass claimed " + std::to_string(claims) +
+                                     " (a pool of " + std::to_string(m_pools[m_current].capacity) + " slots)");
 }
 
 void CudaDynamics::lateTableFull() const {
