@@ -96,8 +96,8 @@ DEME_HD_INLINE bool historyPoolPaused(const HistoryPoolView& v) {
     return v.control && *static_cast<volatile const uint32_t*>(&v.control->paused) != 0u;
 }
 
-// A contact's history where the pool keeps it (every sphere-triangle pair has a slot there), and
-// Its mesh state: per ranked slot, or per pair where the pool keeps none (perPair).
+// A contact's history where the pool keeps it (every sphere-triangle pair has a slot there), and its
+// mesh state: per ranked slot, or per pair where the pool keeps none (perPair).
 struct HistoryInPool {
     HistoryPoolView pool;
     uint8_t* perPair;
