@@ -229,6 +229,10 @@ DEME_BACKEND_TEST(MemoryEstimate, ASetTrimmedBeforeEachDetectionIsCountedOnce) {
 // the same pairs in the same form; the custom one's contacts are a byte more for each pair of every
 // set the form holds (one or two sets, and the pairs kept by a trim), nothing else differs.
 DEME_BACKEND_TEST(MemoryEstimate, PersistentFlagsAreCountedWhereTheModelMaySetThem) {
+    // Both histories dense: a custom model's set never pools its history (DeviceForceModel::
+    // poolsHistory), so a run that pools every set it may (the GPU suite's `pooled` step) would
+    // compare two forms here.
+    const ScopedEnvironmentVariable dense("DEME_POOLED_HISTORY", "0");
     auto estimate = [](bool custom) {
         DEMSolver sim;
         if (custom) declareHertzMindlinInputs(*sim.DefineContactForceModel(hertzMindlinSnippet()));
