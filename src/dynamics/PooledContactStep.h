@@ -51,17 +51,21 @@ DEME_HD_INLINE bool pooledContactStep(S& s, const Model& model, size_t i, const 
     const HistoryPoolView& hp = s.historyPool;
     float3* force = s.contacts.force;
     const uint32_t slot = hp.slotOf(i);
-    const MeshStateAt mesh = hp.meshStateAt(s.contacts.meshState, i, slot);
     if (slot != NO_HISTORY_SLOT) {
         const bool touching = contactStepWithHistory<Model, KnownType>(s, model, i, ids, hp.pool + (size_t)slot * W,
-                                                                       mesh, time, dt, applied, load);
+                                                                       hp.meshStateAt(s.contacts.meshState, i, slot),
+                                                                       time, dt, applied, load);
         if (force) force[slot] = applied ? load.force : make_float3(0.f);
         return touching;
     }
     float h[W];
     for (unsigned int w = 0; w < W; w++) h[w] = 0.f;
-    // (A pair without a slot is no sphere-triangle pair: its mesh state is not read.)
-    const bool touching = contactStepWithHistory<Model, KnownType>(s, model, i, ids, h, mesh, time, dt, applied, load);
+    // A pair without a slot is no sphere-triangle pair (every such pair of a pooled set is ranked):
+    // its step is the one without the triangle branch, which would hold registers here (ptxas, sm_90:
+    // the pass at its 64-register cap spills 242 bytes this way, 650 with the branch).
+    constexpr uint8_t kNoSlotType = KnownType == ANY_CONTACT_TYPE ? NO_TRIANGLE_CONTACT : KnownType;
+    const bool touching = contactStepWithHistory<Model, kNoSlotType>(s, model, i, ids, h, MeshStateAt{nullptr, 0}, time,
+                                                                     dt, applied, load);
     giveHistorySlot<W>(hp, force, i, h, applied, load);
     return touching;
 }
@@ -80,8 +84,8 @@ DEME_HD_INLINE void fillPendingHistory(S& s, const Model& model, size_t i, const
     for (unsigned int w = 0; w < W; w++) h[w] = 0.f;
     bool applied = false;
     ContactLoad load;
-    contactStepWithHistory<Model, KnownType>(s, model, i, ids, h, hp.meshStateAt(s.contacts.meshState, i, slot), time,
-                                             dt, applied, load);
+    constexpr uint8_t kNoSlotType = KnownType == ANY_CONTACT_TYPE ? NO_TRIANGLE_CONTACT : KnownType;
+    contactStepWithHistory<Model, kNoSlotType>(s, model, i, ids, h, MeshStateAt{nullptr, 0}, time, dt, applied, load);
     giveHistorySlot<W>(hp, s.contacts.force, i, h, applied, load);
 }
 
