@@ -58,7 +58,8 @@ struct HostHistoryPool {
         old.swap(table);
         for (unsigned long long e : old)
             if (e)
-                deme::insertLateSlot(table.data(), (uint32_t)(table.size() - 1), (size_t)((e >> 32) - 1), (uint32_t)e);
+                deme::insertLateSlot(table.data(), (uint32_t)(table.size() - 1), deme::lateEntryPair(e),
+                                     deme::lateEntrySlot(e));
     }
     deme::HistoryPoolView view() {
         deme::HistoryPoolView v;

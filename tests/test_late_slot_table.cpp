@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "runtime/HistoryPoolPolicy.h"
+#include "state/HistoryPool.h"
 #include "state/HistorySlot.h"
 
 using namespace deme;
@@ -27,32 +28,34 @@ TEST(LateSlotTable, EntriesAreAPowerOfTwoAtLeastTwiceTheLateSlots) {
     }
 }
 
-// Pairs spread over 2^32 (the top ones too) inserted at half load: each found with its slot, every
-// other pair absent; inserted again into a larger table (the host's rehash), the same; a full table
-// refuses the next pair.
+// Pairs spread over 2^33 (the top ones too: sets past 2^32 pairs), slots up to 2^31 - 1, inserted
+// at half load: each found with its slot, every other pair absent; inserted again into a larger table
+// (the host's rehash, through the entries' decoding), the same; a full table refuses the next pair.
 TEST(LateSlotTable, EveryInsertedPairIsFoundWithItsSlotAndNoOther) {
-    std::mt19937 rng(11);
-    std::uniform_int_distribution<uint32_t> pick(0u, 0xFFFFFFFEu);
-    std::map<uint32_t, uint32_t> truth;
+    std::mt19937_64 rng(11);
+    const size_t top = (size_t(1) << 33) - 2;  // the largest pair an entry holds
+    std::uniform_int_distribution<size_t> pick(0, top);
+    std::map<size_t, uint32_t> truth;
     const uint32_t late = 3000;
     std::vector<unsigned long long> table(lateTableEntriesFor(late, 0), 0ull);
     const uint32_t mask = (uint32_t)(table.size() - 1);
     for (uint32_t k = 0; truth.size() < late; k++) {
-        const uint32_t pair = truth.size() < 3 ? 0xFFFFFFFEu - (uint32_t)truth.size() : pick(rng);
+        const size_t pair = truth.size() < 3 ? top - truth.size() : pick(rng);
         if (truth.count(pair)) continue;
-        truth[pair] = k + 1000;
-        ASSERT_TRUE(insertLateSlot(table.data(), mask, pair, k + 1000));
+        const uint32_t slot = truth.size() == 3 ? HISTORY_SLOT_LIMIT - 1 : k + 1000;
+        truth[pair] = slot;
+        ASSERT_TRUE(insertLateSlot(table.data(), mask, pair, slot));
     }
     for (const auto& [pair, slot] : truth) ASSERT_EQ(lateTableSlot(table.data(), mask, pair), slot) << pair;
     for (int t = 0; t < 100000; t++) {
-        const uint32_t pair = pick(rng);
+        const size_t pair = pick(rng);
         if (!truth.count(pair)) ASSERT_EQ(lateTableSlot(table.data(), mask, pair), NO_HISTORY_SLOT) << pair;
     }
     std::vector<unsigned long long> larger(4 * table.size(), 0ull);
     for (unsigned long long e : table)
         if (e)
             ASSERT_TRUE(
-                insertLateSlot(larger.data(), (uint32_t)(larger.size() - 1), (size_t)((e >> 32) - 1), (uint32_t)e));
+                insertLateSlot(larger.data(), (uint32_t)(larger.size() - 1), lateEntryPair(e), lateEntrySlot(e)));
     for (const auto& [pair, slot] : truth)
         ASSERT_EQ(lateTableSlot(larger.data(), (uint32_t)(larger.size() - 1), pair), slot) << pair;
     std::vector<unsigned long long> small(64, 0ull);

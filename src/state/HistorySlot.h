@@ -36,15 +36,19 @@ struct RankedSlotsView {
 };
 
 // The GPU's late table: pairs given a slot between two installations, each an entry
-// (pair + 1) << 32 | slot (0: empty) at its hash or after it (linear probing), so that a table
-// of zeros is empty. Its host keeps it at least twice the entries it can get (the pool's slots
-// past the ranked ones), so that a probe ends soon and an insertion always finds room.
+// (pair + 1) << 31 | slot (0: empty) at its hash or after it (linear probing), so that a table
+// of zeros is empty; a slot takes 31 bits (a pool holds fewer than 2^31, HISTORY_SLOT_LIMIT) and a
+// pair 33, so that sets past 2^32 pairs need no other entry. Its host keeps it at least twice the
+// entries it can get (the pool's slots past the ranked ones), so that a probe ends soon and an
+// insertion always finds room.
 DEME_HD_INLINE uint32_t lateTableHome(size_t pair, uint32_t mask) {
     return (uint32_t)(((uint64_t)pair * 0x9E3779B97F4A7C15ull) >> 32) & mask;
 }
 DEME_HD_INLINE unsigned long long lateTableEntry(size_t pair, uint32_t slot) {
-    return ((unsigned long long)(pair + 1) << 32) | slot;
+    return ((unsigned long long)(pair + 1) << 31) | slot;
 }
+DEME_HD_INLINE size_t lateEntryPair(unsigned long long e) { return (size_t)(e >> 31) - 1; }
+DEME_HD_INLINE uint32_t lateEntrySlot(unsigned long long e) { return (uint32_t)(e & 0x7FFFFFFFull); }
 // Pair i's slot in the table, or NO_HISTORY_SLOT. (Out of line on the GPU, as the insertion: few
 // pairs of a pass take either, and inlined they hold registers the pass's every pair needs.)
 DEME_HD_NOINLINE uint32_t lateTableSlot(const unsigned long long* table, uint32_t mask, size_t i) {
@@ -52,7 +56,7 @@ DEME_HD_NOINLINE uint32_t lateTableSlot(const unsigned long long* table, uint32_
     for (uint32_t h = lateTableHome(i, mask), probes = 0; probes <= mask; h = (h + 1) & mask, probes++) {
         const unsigned long long e = table[h];
         if (e == 0ull) return NO_HISTORY_SLOT;
-        if ((e >> 32) == key) return (uint32_t)e;
+        if ((e >> 31) == key) return lateEntrySlot(e);
     }
     return NO_HISTORY_SLOT;
 }

@@ -200,7 +200,7 @@ extern "C" __global__ void deme_rehash_late_slots(const unsigned long long* old,
                                                   unsigned long long* table, uint32_t mask) {
     const size_t e = globalIndex();
     if (e >= oldEntries || old[e] == 0ull) return;
-    insertLateSlot(table, mask, (size_t)((old[e] >> 32) - 1), (uint32_t)old[e]);
+    insertLateSlot(table, mask, lateEntryPair(old[e]), lateEntrySlot(old[e]));
 }
 
 }  // namespace deme
