@@ -4,6 +4,7 @@
 
 #include "DetectionScenes.h"
 #include "kinematics/BinGridSizing.h"
+#include "runtime/HistoryPoolPolicy.h"
 #include "runtime/MemoryEstimate.h"
 
 using namespace deme;
@@ -65,4 +66,25 @@ TEST(MemoryEstimateBins, ADetectionInPlaceCountsWhatItHoldsBeyondTheWholeSet) {
         EXPECT_EQ(estimate(whole, false, 0).bytes[det], estimate(whole, false, SIZE_MAX).bytes[det]);
         EXPECT_EQ(kept.bytes[det], estimate(whole, false, SIZE_MAX).bytes[det]);
     }
+}
+
+// A pooled GPU set's late tables (state/HistoryPool.h) are counted for the spare slots its pools keep
+// (ContactSetForm::lateSlots): at an installation the old pool's and the fresh one's, each a power of
+// two at least twice those slots (lateTableEntriesFor), 8 bytes an entry; nothing else changes. The
+// CPU keeps no late table.
+TEST(MemoryEstimateBins, APooledGpuSetCountsALateTableForEachPoolsSpareSlots) {
+    const Scene scene = randomScene(3, 1500);
+    SimState s = detectionState(scene, "MemoryEstimateBins");
+    s.numWildcards = 4;
+    const size_t pairs = 6 * s.spheres.size();
+    ContactSetForm none;
+    none.historySlots = 20000;
+    none.persistentFlags = false;
+    ContactSetForm spare = none;
+    spare.lateSlots = 10000;
+    const size_t table = lateTableEntriesFor(10000, 0) * sizeof(unsigned long long);
+    ASSERT_EQ(table, 32768u * 8u);
+    EXPECT_EQ(contactSetBytes(s, true, pairs, spare) - contactSetBytes(s, true, pairs, none),
+              2 * (table - lateTableEntriesFor(0, 0) * sizeof(unsigned long long)));
+    EXPECT_EQ(contactSetBytes(s, false, pairs, spare), contactSetBytes(s, false, pairs, none));
 }
