@@ -61,11 +61,10 @@ struct HistoryPoolView {
         v.lateMask = lateMask;
         return v;
     }
-    // Pair i's slot, or NO_HISTORY_SLOT (slotOf of the slots() without the CPU's sorted late pairs:
-    // the kernels compile the table's probe only, kept out of line for the many pairs without one).
+    // Pair i's slot, or NO_HISTORY_SLOT (the kernels compile the GPU's lookup only, not the CPU's
+    // sorted late pairs that slotOf(slots()) would also hold).
     DEME_HD_INLINE uint32_t slotOf(size_t i) const {
-        if (pairBit(ranked, i)) return rankAt(ranked, rankBase, i);
-        return pairBit((const uint64_t*)late, i) ? lateTableSlot(lateTable, lateMask, i) : NO_HISTORY_SLOT;
+        return rankedOrLateSlot(ranked, rankBase, (const uint64_t*)late, lateTable, lateMask, i);
     }
     // Where pair i's mesh state is, `slot` its slot, `perPair` the set's per-pair states.
     DEME_HD_INLINE MeshStateAt meshStateAt(uint8_t* perPair, size_t i, uint32_t slot) const {

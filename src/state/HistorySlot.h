@@ -103,9 +103,17 @@ DEME_HD_INLINE uint32_t lateAtOrAfter(const uint32_t* latePair, uint32_t lateCou
     return lo;
 }
 
+// The GPU's form: a ranked pair's rank, else a late pair's entry in the table, else NO_HISTORY_SLOT
+// (so that a pair without a history reads two bits and looks nothing up).
+DEME_HD_INLINE uint32_t rankedOrLateSlot(const uint64_t* ranked, const uint32_t* rankBase, const uint64_t* late,
+                                         const unsigned long long* lateTable, uint32_t lateMask, size_t i) {
+    if (pairBit(ranked, i)) return rankAt(ranked, rankBase, i);
+    return pairBit(late, i) ? lateTableSlot(lateTable, lateMask, i) : NO_HISTORY_SLOT;
+}
+
 DEME_HD_INLINE uint32_t slotOf(const RankedSlotsView& v, size_t i) {
+    if (v.lateTable) return rankedOrLateSlot(v.ranked, v.rankBase, v.late, v.lateTable, v.lateMask, i);
     if (pairBit(v.ranked, i)) return rankAt(v.ranked, v.rankBase, i);
-    if (v.lateTable) return pairBit(v.late, i) ? lateTableSlot(v.lateTable, v.lateMask, i) : NO_HISTORY_SLOT;
     const uint32_t k = lateAtOrAfter(v.latePair, v.lateCount, i);
     return k < v.lateCount && v.latePair[k] == i ? v.lateSlot[k] : NO_HISTORY_SLOT;
 }

@@ -70,7 +70,6 @@ class CudaDynamics : public DynamicsBackend {
     size_t memoryFree() const override { return memoryAvailable(); }
     size_t expectedHistorySlots(size_t pairs, unsigned int W) const override;
     size_t expectedLateSlots(size_t pairs, unsigned int W) const override;
-    size_t expectedSlotsWithHistory(size_t pairs, unsigned int W) const;  // DENSE_HISTORY where dense
     bool keepsPersistentFlags() const override { return !m_contacts[m_current].persistent.empty(); }
 
     // What kinematics orders snapshot, on this stream.
@@ -82,6 +81,9 @@ class CudaDynamics : public DynamicsBackend {
     bool kernelsFromCache() const { return m_fromCache; }
 
   private:
+    // The slots of a set of `pairs` pairs expected to hold a history (DENSE_HISTORY: the set will be
+    // dense), for expectedHistorySlots and expectedLateSlots.
+    size_t expectedSlotsWithHistory(size_t pairs, unsigned int W) const;
     void select() const;
     void compileKernels(const ModelLayout& layout);
     void prepareFamilyMotion(const FamilyRules& families);
