@@ -20,6 +20,7 @@
 #include "dynamics/KinematicCache.h"
 #include "backend/cpu/ContactDetector.h"
 #include "kinematics/DormantRules.h"
+#include "runtime/DetectionSlabs.h"
 #include "runtime/FamilyRules.h"
 
 #include "BackendFixture.h"
@@ -70,14 +71,16 @@ struct EmulatedBins {
 // first: on a GPU their order is the atomics', and the per-bin sort must put each bin's items in
 // increasing order whatever it was.
 // `lanes` threads an item, as CudaKinematics::detect launches them (DetectionLanes.h).
+// In slabs (kinematics/BinSlabs.h) the bins of the layers `layers` only, numBins of them.
 void emulateBinning(EmulatedBins& b, const StateView& v, const DetectionArgs& args, BinnedKind kind,
-                    const bodyID_t* ids, unsigned int n, size_t numBins, unsigned int lanes = 1) {
+                    const bodyID_t* ids, unsigned int n, size_t numBins, unsigned int lanes = 1,
+                    LayerRange layers = LayerRange{0, std::numeric_limits<int>::max()}) {
     b.start.assign(numBins + 2, 0);
-    runThreads((size_t)n * lanes, [&] { deme_bin_count(v, args, kind, ids, n, lanes, b.start.data()); });
+    runThreads((size_t)n * lanes, [&] { deme_bin_count(v, args, kind, ids, n, lanes, layers, b.start.data()); });
     exclusiveSum(b.start);
     b.items.assign(b.start[numBins + 1], 0);
     runThreadsReversed((size_t)n * lanes,
-                       [&] { deme_bin_scatter(v, args, kind, ids, n, lanes, b.start.data(), b.items.data()); });
+                       [&] { deme_bin_scatter(v, args, kind, ids, n, lanes, layers, b.start.data(), b.items.data()); });
     runThreads(numBins, [&] { deme_bin_sort(b.start.data(), numBins, b.items.data()); });
 }
 
@@ -123,24 +126,9 @@ struct EmulatedDetection {
     DetectedContacts contacts;
 };
 
-// How CudaKinematics::detect spreads the spheres' work over threads (DetectionLanes.h): threads an
-// item in registration; the radius from which a sphere is wide, and the threads a wide sphere's
-// search takes; threads a sphere in the search of the others. The default is a thread an item.
-struct Spread {
-    unsigned int binLanes = 1;
-    float wideRadius = std::numeric_limits<float>::infinity();
-    unsigned int wideLanes = cuda::WIDE_SPHERE_LANES;
-    unsigned int searchLanes = 1;
-};
-
-// CudaKinematics::detect; with `dormant` (1 per dormant family) and `movable` (1 per owner that
-// can move) as DeviceDormantRegistry::prepare, without them a full search; spread as `spread` says
-// (but a thread a sphere with the registry, as on the GPU).
-EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double margin, const uint8_t* mask,
-                                const float* extra, const uint8_t* dormant = nullptr,
-                                const uint8_t* movable = nullptr, Spread spread = Spread{}) {
-    // A sheared cell's image layers displaced by the state's offset, as CudaKinematics::detect.
-    const BinGrid grid = withShearOffset(sceneGrid, s.frame.periodic);
+// The state as the detection kernels read it (CudaKinematics::detect's view, positions from the
+// cache).
+StateView detectionView(SimState& s) {
     StateView v{};
     v.frame = s.frame;  // periodic axes, if any
     v.owners.family = s.owners.family.data();
@@ -159,6 +147,28 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     v.numSpheres = (uint32_t)s.spheres.size();
     v.numAnalytical = (uint32_t)s.analytical.size();
     v.numTriangles = (uint32_t)s.triangles.size();
+    return v;
+}
+
+// How CudaKinematics::detect spreads the spheres' work over threads (DetectionLanes.h): threads an
+// item in registration; the radius from which a sphere is wide, and the threads a wide sphere's
+// search takes; threads a sphere in the search of the others. The default is a thread an item.
+struct Spread {
+    unsigned int binLanes = 1;
+    float wideRadius = std::numeric_limits<float>::infinity();
+    unsigned int wideLanes = cuda::WIDE_SPHERE_LANES;
+    unsigned int searchLanes = 1;
+};
+
+// CudaKinematics::detect; with `dormant` (1 per dormant family) and `movable` (1 per owner that
+// can move) as DeviceDormantRegistry::prepare, without them a full search; spread as `spread` says
+// (but a thread a sphere with the registry, as on the GPU).
+EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double margin, const uint8_t* mask,
+                                const float* extra, const uint8_t* dormant = nullptr, const uint8_t* movable = nullptr,
+                                Spread spread = Spread{}) {
+    // A sheared cell's image layers displaced by the state's offset, as CudaKinematics::detect.
+    const BinGrid grid = withShearOffset(sceneGrid, s.frame.periodic);
+    const StateView v = detectionView(s);
     const unsigned int nS = v.numSpheres, nT = v.numTriangles;
     DetectionArgs args{grid, margin, extra, mask, {}, {}, nullptr, nullptr, sharedExtraMarginOf(extra)};
     // Spheres by centre wherever the rule allows, whatever the scene's size (CudaKinematics::detect
@@ -201,8 +211,8 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
         });
     else
         runThreads(nSearched, [&] {
-            deme_pair_search(v, args, dormantBins, ids, nSearched, spread.wideRadius, offset.data(),
-                             (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr);
+            deme_pair_search(v, args, dormantBins, ids, nSearched, spread.wideRadius, wholeGridSlab(grid).searched,
+                             offset.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr);
         });
     runThreads((size_t)nWide * lanes, [&] {
         deme_pair_search_wide(v, args, wide.data(), nWide, lanes, offset.data(), (const unsigned int*)nullptr,
@@ -226,8 +236,8 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
         });
     } else {
         runThreads(nSearched, [&] {
-            deme_pair_search(v, args, dormantBins, ids, nSearched, spread.wideRadius, (unsigned int*)nullptr,
-                             offset.data(), c.geomA.data(), c.geomB.data());
+            deme_pair_search(v, args, dormantBins, ids, nSearched, spread.wideRadius, wholeGridSlab(grid).searched,
+                             (unsigned int*)nullptr, offset.data(), c.geomA.data(), c.geomB.data());
         });
     }
     if (nWide) {
@@ -257,6 +267,64 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
         stableSortPairs(keys, idx, sortedKeys, sortedIdx);
         runThreads(total,
                    [&] { deme_pairs_from_keys(sortedKeys.data(), total, bBits, c.geomA.data(), c.geomB.data()); });
+    }
+    return r;
+}
+
+// CudaKinematics::detect in `slabs` slabs of bin layers (kinematics/BinSlabs.h; spheres by their
+// centres, a thread an item, no registry): each slab's bins made, its spheres' partners counted; the
+// offsets; each slab's bins made again and its spheres' partners filled. Also the largest slab's
+// bins (starts and entries, spheres' and triangles'), in 4-byte words.
+struct SlabDetection {
+    DetectedContacts contacts;
+    size_t largestBinWords = 0;
+};
+SlabDetection emulateDetectInSlabs(SimState& s, const BinGrid& grid, double margin, const uint8_t* mask,
+                                   const float* extra, int slabs) {
+    const StateView v = detectionView(s);
+    const unsigned int nS = v.numSpheres, nT = v.numTriangles;
+    DetectionArgs args{grid, margin, extra, mask, {}, {}, nullptr, nullptr, sharedExtraMarginOf(extra)};
+    const float largest = *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end());
+    args.centreReach = centreReachFor(grid, margin, extra, (double)largest);
+    EXPECT_TRUE(slabsPossible(grid, args.centreReach));
+    const int halo = slabHalo(grid, args.centreReach);
+    std::vector<double3> triLo(nT), triHi(nT);
+    args.triLo = triLo.data();
+    args.triHi = triHi.data();
+    runThreads(nT, [&] { deme_triangle_boxes(v, args, triLo.data(), triHi.data()); });
+    EmulatedBins spheres, triangles;
+    SlabDetection r;
+    auto binSlab_ = [&](const BinSlab& slab) {
+        const size_t n = slab.numBins(grid);
+        emulateBinning(spheres, v, args, BINNED_SPHERES, nullptr, nS, n, 1u, slab.binned);
+        emulateBinning(triangles, v, args, BINNED_TRIANGLES, nullptr, nT, n, 1u, slab.binned);
+        args.sphereBins = BinsView{spheres.start.data(), spheres.items.data(), slab.firstBin(grid)};
+        args.triangleBins = BinsView{triangles.start.data(), triangles.items.data(), slab.firstBin(grid)};
+        r.largestBinWords = std::max(r.largestBinWords, spheres.start.size() + spheres.items.size() +
+                                                            triangles.start.size() + triangles.items.size());
+    };
+    const DormantBinsView none{nullptr, nullptr, 0.0};
+    const float noWide = std::numeric_limits<float>::infinity();
+    std::vector<unsigned int> offset(nS + 1, 0);
+    for (int k = 0; k < slabs; k++) {
+        const BinSlab slab = binSlab(grid, halo, slabs, k);
+        binSlab_(slab);
+        runThreads(nS, [&] {
+            deme_pair_search(v, args, none, nullptr, nS, noWide, slab.searched, offset.data(),
+                             (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr);
+        });
+    }
+    exclusiveSum(offset);
+    DetectedContacts& c = r.contacts;
+    c.geomA.assign(offset[nS], 0);
+    c.geomB.assign(offset[nS], 0);
+    for (int k = 0; k < slabs; k++) {
+        const BinSlab slab = binSlab(grid, halo, slabs, k);
+        binSlab_(slab);
+        runThreads(nS, [&] {
+            deme_pair_search(v, args, none, nullptr, nS, noWide, slab.searched, (unsigned int*)nullptr, offset.data(),
+                             c.geomA.data(), c.geomB.data());
+        });
     }
     return r;
 }
@@ -353,6 +421,44 @@ TEST(CudaDetectionKernels, MatchTheCpuDetectorExactly) {
         }
     }
     EXPECT_EQ(cases, 12);
+}
+
+// Detection in slabs of bin layers (kinematics/BinSlabs.h): each slab's spheres searched against
+// that slab's bins only (its layers and a halo either side), twice (count, then fill), give the CPU
+// detector's contact list pair for pair, in 2, 3 and as many slabs as layers (one layer each, where
+// the halo is most of a slab), with meshes; in 3 or more slabs the largest slab's bins are fewer than
+// the whole grid's.
+TEST(CudaDetectionKernels, SlabsFindTheCpuDetectorsPairs) {
+    const DetectionRules dr;
+    int cases = 0;
+    for (unsigned seed : {4u, 5u}) {
+        SimState s = detectionState(sceneWithMeshes(seed, 1200), "CudaDetectionKernels");
+        for (double binSize : {0.0032, 0.0045}) {
+            const BinGrid grid = makeBinGrid(s, binSize);
+            ASSERT_GE(grid.nz, 6);
+            for (double margin : {0.0, 1e-4}) {
+                SCOPED_TRACE(testing::Message() << "seed " << seed << ", bin " << binSize << ", margin " << margin);
+                const float largest = *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end());
+                ASSERT_GT(centreReachFor(grid, margin, dr.extra, (double)largest), 0.0);  // by centres
+                ContactDetector det;
+                DetectedContacts cpu;
+                double binning = 0.0, search = 0.0;
+                det.detect(s, grid, margin, dr.rules.contactMask(), dr.extra, cpu, binning, search);
+                const EmulatedDetection whole = emulateDetect(s, grid, margin, dr.rules.contactMask(), dr.extra);
+                const size_t wholeWords = whole.spheres.start.size() + whole.spheres.items.size() +
+                                          whole.triangles.start.size() + whole.triangles.items.size();
+                for (int slabs : {2, 3, grid.nz}) {
+                    SCOPED_TRACE(testing::Message() << slabs << " slabs of " << grid.nz << " layers");
+                    const SlabDetection d =
+                        emulateDetectInSlabs(s, grid, margin, dr.rules.contactMask(), dr.extra, slabs);
+                    expectSameList(s, d.contacts, cpu, 20);
+                    if (slabs >= 3) EXPECT_LT(d.largestBinWords, wholeWords);
+                    cases++;
+                }
+            }
+        }
+    }
+    EXPECT_EQ(cases, 24);
 }
 
 // Periodic axes (physics/Periodic.h): the kernels wrap bins around the periodic faces and compare
@@ -616,11 +722,13 @@ TEST(CudaDetectionKernels, BinStartsOfAMostlyEmptyGrid) {
                 for (int x = lo[3 * i]; x <= hi[3 * i]; x++) entries.push_back({(unsigned int)binIndex(g, x, y, z), i});
     std::sort(entries.begin(), entries.end());
     std::vector<unsigned int> start(numBins + 2, 0);
-    runThreads(3, [&] { deme_bin_count(none, args, BINNED_TRIANGLES, nullptr, 3, 1u, start.data()); });
+    const LayerRange whole = wholeGridSlab(g).binned;
+    runThreads(3, [&] { deme_bin_count(none, args, BINNED_TRIANGLES, nullptr, 3, 1u, whole, start.data()); });
     exclusiveSum(start);
     ASSERT_EQ(start[numBins + 1], 17u);
     std::vector<unsigned int> items(17, 99);
-    runThreadsReversed(3, [&] { deme_bin_scatter(none, args, BINNED_TRIANGLES, nullptr, 3, 1u, start.data(), items.data()); });
+    runThreadsReversed(
+        3, [&] { deme_bin_scatter(none, args, BINNED_TRIANGLES, nullptr, 3, 1u, whole, start.data(), items.data()); });
     runThreads(numBins, [&] { deme_bin_sort(start.data(), numBins, items.data()); });
     for (size_t b = 0; b <= numBins; b++) {
         const auto first = std::lower_bound(entries.begin(), entries.end(), std::make_pair((unsigned int)b, 0u));
@@ -634,4 +742,34 @@ TEST(CudaDetectionKernels, BinStartsOfAMostlyEmptyGrid) {
     ASSERT_EQ(start[shared + 1] - start[shared], 2u);
     EXPECT_EQ(items[start[shared]], 0u);
     EXPECT_EQ(items[start[shared] + 1], 1u);
+
+    // A slab of layers [21, 30) (kinematics/BinSlabs.h): the boxes cut to it, its bins' starts from
+    // layer 21's first bin on: the entries of z = 21 only, as above.
+    const LayerRange slab{21, 30};
+    const size_t slabBins = 4 * 4 * 9, first = firstBinOfLayer(g, 21);
+    EXPECT_EQ(first, (size_t)binIndex(g, 0, 0, 21));
+    std::vector<unsigned int> slabStart(slabBins + 2, 0);
+    runThreads(3, [&] { deme_bin_count(none, args, BINNED_TRIANGLES, nullptr, 3, 1u, slab, slabStart.data()); });
+    exclusiveSum(slabStart);
+    std::vector<unsigned int> slabItems(slabStart[slabBins + 1], 99);
+    runThreadsReversed(3, [&] {
+        deme_bin_scatter(none, args, BINNED_TRIANGLES, nullptr, 3, 1u, slab, slabStart.data(), slabItems.data());
+    });
+    runThreads(slabBins, [&] { deme_bin_sort(slabStart.data(), slabBins, slabItems.data()); });
+    std::vector<std::pair<unsigned int, unsigned int>> inSlab;
+    for (const auto& e : entries)
+        if (e.first >= first) inSlab.push_back({e.first - (unsigned int)first, e.second});
+    ASSERT_EQ(inSlab.size(), 9u);  // items 0 and 1: 4 bins each at z = 21; item 2: 1
+    ASSERT_EQ(slabItems.size(), inSlab.size());
+    for (size_t b = 0; b <= slabBins; b++) {
+        const auto at = std::lower_bound(inSlab.begin(), inSlab.end(), std::make_pair((unsigned int)b, 0u));
+        ASSERT_EQ(slabStart[b], (unsigned int)(at - inSlab.begin())) << "slab bin " << b;
+    }
+    for (size_t k = 0; k < inSlab.size(); k++) EXPECT_EQ(slabItems[k], inSlab[k].second) << "slab entry " << k;
+    // A view of the slab reads bin (1, 1, 21)'s two items by its index in the whole grid.
+    const BinsView view{slabStart.data(), slabItems.data(), first};
+    const uint64_t bin = binIndex(g, 1, 1, 21);
+    ASSERT_EQ(view.end(bin) - view.first(bin), 2u);
+    EXPECT_EQ(slabItems[view.first(bin)], 0u);
+    EXPECT_EQ(slabItems[view.first(bin) + 1], 1u);
 }

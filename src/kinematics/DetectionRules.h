@@ -35,9 +35,15 @@ namespace deme {
 
 // Items registered in bins: the items of each bin (bin b's are items[start[b] .. start[b + 1]),
 // ascending). Which bins an item covers is not stored: it follows from the item's box (sphereBinBox,
-// triangleBinBox), computed where it is needed (24 bytes per sphere less than keeping it).
+// triangleBinBox), computed where it is needed (24 bytes per sphere less than keeping it). A
+// detection in slabs (kinematics/BinSlabs.h) holds one slab's bins, from bin firstBin on: `start`
+// is indexed from there.
 struct BinsView {
     const uint32_t *start, *items;
+    uint64_t firstBin = 0;
+    // Bin b's first entry and its end (the next bin's first).
+    DEME_HD uint32_t first(uint64_t b) const { return start[b - firstBin]; }
+    DEME_HD uint32_t end(uint64_t b) const { return start[b - firstBin + 1]; }
 };
 
 // What detection reads besides the state.
@@ -244,8 +250,8 @@ DEME_HD_INLINE void spherePartnersInBin(const S& s, const DetectionArgs& a, cons
                                         int z, F&& f) {
     const BinGrid& g = a.grid;
     const uint64_t bin = binIndex(g, x, y, z);
-    const uint32_t e1 = a.sphereBins.start[bin + 1];
-    for (uint32_t e = firstEntryAbove(a.sphereBins, a.sphereBins.start[bin], e1, A.id); e < e1; e++) {
+    const uint32_t e1 = a.sphereBins.end(bin);
+    for (uint32_t e = firstEntryAbove(a.sphereBins, a.sphereBins.first(bin), e1, A.id); e < e1; e++) {
         // The geometric tests first: most entries fail them (spheres out of reach, or pairs another
         // bin reports), and they need only b's position and radius, read side by side; b's owner and
         // family are looked up for the rest.
@@ -276,7 +282,8 @@ DEME_HD_INLINE void trianglePartnersInBin(const S& s, const DetectionArgs& a, co
                                           int z, F&& f) {
     if (a.triangleBins.start == nullptr) return;
     const uint64_t bin = binIndex(a.grid, x, y, z);
-    for (uint32_t e = a.triangleBins.start[bin]; e < a.triangleBins.start[bin + 1]; e++) {
+    const uint32_t e1 = a.triangleBins.end(bin);
+    for (uint32_t e = a.triangleBins.first(bin); e < e1; e++) {
         const uint32_t tri = a.triangleBins.items[e];
         const bodyID_t oT = s.triangles.owner[tri];
         if (!A.maskRow[s.owners.family[oT]]) continue;

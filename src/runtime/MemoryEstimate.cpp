@@ -12,6 +12,7 @@
 
 #include "dynamics/StepBatch.h"
 #include "kinematics/DetectionRules.h"
+#include "runtime/DetectionSlabs.h"
 #include "runtime/EnvironmentCount.h"
 #include "runtime/HistoryPoolPolicy.h"
 #include "runtime/MemoryAccounting.h"
@@ -157,11 +158,18 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         // Work::detect; the bins an item covers are computed from its box, not stored). (kT on a
         // second GPU also copies the spheres' owners and radii there, 8 B per sphere not counted.)
         // A detection holds them while it runs, so they count, whether or not it lets them go after.
-        detection = (snapshotKept ? nS * 24 + nO : 0) + nS * 4 + (size_t)(4.0 * (byCentre ? (double)nS : entries)) +
-                    4 * (bins + 1);
-        // Triangles, where there are any: their global boxes (2 double3), entries and their own
-        // bins' starts.
-        if (nT) detection += nT * 48 + (size_t)(4.0 * triEntries) + 4 * (bins + 1);
+        // By centres the bins are made in slabs of layers where the whole grid's would pass a bound
+        // (runtime/DetectionSlabs.h): one slab's starts and its share of the entries are held at
+        // once. Planned here with the largest halo binning by centres allows (a reach of 3/4 of a
+        // bin: the margin is not known), so that the slabs counted are never thinner than the run's.
+        const int kinds = nT ? 2 : 1;
+        const double allEntries = (byCentre ? (double)nS : entries) + (nT ? triEntries : 0.0);
+        const double slabReach = 0.75 * grid.edge.z;
+        const int slabs = byCentre ? detectionSlabCount(grid, slabReach, kinds, (double)nS, (double)nS) : 1;
+        detection = (snapshotKept ? nS * 24 + nO : 0) + nS * 4 +
+                    (size_t)slabBinBytes(grid, slabReach, slabs, kinds, allEntries);
+        // Triangles, where there are any: their global boxes (2 double3).
+        if (nT) detection += nT * 48;
         // The snapshot's triangle vertices and analytical components.
         if (snapshotKept) detection += nT * 72 + s.analytical.size() * 48;
         // A synchronous detection in place runs while the set in use holds only the pairs it kept

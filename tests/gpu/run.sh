@@ -3,7 +3,7 @@
 # runs the CUDA unit tests and the CPU/GPU comparisons (GpuParity.*), and the cuda instances of the
 # backend tests (Suite.Name/cuda, tests/BackendFixture.h); their CPU instances are CI's.
 # Logs go to $OUT (default ./gpu-test-out).
-#   tests/gpu/run.sh [build|baseline|unit|suite|pooled|pooledab|python|output|bench|small|sweep|graphsteps|smallab|discharge|mixerab|profile-small|profile-step|activebox|profile-box|memory|shear|chute|timing|gpus|earlyab|settled|profile|compile|validation|filter ...]
+#   tests/gpu/run.sh [build|baseline|unit|suite|pooled|slabs|pooledab|python|output|bench|small|sweep|graphsteps|smallab|discharge|mixerab|profile-small|profile-step|activebox|profile-box|memory|shear|chute|timing|gpus|earlyab|settled|profile|compile|validation|filter ...]
 #   (default: build unit suite python)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -115,6 +115,16 @@ for step in "${steps[@]}"; do
             -R '/cuda$|^demo_' ${SUITE_EXCLUDE:+-E "$SUITE_EXCLUDE"} --timeout 400 --output-on-failure >"$OUT/pooled.log" 2>&1
         echo "pooled suite (cuda instances and demos, every history pooled, no spare slot): rc $?"
         grep -E 'tests passed|\(Failed\)|\(Timeout\)|\(SEGFAULT\)|Exception' "$OUT/pooled.log" | head -40
+        ;;
+    slabs)
+        # The suite's step with every detection that bins spheres by their centres made in 3 slabs of
+        # bin layers (runtime/DetectionSlabs.h; at lab scale detection bins by boxes, and searches a
+        # sphere with several threads: here by centres and a thread a sphere, as at scale).
+        DEME_CUDA_CENTRE_BINNING=1 DEME_CUDA_SEARCH_LANES=1 DEME_CUDA_WIDE_SPHERES=0 DEME_DETECTION_SLABS=3 \
+            DEME_BACKEND=cuda ctest --test-dir build-gpu -j"${SUITE_JOBS:-8}" -R '/cuda$|^demo_' \
+            ${SUITE_EXCLUDE:+-E "$SUITE_EXCLUDE"} --timeout 400 --output-on-failure >"$OUT/slabs.log" 2>&1
+        echo "slabs suite (cuda instances and demos, detection in 3 slabs where spheres bin by centres): rc $?"
+        grep -E 'tests passed|\(Failed\)|\(Timeout\)|\(SEGFAULT\)|Exception' "$OUT/slabs.log" | head -40
         ;;
     pooledab)
         # The settled mixer (the `settled` step's command, r = POOLED_R, default 0.004) with every

@@ -16,6 +16,7 @@
 #include "backend/cuda/EmbeddedKernel.h"
 #include "backend/cuda/NvrtcCompiler.h"
 #include "kinematics/DetectionRules.h"
+#include "runtime/DetectionSlabs.h"
 #include "runtime/IndexLimits.h"
 #include "runtime/RebuiltArrays.h"
 #include "state/StateView.h"
@@ -269,7 +270,6 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     v.numAnalytical = numAnalytical;
     v.numTriangles = numTriangles;
     const unsigned int nS = numSpheres, nT = numTriangles;
-    const uint64_t numBins = grid.numBins();
     DetectionArgs args{withShearOffset(grid, v.frame.periodic),
                        o.detectionMargin(),
                        familyExtraMargin.data(),
@@ -305,50 +305,73 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     const float searchWideFrom = nWide ? wideRadius : std::numeric_limits<float>::infinity();
     const unsigned long long wideThreads = (unsigned long long)nWide * WIDE_SPHERE_LANES;
 
-    // 1. Bins of every geometry enlarged by its margin: of items ids[0, n) (all `items` if null), by
-    // a counting sort (kernels/Detection.cu, deme_bin_count): 4 bytes per entry and per bin.
-    auto binItems = [&](DeviceBins& b, BinnedKind kind, const bodyID_t* ids, unsigned int n, unsigned int itemLanes) {
-        b.start.resizeDiscarding(numBins + 2);
+    // Bins in slabs of layers where a scene's whole grid of them would hold more than a slab's bound
+    // (kinematics/BinSlabs.h; a sphere by its centre, one thread each, no registry, no wide sphere):
+    // the bins of each slab are made twice, once to count its spheres' partners and once, after the
+    // outbox is sized, to fill them. Otherwise one slab, the whole grid, as before.
+    const int kinds = nT ? 2 : 1;
+    const bool slabbable = args.centreReach > 0.0 && !useDormant && lanes == 1 && sLanes == 1 && nWide == 0;
+    const int slabs =
+        slabbable ? detectionSlabCount(grid, args.centreReach, kinds, (double)nSearched, (double)nSearched) : 1;
+    const int halo = slabs > 1 ? slabHalo(grid, args.centreReach) : 0;
+    auto slabAt = [&](int k) { return slabs > 1 ? binSlab(grid, halo, slabs, k) : wholeGridSlab(grid); };
+
+    // 1. Bins of every geometry enlarged by its margin, in the layers of `slab`: of items ids[0, n)
+    // (all `items` if null), by a counting sort (kernels/Detection.cu, deme_bin_count): 4 bytes per
+    // entry and per bin.
+    auto binItems = [&](DeviceBins& b, BinnedKind kind, const bodyID_t* ids, unsigned int n, unsigned int itemLanes,
+                        const BinSlab& slab) {
+        const uint64_t slabBins = slab.numBins(grid);
+        b.start.resizeDiscarding(slabBins + 2);
         b.start.zeroAsync(stream);
         const unsigned long long threads = (unsigned long long)n * itemLanes;
         if (n)
             launch(kBinCount, blocksFor(threads, THREADS), THREADS, 0, stream, v, args, (unsigned int)kind, ids, n,
-                   itemLanes, b.start.data());
-        const unsigned int entries = scanCounts(b.start, numBins + 2, "bin entries", FEWER_BIN_ENTRIES_REMEDY);
+                   itemLanes, slab.binned, b.start.data());
+        const unsigned int entries = scanCounts(b.start, slabBins + 2, "bin entries", FEWER_BIN_ENTRIES_REMEDY);
         b.items.resizeDiscarding(entries);
         if (entries) {
-            launch(kBinScatter, blocksFor(threads, THREADS), THREADS, 0, stream, v, args, (unsigned int)kind, ids,
-                   n, itemLanes, b.start.data(), b.items.data());
-            launch(kBinSort, blocksFor(numBins, THREADS), THREADS, 0, stream, (const unsigned int*)b.start.data(),
-                   (unsigned long long)numBins, b.items.data());
+            launch(kBinScatter, blocksFor(threads, THREADS), THREADS, 0, stream, v, args, (unsigned int)kind, ids, n,
+                   itemLanes, slab.binned, b.start.data(), b.items.data());
+            launch(kBinSort, blocksFor(slabBins, THREADS), THREADS, 0, stream, (const unsigned int*)b.start.data(),
+                   (unsigned long long)slabBins, b.items.data());
         }
     };
-    binItems(sphereBins, BINNED_SPHERES, ids, nSearched, lanes);
     triLo.resizeDiscarding(nT);
     triHi.resizeDiscarding(nT);
     args.triLo = triLo.data();
     args.triHi = triHi.data();
-    // No triangles, no bins for them (and no host round trip to size them).
-    if (nT) {
-        launch(kTriBoxes, blocksFor(nT, THREADS), THREADS, 0, stream, v, args, triLo.data(), triHi.data());
-        binItems(triBins, BINNED_TRIANGLES, (const bodyID_t*)nullptr, nT, 1u);
-    }
+    if (nT) launch(kTriBoxes, blocksFor(nT, THREADS), THREADS, 0, stream, v, args, triLo.data(), triHi.data());
+    // A slab's bins, spheres' and triangles' (no triangles, no bins for them, and no host round trip
+    // to size them), into the arguments the search reads.
+    double binning = 0.0;
+    auto binSlabItems = [&](const BinSlab& slab) {
+        const double b0 = now();
+        binItems(sphereBins, BINNED_SPHERES, ids, nSearched, lanes, slab);
+        if (nT) binItems(triBins, BINNED_TRIANGLES, (const bodyID_t*)nullptr, nT, 1u, slab);
+        const uint64_t first = slab.firstBin(grid);
+        args.sphereBins = BinsView{sphereBins.start.data(), sphereBins.items.data(), first};
+        if (nT) args.triangleBins = BinsView{triBins.start.data(), triBins.items.data(), first};
+        binning += now() - b0;
+    };
+    binSlabItems(slabAt(0));
     synchronize(stream);
-    const double t1 = now();
-    r.binningSeconds = t1 - t0;
+    binning = now() - t0;  // the first slab's binning and everything before it; later slabs' add theirs
 
-    // 2. Pair search: count, offsets, fill.
-    args.sphereBins = BinsView{sphereBins.start.data(), sphereBins.items.data()};
-    if (nT) args.triangleBins = BinsView{triBins.start.data(), triBins.items.data()};
+    // 2. Pair search: count, offsets, fill (slab by slab).
     pairOffset.resizeDiscarding(nSearched + 1);
     pairOffset.zeroAsync(stream);
-    if (nSearched && sLanes > 1)
-        launch(kPairSearchLanes, blocksFor(laneThreads, THREADS), THREADS, 0, stream, v, args, nSearched, sLanes,
-               searchWideFrom, pairOffset.data(), (const unsigned int*)nullptr, (unsigned int*)nullptr,
-               (bodyID_t*)nullptr);
-    else if (nSearched)
-        launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
-               searchWideFrom, pairOffset.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr);
+    for (int k = 0; k < slabs; k++) {
+        if (k > 0) binSlabItems(slabAt(k));
+        if (nSearched && sLanes > 1)
+            launch(kPairSearchLanes, blocksFor(laneThreads, THREADS), THREADS, 0, stream, v, args, nSearched, sLanes,
+                   searchWideFrom, pairOffset.data(), (const unsigned int*)nullptr, (unsigned int*)nullptr,
+                   (bodyID_t*)nullptr);
+        else if (nSearched)
+            launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
+                   searchWideFrom, slabAt(k).searched, pairOffset.data(), (const unsigned int*)nullptr,
+                   (bodyID_t*)nullptr, (bodyID_t*)nullptr);
+    }
     if (nWide)
         launch(kPairSearchWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, args,
                (const bodyID_t*)wideSpheres.data(), nWide, WIDE_SPHERE_LANES, pairOffset.data(),
@@ -375,9 +398,14 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
         launch(kPairOrder, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, nSearched, searchWideFrom,
                (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data());
     } else if (total) {
-        launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
-               searchWideFrom, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(), dst.geomA.data(),
-               dst.geomB.data());
+        // In slabs the first slab's bins are made again (the last slab's are held); in one, they
+        // are still there.
+        for (int k = 0; k < slabs; k++) {
+            if (slabs > 1) binSlabItems(slabAt(k));
+            launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
+                   searchWideFrom, slabAt(k).searched, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(),
+                   dst.geomA.data(), dst.geomB.data());
+        }
     }
     if (total && nWide) {
         // The wide spheres' lanes fill their partners in no order; then each one's into contact-set
@@ -405,7 +433,8 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     // Between synchronous detections the steps hold the GPU alone: a large scene's bins and counts
     // go (4 B per sphere each, and per bin), to be made again by the next detection.
     if (inPlace && scratchBytes() > keepScratchUpTo) releaseScratch();
-    r.searchSeconds = now() - t1;
+    r.binningSeconds = binning;
+    r.searchSeconds = now() - t0 - binning;
     r.order = o;
     r.numPairs = total;
 }

@@ -3,6 +3,7 @@
 // (DeviceKinematics). Compiled at run time by NVRTC. With dormant spheres (the active box,
 // kinematics/DormantRules.h) the moving spheres are listed once (`ids`, ascending) and only they are
 // binned and searched; a null `ids` means every sphere.
+#include "kinematics/BinSlabs.h"
 #include "kinematics/DetectionRules.h"
 #include "kinematics/DormantRules.h"
 #include "state/StateView.h"
@@ -38,24 +39,32 @@ __device__ inline BinBox binnedBox(const StateView& s, const DetectionArgs& a, u
 // `lanes` threads share an item (thread t: item t / lanes, its box's rows t % lanes, + lanes, ...):
 // at lab scale one thread walking a large sphere's hundreds of bins was a detection's critical path
 // (docs/cuda-backend.md, "Detection at lab scale"); 1 is a thread per item.
+// A detection in slabs (kinematics/BinSlabs.h) bins the layers `layers` only: each item's box cut to
+// them, `start` indexed from their first bin.
 extern "C" __global__ void deme_bin_count(StateView s, DetectionArgs a, unsigned int kind, const bodyID_t* ids,
-                                          unsigned int n, unsigned int lanes, unsigned int* start) {
+                                          unsigned int n, unsigned int lanes, LayerRange layers, unsigned int* start) {
     const size_t t = globalIndex(), k = t / lanes;
     if (k >= n) return;
     const BinGrid& g = a.grid;
-    forEachBinOfRows(g, binnedBox(s, a, kind, ids ? (size_t)ids[k] : k), (unsigned int)(t % lanes), lanes,
-                     [&](int x, int y, int z) { atomicAdd(&start[binIndex(g, x, y, z) + 1], 1u); });
+    BinBox box = binnedBox(s, a, kind, ids ? (size_t)ids[k] : k);
+    if (!clipToLayers(g, box, layers)) return;
+    const uint64_t first = firstBinOfLayer(g, layers.from);  // 0 for the whole grid
+    forEachBinOfRows(g, box, (unsigned int)(t % lanes), lanes,
+                     [&](int x, int y, int z) { atomicAdd(&start[binIndex(g, x, y, z) - first + 1], 1u); });
 }
 
 extern "C" __global__ void deme_bin_scatter(StateView s, DetectionArgs a, unsigned int kind, const bodyID_t* ids,
-                                            unsigned int n, unsigned int lanes, unsigned int* start,
+                                            unsigned int n, unsigned int lanes, LayerRange layers, unsigned int* start,
                                             unsigned int* items) {
     const size_t t = globalIndex(), k = t / lanes;
     if (k >= n) return;
     const BinGrid& g = a.grid;
     const size_t i = ids ? (size_t)ids[k] : k;
-    forEachBinOfRows(g, binnedBox(s, a, kind, i), (unsigned int)(t % lanes), lanes, [&](int x, int y, int z) {
-        items[atomicAdd(&start[binIndex(g, x, y, z) + 1], 1u)] = (unsigned int)i;
+    BinBox box = binnedBox(s, a, kind, i);
+    if (!clipToLayers(g, box, layers)) return;
+    const uint64_t first = firstBinOfLayer(g, layers.from);  // 0 for the whole grid
+    forEachBinOfRows(g, box, (unsigned int)(t % lanes), lanes, [&](int x, int y, int z) {
+        items[atomicAdd(&start[binIndex(g, x, y, z) - first + 1], 1u)] = (unsigned int)i;
     });
 }
 
@@ -87,14 +96,17 @@ extern "C" __global__ void deme_bin_counts(const unsigned int* keys, unsigned in
 // its dormant partners as (lower, higher) pairs, which deme_pairs_from_keys puts in order after a
 // sort. With `outB` null, counts them into count[k]; otherwise writes them from offset[k] to
 // offset[k + 1] (the exclusive sum of the counts, which may have been taken in place). Spheres of
-// radius `wideRadius` or more are left to deme_pair_search_wide (count[k] stays 0 here).
+// radius `wideRadius` or more are left to deme_pair_search_wide (count[k] stays 0 here). A
+// detection in slabs searches the spheres whose centres' bins lie in the layers `searched` only
+// (the others' counts stay as they are: another slab's).
 extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, DormantBinsView d, const bodyID_t* ids,
-                                            unsigned int n, float wideRadius, unsigned int* count,
+                                            unsigned int n, float wideRadius, LayerRange searched, unsigned int* count,
                                             const unsigned int* offset, bodyID_t* outA, bodyID_t* outB) {
     const size_t k = globalIndex();
     if (k >= n) return;
     const bodyID_t sa = ids ? ids[k] : (bodyID_t)k;
     if (s.spheres.radius[sa] >= wideRadius) return;
+    if (!isWholeGrid(a.grid, searched) && !searched.holds(pointBin(a.grid, sphereCentre(s, sa)).lo[2])) return;
     if (outB == nullptr) {
         count[k] = spherePartners(s, a, sa, nullptr, 0u) + (d.start ? dormantPartners(s, a, d, sa, nullptr, 0u) : 0u);
         return;
