@@ -315,6 +315,14 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
         slabbable ? detectionSlabCount(grid, args.centreReach, kinds, (double)nSearched, (double)nSearched) : 1;
     const int halo = slabs > 1 ? slabHalo(grid, args.centreReach) : 0;
     auto slabAt = [&](int k) { return slabs > 1 ? binSlab(grid, halo, slabs, k) : wholeGridSlab(grid); };
+    if (slabs > 1) {
+        // Room for the thickest slab's starts at once: grown slab by slab (by half again each time)
+        // they would hold more than any slab needs.
+        uint64_t thickest = 0;
+        for (int k = 0; k < slabs; k++) thickest = std::max(thickest, slabAt(k).numBins(grid));
+        sphereBins.start.reserve(thickest + 2);
+        if (nT) triBins.start.reserve(thickest + 2);
+    }
 
     // 1. Bins of every geometry enlarged by its margin, in the layers of `slab`: of items ids[0, n)
     // (all `items` if null), by a counting sort (kernels/Detection.cu, deme_bin_count): 4 bytes per
