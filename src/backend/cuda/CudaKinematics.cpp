@@ -18,6 +18,7 @@
 #include "kinematics/DetectionRules.h"
 #include "runtime/DetectionSlabs.h"
 #include "runtime/IndexLimits.h"
+#include "runtime/MemoryEstimate.h"
 #include "runtime/RebuiltArrays.h"
 #include "state/StateView.h"
 
@@ -96,6 +97,7 @@ struct CudaKinematics::Work {
     DeviceBuffer<unsigned int> wideCursor;  // each wide sphere's partners written so far
     DeviceBuffer<unsigned int> laneCursor;  // each sphere's, where several threads search it
     DeviceBuffer<uint64_t> countSum;        // scanCounts's total in 64 bits
+    size_t lastPairs = 0;                   // the last detection's pairs (plans the next one's slabs)
 
     ~Work() {
         if (stream && cudaStreamDestroy(toCuda(stream)) != cudaSuccess) cudaGetLastError();
@@ -305,14 +307,28 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     const float searchWideFrom = nWide ? wideRadius : std::numeric_limits<float>::infinity();
     const unsigned long long wideThreads = (unsigned long long)nWide * WIDE_SPHERE_LANES;
 
-    // Bins in slabs of layers where a scene's whole grid of them would hold more than a slab's bound
-    // (kinematics/BinSlabs.h; a sphere by its centre, one thread each, no registry, no wide sphere):
-    // the bins of each slab are made twice, once to count its spheres' partners and once, after the
-    // outbox is sized, to fill them. Otherwise one slab, the whole grid, as before.
+    // Bins in slabs of layers where a scene's whole grid of them would not fit in the device's free
+    // memory beside the offsets and the outbox's pairs (as many as the last detection found, and a
+    // quarter more; the estimate's six a sphere at the first) (runtime/DetectionSlabs.h; a sphere by
+    // its centre, one thread each, no registry, no wide sphere): the bins of each slab are made
+    // twice, once to count its spheres' partners and once, after the outbox is sized, to fill them.
+    // Otherwise one slab, the whole grid, as before.
     const int kinds = nT ? 2 : 1;
     const bool slabbable = args.centreReach > 0.0 && !useDormant && lanes == 1 && sLanes == 1 && nWide == 0;
-    const int slabs =
-        slabbable ? detectionSlabCount(grid, args.centreReach, kinds, (double)nSearched, (double)nSearched) : 1;
+    int slabs = 1;
+    if (slabbable) {
+        size_t freeBytes = 0, totalBytes = 0;
+        DEME_CUDA_CHECK(CALL, cudaMemGetInfo(&freeBytes, &totalBytes));
+        // Within DEME_MEMORY_LIMIT where set: what the run may still take.
+        if (const size_t limit = memoryLimit(0, CALL)) {
+            const size_t held = deviceBytesAllocated();
+            freeBytes = std::min(freeBytes, limit > held ? limit - held : (size_t)0);
+        }
+        const double pairs = lastPairs ? 1.25 * (double)lastPairs : ESTIMATED_PAIRS_PER_SPHERE * (double)nSearched;
+        const double besides = 4.0 * ((double)nSearched + 1.0) + 2.0 * sizeof(bodyID_t) * pairs;
+        slabs = detectionSlabCount(grid, args.centreReach, kinds, (double)nSearched, (double)nSearched, besides,
+                                   (double)freeBytes);
+    }
     const int halo = slabs > 1 ? slabHalo(grid, args.centreReach) : 0;
     auto slabAt = [&](int k) { return slabs > 1 ? binSlab(grid, halo, slabs, k) : wholeGridSlab(grid); };
     if (slabs > 1) {
@@ -445,6 +461,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     r.searchSeconds = now() - t0 - binning;
     r.order = o;
     r.numPairs = total;
+    lastPairs = total;
 }
 
 CudaKinematics::CudaKinematics(int kTDevice, int dTDevice, const DeviceState& source, Stream dtStream)
