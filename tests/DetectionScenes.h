@@ -15,6 +15,8 @@
 #include "physics/RigidBody.h"
 #include "runtime/FamilyRules.h"
 
+#include "MeshBuilders.h"
+
 namespace deme_test {
 
 using namespace deme;
@@ -59,6 +61,17 @@ inline Scene randomScene(unsigned seed, size_t nClumps) {
     walls->AddCylinder(make_float3(0, 0, 0), make_float3(0, 0, 1), 0.017f, mat, 0);
     walls->SetFamily(1);
     sc.externObjs.push_back(walls);
+    return sc;
+}
+
+// randomScene on a tessellated floor (a 16 x 16 grid of 2.5 mm cells at z = -15 mm, family 1): many
+// sphere-triangle pairs.
+inline Scene randomSceneOnMeshFloor(unsigned seed, size_t nClumps) {
+    Scene sc = randomScene(seed, nClumps);
+    auto floor =
+        std::make_shared<DEMMeshConnected>(gridFloor(-0.02f, -0.02f, -0.015f, 16, 0.0025f, sc.materials.front()));
+    floor->SetFamily(1);
+    sc.meshes.push_back(floor);
     return sc;
 }
 

@@ -647,12 +647,7 @@ TEST(CudaDetectionKernels, DormantRegistryMatchesTheCpuCachedDetectorExactly) {
     ASSERT_EQ(dormant[2], 1);
     int cases = 0;
     for (unsigned seed : {1u, 2u}) {
-        Scene scene = randomScene(seed, 1200);
-        auto floor = std::make_shared<DEMMeshConnected>(
-            gridFloor(-0.02f, -0.02f, -0.015f, 16, 0.0025f, scene.materials.front()));
-        floor->SetFamily(1);
-        scene.meshes.push_back(floor);
-        SimState s = detectionState(scene, "CudaDetectionKernels");
+        SimState s = detectionState(randomSceneOnMeshFloor(seed, 1200), "CudaDetectionKernels");
         ASSERT_GT(s.triangles.size(), 200u);
         const BinGrid grid = makeBinGrid(s, 0.0015);
         ContactDetector det;

@@ -10,15 +10,8 @@
 
 #ifdef DEME_TESTS_CUDA_BUILT
 #include "BackendFixture.h"
-#include "DetectionScenes.h"
-#include "MeshBuilders.h"
-#include "backend/cpu/ContactDetector.h"
-#include "backend/cuda/CudaKinematics.h"
-#include "backend/cuda/Device.h"
-#include "kinematics/BinGridSizing.h"
+#include "CudaDetectionHelpers.h"
 #include "runtime/DetectionSlabs.h"
-#include "runtime/FamilyRules.h"
-#include "runtime/Settings.h"
 
 using namespace deme;
 using namespace deme::cuda;
@@ -39,12 +32,7 @@ TEST(CudaDetectionSlabs, SlabsDeliverTheCpuDetectorsPairs) {
     const DetectionRules dr;
     Settings settings;
     for (unsigned int f = 0; f < NUM_FAMILIES; f++) settings.familyExtraMargin[f] = dr.extra[f];
-    Scene scene = randomScene(5, 1500);
-    auto floor =
-        std::make_shared<DEMMeshConnected>(gridFloor(-0.02f, -0.02f, -0.015f, 16, 0.0025f, scene.materials.front()));
-    floor->SetFamily(1);
-    scene.meshes.push_back(floor);
-    SimState s = detectionState(scene, "CudaDetectionSlabs");
+    SimState s = detectionState(randomSceneOnMeshFloor(5, 1500), "CudaDetectionSlabs");
     const BinGrid grid = makeBinGrid(s, 0.0045);
     ASSERT_GE(grid.nz, 6);
     ContactDetector cpuDet;
@@ -62,19 +50,7 @@ TEST(CudaDetectionSlabs, SlabsDeliverTheCpuDetectorsPairs) {
             SCOPED_TRACE(testing::Message() << slabs << " slabs of " << grid.nz << " layers, margin " << margin);
             const float largest = *std::max_element(s.spheres.radius.begin(), s.spheres.radius.end());
             ASSERT_GT(centreReachFor(grid, margin, dr.extra, (double)largest), 0.0);
-            DetectionOrder order;
-            order.margin = margin;
-            DetectionReport report;
-            kin.detectNow(order, report);
-            const size_t n = report.numPairs;
-            DetectedContacts gpu;
-            gpu.geomA.resize(n);
-            gpu.geomB.resize(n);
-            if (n) {
-                kin.outbox().geomA.downloadAsync(gpu.geomA.data(), n, nullptr);
-                kin.outbox().geomB.downloadAsync(gpu.geomB.data(), n, nullptr);
-            }
-            synchronize(nullptr);
+            const DetectedContacts gpu = detectOnGpu(kin, margin);
             DetectedContacts cpu;
             double binning = 0.0, search = 0.0;
             cpuDet.detect(s, grid, margin, dr.rules.contactMask(), dr.extra, cpu, binning, search);

@@ -12,14 +12,7 @@
 #include <vector>
 
 #ifdef DEME_TESTS_CUDA_BUILT
-#include "DetectionScenes.h"
-#include "MeshBuilders.h"
-#include "backend/cpu/ContactDetector.h"
-#include "backend/cuda/CudaKinematics.h"
-#include "backend/cuda/Device.h"
-#include "kinematics/BinGridSizing.h"
-#include "runtime/FamilyRules.h"
-#include "runtime/Settings.h"
+#include "CudaDetectionHelpers.h"
 
 using namespace deme;
 using namespace deme::cuda;
@@ -46,12 +39,7 @@ TEST(CudaDormantDetection, MatchesTheCpuCachedDetectorPairForPair) {
     rules.prescribedFamilies(prescribed);
     ASSERT_EQ(dormant[2], 1);
 
-    Scene scene = randomScene(3, 1500);
-    auto floor =
-        std::make_shared<DEMMeshConnected>(gridFloor(-0.02f, -0.02f, -0.015f, 16, 0.0025f, scene.materials.front()));
-    floor->SetFamily(1);
-    scene.meshes.push_back(floor);
-    SimState s = detectionState(scene, "CudaDormantDetection");
+    SimState s = detectionState(randomSceneOnMeshFloor(3, 1500), "CudaDormantDetection");
     const BinGrid grid = makeBinGrid(s, 0.0015);
     ContactDetector cpuDet;
     cpuDet.setFamilies(dormant, prescribed, s);
@@ -65,19 +53,7 @@ TEST(CudaDormantDetection, MatchesTheCpuCachedDetectorPairForPair) {
 
     auto compare = [&](double margin) {
         SCOPED_TRACE(testing::Message() << "margin " << margin);
-        DetectionOrder order;
-        order.margin = margin;
-        DetectionReport report;
-        kin.detectNow(order, report);
-        const size_t n = report.numPairs;
-        DetectedContacts gpu;
-        gpu.geomA.resize(n);
-        gpu.geomB.resize(n);
-        if (n) {
-            kin.outbox().geomA.downloadAsync(gpu.geomA.data(), n, nullptr);
-            kin.outbox().geomB.downloadAsync(gpu.geomB.data(), n, nullptr);
-        }
-        synchronize(nullptr);
+        const DetectedContacts gpu = detectOnGpu(kin, margin);
         DetectedContacts cpu;
         double binning = 0.0, search = 0.0;
         cpuDet.detect(s, grid, margin, rules.contactMask(), extra, cpu, binning, search);
