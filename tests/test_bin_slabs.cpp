@@ -79,7 +79,8 @@ TEST(BinSlabs, HaloHoldsEveryPartnerAndEverySearchedBin) {
 
 // One slab where slabs are not possible (no binning by centres, a periodic z, a sheared cell), the
 // whole grid's bins stay under the bound (32 MiB, or 4 B a searched sphere) or the device has room
-// for them; otherwise the whole grid's bins over the bound, at most a slab per four halos of layers.
+// for them; otherwise the fewest slabs that fit the device, at most the whole grid's bins over the
+// bound and a slab per four halos of layers (so many where nothing fits, and for the estimate).
 // DEME_DETECTION_SLABS asks for a number (at most a layer each), and anything but digits is an error naming it.
 TEST(BinSlabs, SlabCountFollowsTheBoundAndTheGrid) {
     ScopedEnvironmentVariable unset("DEME_DETECTION_SLABS", "");
@@ -91,10 +92,16 @@ TEST(BinSlabs, SlabCountFollowsTheBoundAndTheGrid) {
     EXPECT_EQ(slabs, (int)std::ceil((4.0 * (4e8 + 2) + 4.0 * spheres) / (4.0 * spheres)));  // 9
     EXPECT_EQ(detectionSlabCount(g, reach, 2, spheres, spheres), 17);
     // Where the device has room for the whole grid's bins beside the offsets and pairs (within 9/10
-    // of its free memory): one slab; where it has not, as without room.
+    // of its free memory): one slab; where it has room for two slabs' thickest: two.
     const double whole = 4.0 * (4e8 + 2) + 4.0 * spheres, besides = 2e9;
     EXPECT_EQ(detectionSlabCount(g, reach, 1, spheres, spheres, besides, (whole + besides) / 0.9 * 1.001), 1);
-    EXPECT_EQ(detectionSlabCount(g, reach, 1, spheres, spheres, besides, (whole + besides) / 0.9 * 0.999), 9);
+    EXPECT_EQ(detectionSlabCount(g, reach, 1, spheres, spheres, besides, (whole + besides) / 0.9 * 0.999), 2);
+    // The fewest slabs whose thickest fits: 3 where 2 do not, the bound's 9 where none of fewer does.
+    const double two = slabBinBytes(g, reach, 2, 1, spheres), three = slabBinBytes(g, reach, 3, 1, spheres);
+    ASSERT_LT(three, two);
+    EXPECT_EQ(detectionSlabCount(g, reach, 1, spheres, spheres, besides, (two + besides) / 0.9 * 0.999), 3);
+    EXPECT_EQ(detectionSlabCount(g, reach, 1, spheres, spheres, besides, (three + besides) / 0.9 * 1.001), 3);
+    EXPECT_EQ(detectionSlabCount(g, reach, 1, spheres, spheres, besides, besides), 9);
     EXPECT_LT(slabBinBytes(g, reach, slabs, 1, spheres), slabBinBytes(g, reach, 1, 1, spheres) / 6.0);
     // Few layers: at most nz / (4 halo) slabs.
     BinGrid flat = grid(20000, 20000, 40, 1.0);

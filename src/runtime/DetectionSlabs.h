@@ -40,33 +40,6 @@ inline BinSlab binSlab(const BinGrid& g, int halo, int slabs, int k) {
 constexpr double SLAB_BIN_BYTES_PER_SPHERE = 4.0;
 constexpr double SLAB_BIN_BYTES_AT_LEAST = 32.0 * 1024 * 1024;
 
-// How many slabs a detection makes its bins in. Slabs cost time: each slab's bins are made twice and
-// every sphere is looked at once a slab and a pass (on one H100 the early mixer's two detections
-// took 0.68 s in slabs against 0.53 s over the whole grid, the run 11 % slower: docs/memory.md), so
-// a detection makes them only where its whole grid's bins (`kinds` start arrays of numBins + 2
-// entries, 4 B each, and `entries` item entries), beside the `besides` bytes it will hold with them
-// (its offsets and the outbox's pairs), would not fit in 9/10 of `freeBytes` (the device's free
-// memory as it starts; 0 plans for a device that holds no more than it must, as the memory estimate
-// does). Then: equal slabs, each about the bound above, at most so many that each keeps four halos'
-// worth of layers of its own (a thinner slab's halo costs more than it saves); 1 where slabs are not
-// possible or the whole grid's bins are within the bound. DEME_DETECTION_SLABS=n asks for n slabs
-// wherever they are possible (at most a layer each; the tests' comparisons), 0 or 1 for none.
-inline int detectionSlabCount(const BinGrid& g, double centreReach, int kinds, double entries, double searchedSpheres,
-                              double besides = 0.0, double freeBytes = 0.0) {
-    if (!slabsPossible(g, centreReach) || g.nz < 2) return 1;
-    size_t asked = 0;
-    const char* v = std::getenv("DEME_DETECTION_SLABS");  // set but empty: as if unset
-    if (v && *v && environmentCount("DEME_DETECTION_SLABS", "DoDynamics", "a number of slabs", asked))
-        return (int)std::max<size_t>(1, std::min(asked, (size_t)g.nz));
-    const double whole = 4.0 * (double)kinds * ((double)g.numBins() + 2.0) + 4.0 * entries;
-    if (whole + besides <= 0.9 * freeBytes) return 1;
-    const double bound = std::max(SLAB_BIN_BYTES_AT_LEAST, SLAB_BIN_BYTES_PER_SPHERE * searchedSpheres);
-    if (whole <= bound) return 1;
-    const int thinnest = 4 * std::max(1, slabHalo(g, centreReach));
-    const int most = std::max(1, g.nz / thinnest);
-    return (int)std::min((double)most, std::ceil(whole / bound));
-}
-
 // The bytes a detection's bins hold at once in `slabs` slabs: the thickest slab's starts (`kinds`
 // arrays) and its share of the entries (taken as spread evenly over the layers).
 inline double slabBinBytes(const BinGrid& g, double centreReach, int slabs, int kinds, double entries) {
@@ -80,4 +53,36 @@ inline double slabBinBytes(const BinGrid& g, double centreReach, int slabs, int 
     const double share = (double)thickest / (double)g.nz;
     return 4.0 * (double)kinds * ((double)g.nx * g.ny * thickest + 2.0) + 4.0 * entries * share;
 }
+
+// How many slabs a detection makes its bins in. Slabs cost time: each slab's bins are made twice and
+// every sphere is looked at once a slab and a pass (on one H100 the early mixer's two detections
+// took 0.68 s in slabs against 0.53 s over the whole grid, the run 11 % slower: docs/memory.md), so
+// a detection makes them only where its whole grid's bins (`kinds` start arrays of numBins + 2
+// entries, 4 B each, and `entries` item entries), beside the `besides` bytes it will hold with them
+// (its offsets and the outbox's pairs), would not fit in 9/10 of `freeBytes` (the device's free
+// memory as it starts). Then the fewest equal slabs whose thickest does fit (fewer slabs, less time),
+// and at most as many as make each about the bound above, or keep each four halos' worth of layers
+// of its own (a thinner slab's halo costs more than it saves): so many where none fits, and where
+// `freeBytes` is 0, which plans for a device that holds no more than it must (the memory estimate).
+// 1 where slabs are not possible or the whole grid's bins are within the bound.
+// DEME_DETECTION_SLABS=n asks for n slabs wherever they are possible (at most a layer each; the
+// tests' comparisons), 0 or 1 for none.
+inline int detectionSlabCount(const BinGrid& g, double centreReach, int kinds, double entries, double searchedSpheres,
+                              double besides = 0.0, double freeBytes = 0.0) {
+    if (!slabsPossible(g, centreReach) || g.nz < 2) return 1;
+    size_t asked = 0;
+    const char* v = std::getenv("DEME_DETECTION_SLABS");  // set but empty: as if unset
+    if (v && *v && environmentCount("DEME_DETECTION_SLABS", "DoDynamics", "a number of slabs", asked))
+        return (int)std::max<size_t>(1, std::min(asked, (size_t)g.nz));
+    const double whole = slabBinBytes(g, centreReach, 1, kinds, entries);
+    if (whole + besides <= 0.9 * freeBytes) return 1;
+    const double bound = std::max(SLAB_BIN_BYTES_AT_LEAST, SLAB_BIN_BYTES_PER_SPHERE * searchedSpheres);
+    if (whole <= bound) return 1;
+    const int thinnest = 4 * std::max(1, slabHalo(g, centreReach));
+    const int most = (int)std::min((double)std::max(1, g.nz / thinnest), std::ceil(whole / bound));
+    for (int k = 2; k < most; k++)
+        if (slabBinBytes(g, centreReach, k, kinds, entries) + besides <= 0.9 * freeBytes) return k;
+    return most;
+}
+
 }  // namespace deme
