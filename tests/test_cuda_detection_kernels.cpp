@@ -273,8 +273,9 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
 
 // CudaKinematics::detect in `slabs` slabs of bin layers (kinematics/BinSlabs.h; spheres by their
 // centres, a thread an item, no registry): each slab's bins made, its spheres' partners counted; the
-// offsets; each slab's bins made again and its spheres' partners filled. Also the largest slab's
-// bins (starts and entries, spheres' and triangles'), in 4-byte words.
+// offsets; from the last slab (whose bins are held) to the first, each slab's bins made again and
+// its spheres' partners filled. Also the largest slab's bins (starts and entries, spheres' and
+// triangles'), in 4-byte words.
 struct SlabDetection {
     DetectedContacts contacts;
     size_t largestBinWords = 0;
@@ -318,9 +319,9 @@ SlabDetection emulateDetectInSlabs(SimState& s, const BinGrid& grid, double marg
     DetectedContacts& c = r.contacts;
     c.geomA.assign(offset[nS], 0);
     c.geomB.assign(offset[nS], 0);
-    for (int k = 0; k < slabs; k++) {
+    for (int k = slabs - 1; k >= 0; k--) {  // the last slab's bins still held from the count
         const BinSlab slab = binSlab(grid, halo, slabs, k);
-        binSlab_(slab);
+        if (k < slabs - 1) binSlab_(slab);
         runThreads(nS, [&] {
             deme_pair_search(v, args, none, nullptr, nS, noWide, slab.searched, (unsigned int*)nullptr, offset.data(),
                              c.geomA.data(), c.geomB.data());

@@ -310,9 +310,9 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     // Bins in slabs of layers where a scene's whole grid of them would not fit in the device's free
     // memory beside the offsets and the outbox's pairs (as many as the last detection found, and a
     // quarter more; the estimate's six a sphere at the first) (runtime/DetectionSlabs.h; a sphere by
-    // its centre, one thread each, no registry, no wide sphere): the bins of each slab are made
-    // twice, once to count its spheres' partners and once, after the outbox is sized, to fill them.
-    // Otherwise one slab, the whole grid, as before.
+    // its centre, one thread each, no registry, no wide sphere): the bins of each slab but the last
+    // are made twice, once to count its spheres' partners and once, after the outbox is sized, to
+    // fill them. Otherwise one slab, the whole grid, as before.
     const int kinds = nT ? 2 : 1;
     const bool slabbable = args.centreReach > 0.0 && !useDormant && lanes == 1 && sLanes == 1 && nWide == 0;
     int slabs = 1;
@@ -422,10 +422,10 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
         launch(kPairOrder, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, nSearched, searchWideFrom,
                (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data());
     } else if (total) {
-        // In slabs the first slab's bins are made again (the last slab's are held); in one, they
-        // are still there.
-        for (int k = 0; k < slabs; k++) {
-            if (slabs > 1) binSlabItems(slabAt(k));
+        // Last slab first: its bins are still held from the count (in one slab, the whole grid's);
+        // the others' are made again. (Each sphere writes at its own offset: the order is free.)
+        for (int k = slabs - 1; k >= 0; k--) {
+            if (k < slabs - 1) binSlabItems(slabAt(k));
             launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
                    searchWideFrom, slabAt(k).searched, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(),
                    dst.geomA.data(), dst.geomB.data());
