@@ -22,6 +22,8 @@
 #include "state/HistoryPoolExpand.h"
 
 #include "HostHistoryPool.h"
+#include "state/CompactPairAHost.h"
+
 #include "HostKernelEmulation.h"
 #include "backend/cuda/kernels/HistoryMapping.cu"
 #include "HostKernelEmulationEnd.h"
@@ -131,8 +133,11 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         installDetectedContacts(s, detected, true);  // (the flags kept, to compare)
 
         // The GPU's steps, as DeviceHistoryMapping runs them.
-        const ContactKeys freshKeys{fresh.a.data(), fresh.b.data(), (unsigned int)nFresh};
-        const ContactKeys oldKeys{old.a.data(), old.b.data(), (unsigned int)nOld};
+        // The device's sets keep A compact (state/CompactPairA.h): the kernels read it so here too.
+        const HostCompactPairAs freshA = compactPairAsOnHost(fresh.a.data(), nFresh),
+                                oldA = compactPairAsOnHost(old.a.data(), nOld);
+        const ContactKeys freshKeys{freshA.list(), fresh.b.data(), (unsigned int)nFresh};
+        const ContactKeys oldKeys{oldA.list(), old.b.data(), (unsigned int)nOld};
         std::vector<unsigned int> missing(nOld + 1, 0), before(nOld + 1, 0);
         unsigned int any = 0;
         runThreads(nOld, [&] { deme_persistent_missing(freshKeys, oldKeys, oldPersistent.data(), nullptr, &any); });
@@ -157,7 +162,8 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
         const ContactInitRule rule{0, 1, 0, 7.f};
         const OldContactHistory history{
             oldKeys, oldWildcards.data(), oldMeshState.data(), any ? oldPersistent.data() : nullptr, 1, &rule, 1};
-        const ContactKeys mergedKeys{A.data(), B.data(), (unsigned int)total};
+        const HostCompactPairAs mergedA = compactPairAsOnHost(A.data(), total);
+        const ContactKeys mergedKeys{mergedA.list(), B.data(), (unsigned int)total};
         runThreads(total, [&] {
             deme_map_history(view, mergedKeys, history, wildcards.data(), meshState.data(), persistent.data());
         });
@@ -309,7 +315,7 @@ TEST(CudaHistoryMapping, PairsHandedOnAreThoseTheCpuKeeps) {
         deme_test::HostHistoryPool gpuPool = deme_test::HostHistoryPool::allLate(slot, W);
         for (const bool pooled : {false, true}) {
             SCOPED_TRACE(pooled ? "pooled" : "dense");
-            OldContactHistory set{ContactKeys{a.data(), b.data(), (unsigned int)n},
+            OldContactHistory set{ContactKeys{wholePairAs(a.data()), b.data(), (unsigned int)n},
                                   pooled ? pool.data() : wildcards.data(),
                                   meshState.data(),
                                   persistent.data(),

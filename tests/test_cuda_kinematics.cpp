@@ -53,13 +53,9 @@ struct GpuDetector {
         kin->detectNow(order, report);
         const size_t n = report.numPairs;
         DetectedContacts gpu;
-        gpu.geomA.resize(n);
         gpu.geomB.resize(n);
-        if (n) {
-            kin->outbox().geomA.downloadAsync(gpu.geomA.data(), n, nullptr);
-            kin->outbox().geomB.downloadAsync(gpu.geomB.data(), n, nullptr);
-        }
-        synchronize(nullptr);
+        if (n) kin->outbox().geomB.downloadAsync(gpu.geomB.data(), n, nullptr);
+        downloadPairAs(kin->outbox().pairA, n, gpu.geomA, nullptr);  // waits
         return gpu;
     }
 };

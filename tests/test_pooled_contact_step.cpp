@@ -85,6 +85,7 @@ StateView hostView(SimState& s) {
     forEachAnalyticalField(v.analytical, s.analytical, p);
     forEachTriangleField(v.triangles, s.triangles, p);
     forEachContactField(v.contacts, s.contacts, p);
+    v.pairAs = wholePairAs(s.contacts.geomA.data());  // (the device's are compact: CompactPairA.*)
     forEachCacheField(v.cache, s.cache, p);
     forEachScratchField(v.integrationScratch, s.integrationScratch, p);
     setViewScalars(v, s);

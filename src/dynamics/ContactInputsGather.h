@@ -136,7 +136,7 @@ DEME_HD_INLINE void gatherContactInputsOfType(const S& s, bodyID_t a, bodyID_t b
 template <class S>
 DEME_HD_INLINE void gatherContactInputsOfType(const S& s, size_t c, uint8_t type, float time, float ts,
                                               ContactInputs& in) {
-    gatherContactInputsOfType(s, s.contacts.geomA[c], s.contacts.geomB[c], type, time, ts, in);
+    gatherContactInputsOfType(s, pairAOf(s, c), s.contacts.geomB[c], type, time, ts, in);
 }
 
 template <class S>

@@ -143,7 +143,7 @@ DEME_HD_INLINE ContactIds contactIdsWithA(const S& s, size_t i, bodyID_t a) {
 
 template <uint8_t KnownType, class S>
 DEME_HD_INLINE ContactIds contactIds(const S& s, size_t i) {
-    return contactIdsWithA<KnownType>(s, i, s.contacts.geomA[i]);
+    return contactIdsWithA<KnownType>(s, i, pairAOf(s, i));
 }
 
 // Contact i's step, its ids read (contactIds) and its W history floats at `wc` (the set's own

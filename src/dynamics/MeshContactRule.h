@@ -154,7 +154,7 @@ struct HistoryInSet {
 
 template <class S>
 DEME_HD_INLINE bool resolveSphereMeshContacts(S& s, size_t first, size_t n, MeshCandidate* cand, size_t capacity) {
-    return resolveSphereMeshContactsWith(s, s.contacts.geomA[first], first, n, cand, capacity,
+    return resolveSphereMeshContactsWith(s, pairAOf(s, first), first, n, cand, capacity,
                                          HistoryInSet{s.contacts.wildcards, s.contacts.meshState, s.numWildcards});
 }
 

@@ -9,15 +9,18 @@
 #pragma once
 
 #include "dynamics/ContactInputsGather.h"
+#include "state/CompactPairA.h"
 #include "state/ContactInitRule.h"
 #include "state/HistorySlot.h"
 #include "state/SphereLayout.h"
 
 namespace deme {
 
-// A contact set's pair keys: geometries A and B of n pairs, sorted by (A, B).
+// A contact set's pair keys: geometries A (whole, or the GPU's compact form: state/CompactPairA.h)
+// and B of n pairs, sorted by (A, B).
 struct ContactKeys {
-    const bodyID_t *geomA, *geomB;
+    PairAList geomA;
+    const bodyID_t* geomB;
     unsigned int n;
 };
 

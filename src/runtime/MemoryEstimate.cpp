@@ -16,6 +16,7 @@
 #include "runtime/EnvironmentCount.h"
 #include "runtime/HistoryPoolPolicy.h"
 #include "runtime/MemoryAccounting.h"
+#include "state/CompactPairA.h"
 #include "state/FamilyStepMotion.h"
 
 namespace deme {
@@ -60,10 +61,19 @@ size_t bytesPerPair(const ContactArrays& c, unsigned int W, bool host, bool pers
     return b;
 }
 
-// A pair's bytes in a GPU set that pools its history: its ids and flag where kept, no W floats and
-// no mesh state (kept per ranked slot: state/HistoryPool.h); its slot is pooledSlotBytes'.
+// A GPU set's As (state/CompactPairA.h): a byte a pair and a 4-byte base per 32 pairs. (Blocks kept
+// whole in the side table are not counted: a block spans more than a byte of spheres only across a
+// run of spheres without pairs, which a packing has few of.)
+size_t compactABytes(size_t pairs) { return pairs + pairABlocks(pairs) * sizeof(uint32_t); }
+// A pair's bytes in a GPU set but its A (compactABytes): B, the history (dense) and mesh state, the
+// flag where kept.
+size_t gpuPairBytesBesidesA(const SimState& s, unsigned int W, const ContactSetForm& form) {
+    return bytesPerPair(s.contacts, W, false, form.persistentFlags) - sizeof(bodyID_t);
+}
+// The same in a GPU set that pools its history: no W floats and no mesh state (kept per ranked slot:
+// state/HistoryPool.h); its slot is pooledSlotBytes'.
 size_t pooledPairBytes(const SimState& s, unsigned int W, const ContactSetForm& form) {
-    return bytesPerPair(s.contacts, W, false, form.persistentFlags) - 4 * (size_t)W - sizeof(s.contacts.meshState[0]);
+    return gpuPairBytesBesidesA(s, W, form) - 4 * (size_t)W - sizeof(s.contacts.meshState[0]);
 }
 // The slots of a pooled GPU set of `pairs` pairs: a ranked bit and a late bit a pair and each 64
 // pairs' first rank, 20 B per 64 pairs.
@@ -78,7 +88,7 @@ size_t trimmedWholeSetBytes(const SimState& s, size_t pairs, const ContactSetFor
     const unsigned int W = s.numWildcards;
     const size_t historySlots = form.historySlots;
     if (!form.trimmedBeforeDetection || historySlots == DENSE_HISTORY || W == 0 || 2 * historySlots > pairs) return 0;
-    return pairs * pooledPairBytes(s, W, form) + pooledSlotBytes(pairs) + (pairs + 63) / 64 * 12;
+    return pairs * pooledPairBytes(s, W, form) + compactABytes(pairs) + pooledSlotBytes(pairs) + (pairs + 63) / 64 * 12;
 }
 
 // Detection's bin entries: a box of extent d overlaps on average 1 + d / edge bins along each axis
@@ -173,14 +183,14 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         // The snapshot's triangle vertices and analytical components.
         if (snapshotKept) detection += nT * 72 + s.analytical.size() * 48;
         // A synchronous detection in place runs while the set in use holds only the pairs it kept
-        // (trimmed before the detection): its scratch and the outbox's ids (A and B, 8 B a pair, which
+        // (trimmed before the detection): its scratch and the outbox's ids (A compact and B, 5.1 B a pair, which
         // become the fresh set's) are held beside the kept pairs, not beside the whole set that the
         // trim and the installation hold (contacts, above), and a large scratch is let go before the
         // installation (CudaKinematics::Work::detect). The run's peak is then the larger of the two
         // phases: the detection counts only what it holds beyond the whole set and the trim's marks.
         const size_t wholeSet = trimmedWholeSetBytes(s, e.pairs, e.form);
         if (!snapshotKept && wholeSet && detection > scratchKeptUpTo) {
-            const size_t detecting = detection + e.pairs * 2 * sizeof(bodyID_t);
+            const size_t detecting = detection + e.pairs * sizeof(bodyID_t) + compactABytes(e.pairs);
             detection = detecting > wholeSet ? detecting - wholeSet : 0;
         }
         // The table of a batch's prescriptions (a row of families per step, CudaStepBatch.cpp). (The
@@ -236,12 +246,13 @@ size_t contactSetBytes(const SimState& s, bool onGpu, size_t pairs, const Contac
         // pair and each 64 pairs' first rank: 12 B per 64 pairs), then an installation's fresh set
         // beside the pairs kept.
         if (const size_t wholeSet = trimmedWholeSetBytes(s, pairs, form))
-            return wholeSet + historySlots * (perPair + meshState) + pooledSlotBytes(historySlots) +
+            return wholeSet + historySlots * (perPair + meshState) + compactABytes(historySlots) +
+                   pooledSlotBytes(historySlots) +
                    lateTableBytes(historySlots - std::min(historySlots, form.lateSlots)) + pools;
-        return pairs * 2 * perPair + 2 * pooledSlotBytes(pairs) + pools;
+        return pairs * 2 * perPair + 2 * compactABytes(pairs) + 2 * pooledSlotBytes(pairs) + pools;
     }
     const size_t forceGrowth = forceBytes > idleWildcardBytes ? forceBytes - idleWildcardBytes : 0;
-    return pairs * (2 * bytesPerPair(s.contacts, W, false, form.persistentFlags) + forceGrowth);
+    return pairs * (2 * gpuPairBytesBesidesA(s, W, form) + forceGrowth) + 2 * compactABytes(pairs);
 }
 
 size_t memoryLimit(size_t available, const char* call) {

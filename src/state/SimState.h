@@ -244,4 +244,9 @@ struct SimState {
     bodyID_t triangleIdBase() const { return (bodyID_t)(spheres.size() + analytical.size()); }
 };
 
+// Pair i's A, for the per-pair code written once for both backends (a GPU view's: state/StateView.h).
+// The CPU's per-pair readers run where geomA is held (a set keeping A as runs passes A itself:
+// dynamics/ContactStep.h, contactIdsWithA).
+inline bodyID_t pairAOf(const SimState& s, size_t i) { return s.contacts.geomA[i]; }
+
 }  // namespace deme

@@ -8,6 +8,7 @@
 #include <deme/VariableTypes.h>
 
 #include "physics/CompactPosition.h"
+#include "state/CompactPairA.h"
 #include "state/HistoryPool.h"
 #include "state/StateFields.h"
 
@@ -41,6 +42,9 @@ struct StateView {
     AnalyticalView analytical;
     TriangleView triangles;
     ContactView contacts;
+    // The set's As: compact on the GPU (state/CompactPairA.h; contacts.geomA is null there), whole
+    // in a view of host arrays. Read through pairAOf.
+    PairAList pairAs;
     HistoryPoolView historyPool;  // the GPU's pooled history (state/HistoryPool.h); slot null: none
     CacheView cache;
     IntegrationScratchView integrationScratch;
@@ -55,5 +59,8 @@ struct StateView {
     DEME_HD bodyID_t analyticalIdBase() const { return numSpheres; }
     DEME_HD bodyID_t triangleIdBase() const { return numSpheres + numAnalytical; }
 };
+
+// Pair i's A (SimState's: state/SimState.h).
+DEME_HD_INLINE bodyID_t pairAOf(const StateView& s, size_t i) { return s.pairAs[i]; }
 
 }  // namespace deme

@@ -17,7 +17,7 @@ namespace deme {
 namespace {
 
 ContactKeys keysOf(const std::vector<bodyID_t>& geomA, const std::vector<bodyID_t>& geomB) {
-    return ContactKeys{geomA.data(), geomB.data(), (unsigned int)geomA.size()};
+    return ContactKeys{wholePairAs(geomA.data()), geomB.data(), (unsigned int)geomA.size()};
 }
 
 // Adds to `fresh` the persistent pairs of the current set that it lacks, keeping it sorted by key.

@@ -113,9 +113,9 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     // the set before) are let go before the fresh set's history is made: the installation's peak
     // holds two sets, not a third set of pairs (8 B a pair).
     KinematicsOutbox& out = m_kinematics->outbox();
-    std::swap(fresh.geomA, out.geomA);
+    std::swap(fresh.pairA, out.pairA);
     std::swap(fresh.geomB, out.geomB);
-    out.geomA.release();
+    out.pairA.release();
     out.geomB.release();
     // Persistent pairs the detection missed stay in the set; every pair takes its history over.
     const MemoryGroupScope group(MemoryGroup::CONTACTS);  // history mapping's scratch
@@ -136,13 +136,13 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     // the set in use, the outbox's pairs and the idle wildcards: 50 B a pair with Hertz-Mindlin's
     // four wildcards, where it held 60.
     synchronize(m_stream);  // the mapping has read them
-    std::swap(out.geomA, old.geomA);
+    std::swap(out.pairA, old.pairA);
     std::swap(out.geomB, old.geomB);
     // Where detection is synchronous, nobody writes the outbox before the next detection, which
     // sizes it anew: a large one is let go (8 B a pair between installations; a small one is kept,
     // m_smallSetBytes).
-    if (!m_asyncDetection && out.geomA.capacity() * sizeof(bodyID_t) > m_smallSetBytes) {
-        out.geomA.release();
+    if (!m_asyncDetection && out.geomB.capacity() * sizeof(bodyID_t) > m_smallSetBytes) {
+        out.pairA.release();
         out.geomB.release();
     }
     old.persistent.release();

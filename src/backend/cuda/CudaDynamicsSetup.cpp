@@ -28,8 +28,10 @@ CudaDynamics::CudaDynamics(int device, const ModelLayout& model) : m_device(devi
     if (const char* v = std::getenv("DEME_CUDA_VOXEL_PRETEST"); v && *v)
         m_voxelPretestForced = std::strcmp(v, "0") != 0;
     // Both contact sets' fields, their per-contact wildcards (the history) included.
-    for (DeviceContacts& set : m_contacts)
+    for (DeviceContacts& set : m_contacts) {
         forEachContactField(set, set, [](auto& field, auto&, FieldRole) { field.setGroup(MemoryGroup::CONTACTS); });
+        set.pairA.setGroup(MemoryGroup::CONTACTS);
+    }
     for (DeviceHistoryPool& p : m_pools) {
         p.ranked.setGroup(MemoryGroup::CONTACTS);
         p.rankBase.setGroup(MemoryGroup::CONTACTS);

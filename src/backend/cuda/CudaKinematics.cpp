@@ -72,6 +72,7 @@ struct CudaKinematics::Work {
     CudaModule module;
     CudaKernel kTriBoxes, kBinCount, kBinScatter, kBinSort, kPairSearch, kPairSearchLanes, kPairOrder, kPairSearchWide,
         kPairRankWide, kPairFinishWide;
+    PairAKernels pairAKernels;  // the outbox's As made compact (backend/cuda/DevicePairA.h)
     DevicePrimitives prim;
     DeviceDormantRegistry dormant;  // the active box: dormant spheres registered once
     // Static geometry (a copy of Geometry).
@@ -97,6 +98,10 @@ struct CudaKinematics::Work {
     DeviceBuffer<unsigned int> wideCursor;  // each wide sphere's partners written so far
     DeviceBuffer<unsigned int> laneCursor;  // each sphere's, where several threads search it
     DeviceBuffer<uint64_t> countSum;        // scanCounts's total in 64 bits
+    // The pairs' As whole, where the search does not leave them implied by the offsets (several
+    // threads a sphere, wide spheres, the dormant registry), and the compact form's rows.
+    DeviceBuffer<bodyID_t> wholeA;
+    DeviceBuffer<uint32_t> pairARows;
     size_t lastPairs = 0;                   // the last detection's pairs (plans the next one's slabs)
 
     ~Work() {
@@ -204,7 +209,8 @@ unsigned int CudaKinematics::Work::scanCounts(DeviceBuffer<unsigned int>& counts
 size_t CudaKinematics::Work::scratchBytes() const {
     return sphereBins.start.capacityBytes() + sphereBins.items.capacityBytes() + triBins.start.capacityBytes() +
            triBins.items.capacityBytes() + triLo.capacityBytes() + triHi.capacityBytes() + pairOffset.capacityBytes() +
-           wideCursor.capacityBytes() + laneCursor.capacityBytes() + countSum.capacityBytes() + prim.scratchBytes();
+           wideCursor.capacityBytes() + laneCursor.capacityBytes() + countSum.capacityBytes() + wholeA.capacityBytes() +
+           pairARows.capacityBytes() + prim.scratchBytes();
 }
 
 void CudaKinematics::Work::releaseScratch() {
@@ -218,6 +224,8 @@ void CudaKinematics::Work::releaseScratch() {
     wideCursor.release();
     laneCursor.release();
     countSum.release();
+    wholeA.release();
+    pairARows.release();
     prim.releaseScratch();
 }
 
@@ -325,7 +333,8 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
             freeBytes = std::min(freeBytes, limit > held ? limit - held : (size_t)0);
         }
         const double pairs = lastPairs ? 1.25 * (double)lastPairs : ESTIMATED_PAIRS_PER_SPHERE * (double)nSearched;
-        const double besides = 4.0 * ((double)nSearched + 1.0) + 2.0 * sizeof(bodyID_t) * pairs;
+        // (The outbox's pairs: B, and A compact with its rows, 5.25 B a pair: state/CompactPairA.h.)
+        const double besides = 4.0 * ((double)nSearched + 1.0) + (sizeof(bodyID_t) + 1.25) * pairs;
         slabs = detectionSlabCount(grid, args.centreReach, kinds, (double)nSearched, (double)nSearched, besides,
                                    (double)freeBytes);
     }
@@ -401,16 +410,15 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
                (const bodyID_t*)wideSpheres.data(), nWide, WIDE_SPHERE_LANES, pairOffset.data(),
                (const unsigned int*)nullptr, (unsigned int*)nullptr, (bodyID_t*)nullptr);
     const unsigned int total = scanCounts(pairOffset, nSearched + 1, "contact pairs", FEWER_PAIRS_REMEDY);
-    // The outbox is on dT's GPU: size it there.
-    onDevice(dTDevice, device, [&] {
-        out.geomA.resizeDiscarding(total);
-        out.geomB.resizeDiscarding(total);
-    });
+    // The outbox is on dT's GPU: size it there (its As once they are made compact, below).
+    onDevice(dTDevice, device, [&] { out.geomB.resizeDiscarding(total); });
     KinematicsOutbox& dst = staged ? localOut : out;
-    if (staged) {
-        localOut.geomA.resizeDiscarding(total);
-        localOut.geomB.resizeDiscarding(total);
-    }
+    if (staged) localOut.geomB.resizeDiscarding(total);
+    // A one thread a sphere searches without the registry is that sphere: the offsets imply every
+    // pair's A, which is never written whole. The other searches write it whole first.
+    const bool aFromOffsets = !useDormant && sLanes == 1 && nWide == 0;
+    if (!aFromOffsets) wholeA.resizeDiscarding(total);
+    bodyID_t* aOut = aFromOffsets ? nullptr : wholeA.data();
     if (total && sLanes > 1) {
         // Several threads a sphere fill its partners in no order; then each sphere's into
         // contact-set order.
@@ -420,7 +428,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
                searchWideFrom, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(), laneCursor.data(),
                dst.geomB.data());
         launch(kPairOrder, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, nSearched, searchWideFrom,
-               (const unsigned int*)pairOffset.data(), dst.geomA.data(), dst.geomB.data());
+               (const unsigned int*)pairOffset.data(), aOut, dst.geomB.data());
     } else if (total) {
         // Last slab first: its bins are still held from the count (in one slab, the whole grid's);
         // the others' are made again. (Each sphere writes at its own offset: the order is free.)
@@ -428,7 +436,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
             if (k < slabs - 1) binSlabItems(slabAt(k));
             launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
                    searchWideFrom, slabAt(k).searched, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(),
-                   dst.geomA.data(), dst.geomB.data());
+                   aOut, dst.geomB.data());
         }
     }
     if (total && nWide) {
@@ -441,15 +449,21 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
         launch(kPairSearchWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, args, wide, nWide,
                WIDE_SPHERE_LANES, (unsigned int*)nullptr, offsets, wideCursor.data(), dst.geomB.data());
         launch(kPairRankWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, wide, nWide, WIDE_SPHERE_LANES,
-               offsets, dst.geomA.data(), (const bodyID_t*)dst.geomB.data());
+               offsets, aOut, (const bodyID_t*)dst.geomB.data());
         launch(kPairFinishWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, wide, nWide, WIDE_SPHERE_LANES,
-               offsets, dst.geomA.data(), dst.geomB.data());
+               offsets, aOut, dst.geomB.data());
     }
     // Pairs found from the moving side with a dormant sphere of lower id: into (A, B) order.
-    if (useDormant) dormant.sortPairs(v, dst.geomA.data(), dst.geomB.data(), total, prim, stream);
+    if (useDormant) dormant.sortPairs(v, aOut, dst.geomB.data(), total, prim, stream);
+    // The As compact (state/CompactPairA.h), from the offsets or from the whole ones. The outbox's
+    // are on dT's GPU: where that is another one, made here and copied there.
     if (staged) {
-        out.geomA.copyFromAsync(localOut.geomA, total, stream);
+        compactPairAs(pairAKernels, aOut, pairOffset.data(), nSearched, total, localOut.pairA, pairARows, prim, stream);
+        onDevice(dTDevice, device, [&] { out.pairA.resizeLike(localOut.pairA, total); });
+        out.pairA.copyFromAsync(localOut.pairA, total, stream);
         out.geomB.copyFromAsync(localOut.geomB, total, stream);
+    } else {
+        compactPairAs(pairAKernels, aOut, pairOffset.data(), nSearched, total, out.pairA, pairARows, prim, stream);
     }
     // Reported only once everything is in the outbox: dT reads it on its own stream, unordered
     // with this one.
@@ -467,7 +481,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
 CudaKinematics::CudaKinematics(int kTDevice, int dTDevice, const DeviceState& source, Stream dtStream)
     : m_kTDevice(kTDevice), m_dTDevice(dTDevice), m_source(source), m_dtStream(dtStream) {
     // The outbox's pairs become a contact set when dT takes them (their buffers are swapped).
-    m_outbox.geomA.setGroup(MemoryGroup::CONTACTS);
+    m_outbox.pairA.setGroup(MemoryGroup::CONTACTS);
     m_outbox.geomB.setGroup(MemoryGroup::CONTACTS);
     m_inbox.setGroup(MemoryGroup::DETECTION);
     m_keepScratchUpTo = keepRebuiltArraysUpTo("Initialize");
@@ -640,6 +654,7 @@ void CudaKinematics::run() {
         w->kPairSearchWide = w->module.kernel("deme_pair_search_wide");
         w->kPairRankWide = w->module.kernel("deme_pair_rank_wide");
         w->kPairFinishWide = w->module.kernel("deme_pair_finish_wide");
+        w->pairAKernels.load(w->module);
         w->dormant.loadKernels(w->module);
         m_deviceName = info.name;
         m_compileSeconds = c.compileSeconds;

@@ -34,6 +34,7 @@
 
 #include "backend/cuda/CudaTypes.h"
 #include "backend/cuda/DeviceBuffer.h"
+#include "backend/cuda/DevicePairA.h"
 #include "backend/cuda/DeviceDormantRegistry.h"
 #include "backend/cuda/DeviceState.h"
 #include "runtime/Backends.h"
@@ -77,7 +78,8 @@ struct KinematicsInbox {
 // The contact list kT found, sorted by (A, B), on dT's GPU (written by kT). dT may swap these buffers
 // with its own after taking a result: kT resizes them before every write.
 struct KinematicsOutbox {
-    DeviceBuffer<bodyID_t> geomA, geomB;  // (a pair's type follows from B: state/ContactTypeOf.h)
+    DevicePairA pairA;             // A compact (state/CompactPairA.h)
+    DeviceBuffer<bodyID_t> geomB;  // (a pair's type follows from B: state/ContactTypeOf.h)
 };
 
 class CudaKinematics : public KinematicsBackend {

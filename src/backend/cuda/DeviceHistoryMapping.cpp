@@ -16,7 +16,7 @@ namespace {
 constexpr unsigned int THREADS = 256;
 constexpr const char* kSourcePath = "backend/cuda/kernels/HistoryMapping.cu";
 
-ContactKeys keysOf(const DeviceContacts& c, unsigned int n) { return ContactKeys{c.geomA.data(), c.geomB.data(), n}; }
+ContactKeys keysOf(const DeviceContacts& c, unsigned int n) { return ContactKeys{c.pairA.view(), c.geomB.data(), n}; }
 
 }  // namespace
 
@@ -37,6 +37,8 @@ void DeviceHistoryMapping::load(const std::string& call, const CudaCompileOption
     m_countMarks = m_module.kernel("deme_count_marks");
     m_keepHandedOn = m_module.kernel("deme_keep_pairs_handed_on");
     m_rehashLate = m_module.kernel("deme_rehash_late_slots");
+    m_pairAKernels.load(m_module);
+    m_pairARows.setGroup(MemoryGroup::CONTACTS);
 }
 
 void DeviceHistoryMapping::uploadRules(const std::vector<ContactInitRule>& rules) {
@@ -100,8 +102,13 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
         launch(m_keepHandedOn, blocksFor(n, THREADS), THREADS, 0, stream, h, (const unsigned long long*)marks.data(),
                (const uint32_t*)rankBase.data(), a.data(), b.data(), meshState.data(), persistent.data(),
                wildcards.data(), late.data(), lateTable.data(), (uint32_t)(lateTable.size() - 1));
-    synchronize(stream);  // the whole set's buffers are read; they go as the trimmed ones take their place
-    std::swap(set.geomA, a);
+    // The kept As compact (state/CompactPairA.h; waits for the stream, so the whole set's buffers are
+    // read: they go as the trimmed ones take their place).
+    DevicePairA keptA;
+    keptA.setGroup(MemoryGroup::CONTACTS);
+    compactPairAs(m_pairAKernels, a.data(), nullptr, 0u, kept, keptA, m_pairARows, prim, stream);
+    synchronize(stream);
+    std::swap(set.pairA, keptA);
     std::swap(set.geomB, b);
     std::swap(set.meshState, meshState);
     std::swap(set.persistent, persistent);
@@ -160,8 +167,14 @@ unsigned int DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, uns
     launch(m_merge, blocksFor((unsigned long long)nFresh + nOld, THREADS), THREADS, 0, stream, fresh, old,
            (const unsigned int*)m_isMissing.data(), (const unsigned int*)m_missingBefore.data(), m_mergedA.data(),
            m_mergedB.data());
-    // The merged arrays become the fresh set's; its former arrays are the next merge's scratch.
-    std::swap(freshSet.geomA, m_mergedA);
+    // The merged arrays become the fresh set's (its As compact: state/CompactPairA.h); its former Bs
+    // are the next merge's scratch.
+    DevicePairA mergedA;
+    mergedA.setGroup(MemoryGroup::CONTACTS);
+    compactPairAs(m_pairAKernels, m_mergedA.data(), nullptr, 0u, total, mergedA, m_pairARows, prim, stream);
+    synchronize(stream);
+    m_mergedA.release();  // whole As are scratch only
+    std::swap(freshSet.pairA, mergedA);
     std::swap(freshSet.geomB, m_mergedB);
     return total;
 }

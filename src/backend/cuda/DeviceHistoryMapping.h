@@ -69,6 +69,8 @@ class DeviceHistoryMapping {
     CudaModule m_module;
     CudaKernel m_missing, m_merge, m_map, m_markSlots, m_mapPooled, m_markMesh, m_markCarried, m_mapMarked,
         m_markHandedOn, m_countMarks, m_keepHandedOn, m_rehashLate;
+    PairAKernels m_pairAKernels;         // merged and trimmed sets' As made compact
+    DeviceBuffer<uint32_t> m_pairARows;  // their scratch
     DeviceBuffer<unsigned int> m_isMissing, m_missingBefore, m_any;
     DeviceBuffer<bodyID_t> m_mergedA, m_mergedB;
     DeviceBuffer<ContactInitRule> m_rules;

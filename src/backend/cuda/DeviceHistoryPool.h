@@ -55,7 +55,7 @@ struct DeviceHistoryPool {
     OldContactHistory oldHistory(const DeviceContacts& set, unsigned int n, unsigned int W, const uint8_t* persistent,
                                  const ContactInitRule* rules, unsigned int numRules) const {
         const bool bySlot = active && meshStateBySlot;
-        OldContactHistory h{ContactKeys{set.geomA.data(), set.geomB.data(), n},
+        OldContactHistory h{ContactKeys{set.pairA.view(), set.geomB.data(), n},
                             active ? pool.data() : set.wildcards.data(),
                             bySlot ? meshState.data() : set.meshState.data(),
                             persistent,

@@ -114,6 +114,10 @@ void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, S
     const size_t n = c.size();
     forEachContactField(d, c, [&](auto& dev, const auto& host, FieldRole role) {
         if (role != FieldRole::EVOLVES) return;
+        if (static_cast<const void*>(&host) == &c.geomA) {
+            uploadPairAs(c.geomA, d.pairA, stream);  // compact on the device
+            return;
+        }
         // A set with no flag set and a model that sets none keeps no flags (as the CPU's).
         if (static_cast<const void*>(&host) == &c.persistent && !flagsKept &&
             std::none_of(c.persistent.begin(), c.persistent.end(), [](uint8_t f) { return f != 0; })) {
@@ -136,6 +140,10 @@ void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, Contact
         // The CPU's bookkeeping (its per-owner index, per-contact torques) has no device copy: the
         // GPU adds loads to the owners directly. Left empty, it costs the host nothing.
         if (role == FieldRole::HOST) return;
+        if (static_cast<const void*>(&host) == &c.geomA) {
+            downloadPairAs(d.pairA, n, c.geomA, stream);  // whole on the host
+            return;
+        }
         if (!historyAndForces &&
             (static_cast<const void*>(&host) == &c.wildcards || static_cast<const void*>(&host) == &c.force))
             return;
@@ -154,6 +162,7 @@ void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, Contact
 
 void viewContacts(DeviceContacts& d, uint32_t n, StateView& v) {
     forEachContactField(v.contacts, d, Point{});
+    v.pairAs = d.pairA.view();
     v.numContacts = n;
 }
 

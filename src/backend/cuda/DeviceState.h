@@ -6,12 +6,17 @@
 #pragma once
 
 #include "backend/cuda/DeviceBuffer.h"
+#include "backend/cuda/DevicePairA.h"
 #include "state/SimState.h"
 #include "state/StateView.h"
 
 namespace deme::cuda {
 
-using DeviceContacts = ContactFields<DeviceBuffer>;
+// A set's A ids are kept compact (backend/cuda/DevicePairA.h): its field geomA stays empty on the
+// device, and its view reads A through StateView::pairAs.
+struct DeviceContacts : ContactFields<DeviceBuffer> {
+    DevicePairA pairA;
+};
 
 struct DeviceState {
     OwnerFields<DeviceBuffer> owners;

@@ -8,6 +8,8 @@
 #include "kinematics/DormantRules.h"
 #include "state/StateView.h"
 
+#include "backend/cuda/kernels/PairAKernels.cuh"
+
 namespace deme {
 
 namespace {
@@ -95,7 +97,8 @@ extern "C" __global__ void deme_bin_counts(const unsigned int* keys, unsigned in
 // Per searched sphere A = ids[k]: its partners, then (with a dormant registry, d.start not null)
 // its dormant partners as (lower, higher) pairs, which deme_pairs_from_keys puts in order after a
 // sort. With `outB` null, counts them into count[k]; otherwise writes them from offset[k] to
-// offset[k + 1] (the exclusive sum of the counts, which may have been taken in place). Spheres of
+// offset[k + 1] (the exclusive sum of the counts, which may have been taken in place), and A into
+// `outA` where given (without dormant partners every A is sphere k, implied by the offsets). Spheres of
 // radius `wideRadius` or more are left to deme_pair_search_wide (count[k] stays 0 here). A
 // detection in slabs searches the spheres whose centres' bins lie in the layers `searched` only
 // (the others' counts stay as they are: another slab's).
@@ -113,7 +116,8 @@ extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, Dorman
     }
     const unsigned int base = offset[k], found = offset[k + 1] - base;
     const unsigned int own = spherePartners(s, a, sa, outB + base, found);
-    for (unsigned int j = 0; j < own; j++) outA[base + j] = sa;
+    if (outA)  // null: the offsets imply A (CudaKinematics, kernels/PairAKernels.cuh)
+        for (unsigned int j = 0; j < own; j++) outA[base + j] = sa;
     if (!d.start) return;
     bodyID_t* more = outB + base + own;
     const unsigned int nd = dormantPartners(s, a, d, sa, more, found - own);

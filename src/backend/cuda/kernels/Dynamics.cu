@@ -118,16 +118,17 @@ extern "C" __global__ void deme_resolve_mesh_contacts(StateView s, const StepBat
     const ContactView& c = s.contacts;
     const bodyID_t firstTriangle = s.triangleIdBase();  // B from here on: a sphere-triangle pair
     if (i >= s.numContacts || c.geomB[i] < firstTriangle) return;
-    if (i > 0 && c.geomB[i - 1] >= firstTriangle && c.geomA[i - 1] == c.geomA[i]) return;
+    const bodyID_t a = pairAOf(s, i);
+    if (i > 0 && c.geomB[i - 1] >= firstTriangle && pairAOf(s, i - 1) == a) return;
     size_t n = 1;
-    while (i + n < s.numContacts && c.geomB[i + n] >= firstTriangle && c.geomA[i + n] == c.geomA[i]) n++;
+    while (i + n < s.numContacts && c.geomB[i + n] >= firstTriangle && pairAOf(s, i + n) == a) n++;
     MeshCandidate cand[MAX_MESH_CANDIDATES];
     // In the pooled form every sphere-triangle pair has a slot (DeviceHistoryMapping).
     const HistoryPoolView& hp = s.historyPool;
-    const bool resolved = hp.ranked ? resolveSphereMeshContactsWith(s, c.geomA[i], i, n, cand, MAX_MESH_CANDIDATES,
+    const bool resolved = hp.ranked ? resolveSphereMeshContactsWith(s, a, i, n, cand, MAX_MESH_CANDIDATES,
                                                                     HistoryInPool{hp, c.meshState, s.numWildcards})
                                     : resolveSphereMeshContacts(s, i, n, cand, MAX_MESH_CANDIDATES);
-    if (!resolved) raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, c.geomA[i]);
+    if (!resolved) raiseError(red, KERNEL_ERROR_MESH_CANDIDATES, a);
 }
 
 // The built-in models from the material tables.
@@ -445,7 +446,7 @@ extern "C" __global__ void deme_mark_contact_owners(StateView s, unsigned int* f
     const size_t i = globalIndex();
     if (i >= s.numContacts) return;
     const ContactView& c = s.contacts;
-    flags[sphereOwner(s, c.geomA[i])] = 1u;
+    flags[sphereOwner(s, pairAOf(s, i))] = 1u;
     flags[geometryOwner(s, contactTypeAt(s, i), c.geomB[i])] = 1u;
 }
 

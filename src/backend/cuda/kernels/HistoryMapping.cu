@@ -23,6 +23,8 @@
 #include "state/HistorySlot.h"
 #include "state/StateView.h"
 
+#include "backend/cuda/kernels/PairAKernels.cuh"
+
 namespace deme {
 
 namespace {
