@@ -1,6 +1,6 @@
 // Runs a kernel file written for NVRTC on the host, one thread at a time, for tests that check GPU
 // kernels without a GPU. Include this, then the kernel file, then HostKernelEmulationEnd.h. Only
-// kernels that use nothing of CUDA but the thread index, atomicAdd on unsigned ints and atomicOr on
+// kernels that use nothing of CUDA but the thread index, atomicAdd on 32- and 64-bit unsigned ints and atomicOr on
 // 64-bit words can run so;
 // blockDim is 1, so a kernel's global index is blockIdx.x.
 #pragma once
@@ -16,6 +16,12 @@ EmulatedIndex blockIdx, threadIdx, blockDim{1, 1, 1};
 // One thread at a time: the atomic is a plain add.
 inline unsigned int atomicAdd(unsigned int* at, unsigned int v) {
     const unsigned int old = *at;
+    *at = old + v;
+    return old;
+}
+
+inline unsigned long long atomicAdd(unsigned long long* at, unsigned long long v) {
+    const unsigned long long old = *at;
     *at = old + v;
     return old;
 }

@@ -12,6 +12,7 @@
 
 #include "HostKernelEmulation.h"
 #include "backend/cuda/kernels/PairAKernels.cuh"
+#include "EmulatedPairA.h"
 #include "HostKernelEmulationEnd.h"
 
 using namespace deme;
@@ -42,27 +43,6 @@ std::vector<bodyID_t> readBack(const PairAList& list, size_t n) {
     std::vector<bodyID_t> a(n);
     expandPairAs(list, n, a.data());
     return a;
-}
-
-// The kernels' three launches, as backend/cuda/DevicePairA.cpp makes them.
-HostCompactPairAs compactByKernels(const bodyID_t* whole, const unsigned int* offset, unsigned int spheres, size_t n) {
-    HostCompactPairAs c;
-    const size_t blocks = pairABlocks(n);
-    std::vector<uint32_t> rows(blocks + 1, 0u);
-    runThreads(blocks, [&] { deme_pair_a_wide_blocks(whole, offset, spheres, n, rows.data()); });
-    uint32_t sum = 0;
-    for (uint32_t& r : rows) {
-        const uint32_t flag = r;
-        r = sum;
-        sum += flag;
-    }
-    c.base.resize(blocks);
-    c.delta.assign(n, 0);
-    c.wide.assign((size_t)rows[blocks] * PAIR_A_BLOCK, 0);
-    runThreads(blocks, [&] { deme_pair_a_bases(whole, offset, spheres, n, rows.data(), c.base.data()); });
-    const PairAWriter out{c.base.data(), c.delta.data(), c.wide.data()};
-    runThreads(whole ? n : spheres, [&] { deme_pair_a_put(whole, offset, spheres, n, out); });
-    return c;
 }
 
 }  // namespace
@@ -108,13 +88,13 @@ TEST(CompactPairA, KernelsFromWholeAsAndFromOffsetsMakeTheHostsForm) {
         const unsigned int spheres = 1u + (unsigned int)(rng() % 3000);
         const std::vector<unsigned int> count = pairCounts(rng, spheres);
         const std::vector<bodyID_t> a = asFromCounts(count);
-        std::vector<unsigned int> offset(spheres + 1, 0u);
+        std::vector<PairOffset> offset(spheres + 1, 0u);
         for (unsigned int k = 0; k < spheres; k++) offset[k + 1] = offset[k] + count[k];
         for (size_t i = 0; i < a.size(); i++) ASSERT_EQ(pairAFromOffsets(offset.data(), spheres, i), a[i]);
         if (a.empty()) continue;
         const HostCompactPairAs host = compactPairAsOnHost(a.data(), a.size());
-        const HostCompactPairAs fromWhole = compactByKernels(a.data(), nullptr, 0u, a.size());
-        const HostCompactPairAs fromOffsets = compactByKernels(nullptr, offset.data(), spheres, a.size());
+        const HostCompactPairAs fromWhole = compactPairAsByKernels(a.data(), nullptr, 0u, a.size());
+        const HostCompactPairAs fromOffsets = compactPairAsByKernels(nullptr, offset.data(), spheres, a.size());
         for (const HostCompactPairAs* k : {&fromWhole, &fromOffsets}) {
             EXPECT_EQ(k->base, host.base) << "round " << round;
             EXPECT_EQ(k->wide, host.wide);
@@ -122,4 +102,23 @@ TEST(CompactPairA, KernelsFromWholeAsAndFromOffsetsMakeTheHostsForm) {
             EXPECT_EQ(readBack(k->list(), a.size()), a);
         }
     }
+}
+
+// Detection's offsets are 64 bits (a GPU set may pass 2^32 pairs): a pair past 2^32 finds its sphere,
+// and a block there its first and last pairs, without wrapping.
+TEST(CompactPairA, OffsetsPastTwoToTheThirtyTwoNameTheirSpheres) {
+    const std::vector<PairOffset> offset = {0ull, 3000000000ull, 3000000000ull, 5000000001ull, 6000000000ull};
+    const unsigned int spheres = 4;
+    EXPECT_EQ(pairAFromOffsets(offset.data(), spheres, 0), 0u);
+    EXPECT_EQ(pairAFromOffsets(offset.data(), spheres, 2999999999ull), 0u);
+    EXPECT_EQ(pairAFromOffsets(offset.data(), spheres, 3000000000ull), 2u);  // sphere 1 has none
+    EXPECT_EQ(pairAFromOffsets(offset.data(), spheres, 4294967296ull), 2u);
+    EXPECT_EQ(pairAFromOffsets(offset.data(), spheres, 5000000001ull), 3u);
+    EXPECT_EQ(pairAFromOffsets(offset.data(), spheres, 5999999999ull), 3u);
+    const size_t n = 6000000000ull, k = 5000000000ull / PAIR_A_BLOCK;  // the block holding pair 5e9
+    EXPECT_EQ(pairABlockFirst(k), 5000000000ull);
+    EXPECT_EQ(pairABlockLast(k, n), 5000000031ull);
+    EXPECT_EQ(pairABlockLast(pairABlocks(n) - 1, n), n - 1);
+    // The block of pairs 5,000,000,000 to 5,000,000,031 spans spheres 2 and 3: one byte apart.
+    EXPECT_EQ(pairABlockWideFlag(OffsetPairASource{offset.data(), spheres}, k, n), 0u);
 }

@@ -28,6 +28,7 @@
 
 #include "HostKernelEmulation.h"
 #include "backend/cuda/kernels/Detection.cu"
+#include "EmulatedPairA.h"
 #include "HostKernelEmulationEnd.h"
 
 using namespace deme;
@@ -35,10 +36,11 @@ using namespace deme_test;
 
 namespace {
 
-void exclusiveSum(std::vector<unsigned int>& v) {
-    unsigned int sum = 0;
-    for (unsigned int& x : v) {
-        const unsigned int c = x;
+template <class T>
+void exclusiveSum(std::vector<T>& v) {
+    T sum = 0;
+    for (T& x : v) {
+        const T c = x;
         x = sum;
         sum += c;
     }
@@ -202,24 +204,26 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     args.sphereBins = BinsView{r.spheres.start.data(), r.spheres.items.data()};
     if (nT) args.triangleBins = BinsView{r.triangles.start.data(), r.triangles.items.data()};
     // As on the GPU: counts, then their exclusive sum in place.
-    std::vector<unsigned int> offset(nSearched + 1, 0);
+    std::vector<PairOffset> offset(nSearched + 1, 0);
     const unsigned int sLanes = spread.searchLanes;
     if (sLanes > 1)
         runThreads((size_t)nSearched * sLanes, [&] {
             deme_pair_search_lanes(v, args, nSearched, sLanes, spread.wideRadius, offset.data(),
-                                   (const unsigned int*)nullptr, (unsigned int*)nullptr, (bodyID_t*)nullptr);
+                                   (const PairOffset*)nullptr, (unsigned int*)nullptr, (bodyID_t*)nullptr);
         });
     else
         runThreads(nSearched, [&] {
             deme_pair_search(v, args, dormantBins, ids, nSearched, spread.wideRadius, wholeGridSlab(grid).searched,
-                             offset.data(), (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr);
+                             offset.data(), (const PairOffset*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr);
         });
     runThreads((size_t)nWide * lanes, [&] {
-        deme_pair_search_wide(v, args, wide.data(), nWide, lanes, offset.data(), (const unsigned int*)nullptr,
+        deme_pair_search_wide(v, args, wide.data(), nWide, lanes, offset.data(), (const PairOffset*)nullptr,
                               (unsigned int*)nullptr, (bodyID_t*)nullptr);
     });
     exclusiveSum(offset);
-    const unsigned int total = offset[nSearched];
+    const size_t total = offset[nSearched];
+    // A one thread a sphere search without the registry leaves A to the offsets (CudaKinematics).
+    const bool aFromOffsets = !r.usedRegistry && sLanes == 1 && nWide == 0;
     DetectedContacts& c = r.contacts;
     c.geomA.assign(total, 0);
     c.geomB.assign(total, 0);
@@ -228,8 +232,8 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
         // deme_pair_order must undo whatever it was.
         std::vector<unsigned int> cursor(nSearched, 0);
         runThreadsReversed((size_t)nSearched * sLanes, [&] {
-            deme_pair_search_lanes(v, args, nSearched, sLanes, spread.wideRadius, (unsigned int*)nullptr,
-                                   offset.data(), cursor.data(), c.geomB.data());
+            deme_pair_search_lanes(v, args, nSearched, sLanes, spread.wideRadius, (PairOffset*)nullptr, offset.data(),
+                                   cursor.data(), c.geomB.data());
         });
         runThreads(nSearched, [&] {
             deme_pair_order(v, nSearched, spread.wideRadius, offset.data(), c.geomA.data(), c.geomB.data());
@@ -237,7 +241,8 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
     } else {
         runThreads(nSearched, [&] {
             deme_pair_search(v, args, dormantBins, ids, nSearched, spread.wideRadius, wholeGridSlab(grid).searched,
-                             (unsigned int*)nullptr, offset.data(), c.geomA.data(), c.geomB.data());
+                             (PairOffset*)nullptr, offset.data(), aFromOffsets ? nullptr : c.geomA.data(),
+                             c.geomB.data());
         });
     }
     if (nWide) {
@@ -245,7 +250,7 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
         // the ranking must undo whatever it was.
         std::vector<unsigned int> cursor(nWide, 0);
         runThreadsReversed((size_t)nWide * lanes, [&] {
-            deme_pair_search_wide(v, args, wide.data(), nWide, lanes, (unsigned int*)nullptr, offset.data(),
+            deme_pair_search_wide(v, args, wide.data(), nWide, lanes, (PairOffset*)nullptr, offset.data(),
                                   cursor.data(), c.geomB.data());
         });
         for (unsigned int w = 0; w < nWide; w++) EXPECT_EQ(cursor[w], offset[wide[w] + 1] - offset[wide[w]]);
@@ -268,6 +273,11 @@ EmulatedDetection emulateDetect(SimState& s, const BinGrid& sceneGrid, double ma
         runThreads(total,
                    [&] { deme_pairs_from_keys(sortedKeys.data(), total, bBits, c.geomA.data(), c.geomB.data()); });
     }
+    // The As compact, as the GPU makes them (kernels/PairAKernels.cuh): from the offsets, or from the
+    // whole ones written above; read back whole.
+    const HostCompactPairAs compact =
+        compactPairAsByKernels(aFromOffsets ? nullptr : c.geomA.data(), offset.data(), nSearched, total);
+    expandPairAs(compact.list(), total, c.geomA.data());
     return r;
 }
 
@@ -306,13 +316,13 @@ SlabDetection emulateDetectInSlabs(SimState& s, const BinGrid& grid, double marg
     };
     const DormantBinsView none{nullptr, nullptr, 0.0};
     const float noWide = std::numeric_limits<float>::infinity();
-    std::vector<unsigned int> offset(nS + 1, 0);
+    std::vector<PairOffset> offset(nS + 1, 0);
     for (int k = 0; k < slabs; k++) {
         const BinSlab slab = binSlab(grid, halo, slabs, k);
         binSlab_(slab);
         runThreads(nS, [&] {
             deme_pair_search(v, args, none, nullptr, nS, noWide, slab.searched, offset.data(),
-                             (const unsigned int*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr);
+                             (const PairOffset*)nullptr, (bodyID_t*)nullptr, (bodyID_t*)nullptr);
         });
     }
     exclusiveSum(offset);
@@ -323,10 +333,13 @@ SlabDetection emulateDetectInSlabs(SimState& s, const BinGrid& grid, double marg
         const BinSlab slab = binSlab(grid, halo, slabs, k);
         if (k < slabs - 1) binSlab_(slab);
         runThreads(nS, [&] {
-            deme_pair_search(v, args, none, nullptr, nS, noWide, slab.searched, (unsigned int*)nullptr, offset.data(),
-                             c.geomA.data(), c.geomB.data());
+            deme_pair_search(v, args, none, nullptr, nS, noWide, slab.searched, (PairOffset*)nullptr, offset.data(),
+                             (bodyID_t*)nullptr, c.geomB.data());
         });
     }
+    // A from the offsets, in the compact form, as the GPU makes it (kernels/PairAKernels.cuh).
+    expandPairAs(compactPairAsByKernels(nullptr, offset.data(), nS, c.geomB.size()).list(), c.geomB.size(),
+                 c.geomA.data());
     return r;
 }
 

@@ -138,7 +138,7 @@ TEST(CudaHistoryMapping, KernelsFollowTheCpuRules) {
                                 oldA = compactPairAsOnHost(old.a.data(), nOld);
         const ContactKeys freshKeys{freshA.list(), fresh.b.data(), (unsigned int)nFresh};
         const ContactKeys oldKeys{oldA.list(), old.b.data(), (unsigned int)nOld};
-        std::vector<unsigned int> missing(nOld + 1, 0), before(nOld + 1, 0);
+        std::vector<unsigned long long> missing(nOld + 1, 0), before(nOld + 1, 0);
         unsigned int any = 0;
         runThreads(nOld, [&] { deme_persistent_missing(freshKeys, oldKeys, oldPersistent.data(), nullptr, &any); });
         ASSERT_EQ(any != 0, std::count(oldPersistent.begin(), oldPersistent.end(), 1) > 0);

@@ -30,3 +30,18 @@ TEST(IndexLimits, CountsUpTo32BitsPassAndOneMoreIsANamedError) {
                  Error);
     EXPECT_THROW(requireIndexable(1ull << 40, "bin entries", FEWER_BIN_ENTRIES_REMEDY, "DoDynamics"), Error);
 }
+
+// A GPU set indexes its pairs in 64 bits, bounded by the late table's 33-bit pair (state/HistorySlot.h):
+// 2^33 - 2 pass (a billion spheres' six pairs each among them), one more is a named error.
+TEST(IndexLimits, GpuSetsPassTwoToTheThirtyTwoPairsUpToTheLateTablesBound) {
+    EXPECT_NO_THROW(requireGpuPairCount(6000000000ull, "Initialize"));
+    EXPECT_NO_THROW(requireGpuPairCount((1ull << 33) - 2, "DoDynamics"));
+    try {
+        requireGpuPairCount((1ull << 33) - 1, "DoDynamics");
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        const std::string m = e.what();
+        EXPECT_EQ(m.rfind("DoDynamics: 8589934591 contact pairs are more than the 8589934590", 0), 0u) << m;
+        EXPECT_NE(m.find("SetMaxVelocity"), std::string::npos) << m;
+    }
+}

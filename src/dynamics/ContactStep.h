@@ -134,13 +134,19 @@ struct ContactIds {
     uint8_t type;
 };
 
-// The same where the caller knows A (the CPU's set may keep A as runs: backend/cpu/ContactARuns.h).
+// A contact's ids from its two geometries (its type from B where the caller does not know it).
 template <uint8_t KnownType, class S>
-DEME_HD_INLINE ContactIds contactIdsWithA(const S& s, size_t i, bodyID_t a) {
-    const bodyID_t b = s.contacts.geomB[i];
+DEME_HD_INLINE ContactIds contactIdsOf(const S& s, bodyID_t a, bodyID_t b) {
     return ContactIds{a, b, KnownType < NO_TRIANGLE_CONTACT ? KnownType : contactTypeOf(s, b)};
 }
 
+// The same where the caller knows A (the CPU's set may keep A as runs: backend/cpu/ContactARuns.h).
+template <uint8_t KnownType, class S>
+DEME_HD_INLINE ContactIds contactIdsWithA(const S& s, size_t i, bodyID_t a) {
+    return contactIdsOf<KnownType>(s, a, s.contacts.geomB[i]);
+}
+
+// (The GPU's force pass loads them before its wait and decodes A after: kernels/ForcePassKernel.cuh.)
 template <uint8_t KnownType, class S>
 DEME_HD_INLINE ContactIds contactIds(const S& s, size_t i) {
     return contactIdsWithA<KnownType>(s, i, pairAOf(s, i));

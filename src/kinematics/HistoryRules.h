@@ -21,16 +21,16 @@ namespace deme {
 struct ContactKeys {
     PairAList geomA;
     const bodyID_t* geomB;
-    unsigned int n;
+    size_t n;  // (past 2^32 on the GPU: a pair's index is 64 bits there)
 };
 
 DEME_HD_INLINE uint64_t pairKey(bodyID_t a, bodyID_t b) { return ((uint64_t)a << 32) | (uint64_t)b; }
 
 // The first index of `set` whose key is not below `key`.
-DEME_HD_INLINE unsigned int keyLowerBound(const ContactKeys& set, uint64_t key) {
-    unsigned int lo = 0, hi = set.n;
+DEME_HD_INLINE size_t keyLowerBound(const ContactKeys& set, uint64_t key) {
+    size_t lo = 0, hi = set.n;
     while (lo < hi) {
-        const unsigned int mid = (lo + hi) >> 1;
+        const size_t mid = lo + ((hi - lo) >> 1);
         if (pairKey(set.geomA[mid], set.geomB[mid]) < key)
             lo = mid + 1;
         else
@@ -39,13 +39,13 @@ DEME_HD_INLINE unsigned int keyLowerBound(const ContactKeys& set, uint64_t key) 
     return lo;
 }
 
-DEME_HD_INLINE bool keyAt(const ContactKeys& set, unsigned int at, uint64_t key) {
+DEME_HD_INLINE bool keyAt(const ContactKeys& set, size_t at, uint64_t key) {
     return at < set.n && pairKey(set.geomA[at], set.geomB[at]) == key;
 }
 
 // 1. Whether pair j of the old set is persistent and the fresh set lacks it.
 DEME_HD_INLINE bool persistentPairMissing(const ContactKeys& fresh, const ContactKeys& old,
-                                          const uint8_t* oldPersistent, unsigned int j) {
+                                          const uint8_t* oldPersistent, size_t j) {
     if (!oldPersistent[j]) return false;
     const uint64_t key = pairKey(old.geomA[j], old.geomB[j]);
     return !keyAt(fresh, keyLowerBound(fresh, key), key);
@@ -54,12 +54,12 @@ DEME_HD_INLINE bool persistentPairMissing(const ContactKeys& fresh, const Contac
 // Where fresh pair i and missing old pair j go in the merged set: their index in their own set plus
 // the other set's pairs before them (the two share no key). missingBefore is the exclusive sum of
 // persistentPairMissing over the old set.
-DEME_HD_INLINE unsigned int mergedSlotOfFresh(const ContactKeys& fresh, const ContactKeys& old,
-                                              const unsigned int* missingBefore, unsigned int i) {
+DEME_HD_INLINE size_t mergedSlotOfFresh(const ContactKeys& fresh, const ContactKeys& old, const uint64_t* missingBefore,
+                                        size_t i) {
     return i + missingBefore[keyLowerBound(old, pairKey(fresh.geomA[i], fresh.geomB[i]))];
 }
-DEME_HD_INLINE unsigned int mergedSlotOfOld(const ContactKeys& fresh, const ContactKeys& old,
-                                            const unsigned int* missingBefore, unsigned int j) {
+DEME_HD_INLINE size_t mergedSlotOfOld(const ContactKeys& fresh, const ContactKeys& old, const uint64_t* missingBefore,
+                                      size_t j) {
     return missingBefore[j] + keyLowerBound(fresh, pairKey(old.geomA[j], old.geomB[j]));
 }
 
@@ -92,7 +92,7 @@ struct OldContactHistory {
 };
 
 // Old pair `at`'s mesh state.
-DEME_HD_INLINE uint8_t oldMeshState(const OldContactHistory& old, unsigned int at) {
+DEME_HD_INLINE uint8_t oldMeshState(const OldContactHistory& old, size_t at) {
     if (!old.meshState) return 0;  // (none kept: a scene without triangles)
     if (!old.meshStateBySlot) return old.meshState[at];
     const uint64_t* ranked = old.slots.ranked;
@@ -100,22 +100,22 @@ DEME_HD_INLINE uint8_t oldMeshState(const OldContactHistory& old, unsigned int a
 }
 
 // Old pair `at`'s W floats, or null where it has no history (all zeros).
-DEME_HD_INLINE const float* oldPairHistory(const OldContactHistory& old, unsigned int at) {
-    if (!old.slots.ranked) return old.wildcards + (size_t)at * old.W;
+DEME_HD_INLINE const float* oldPairHistory(const OldContactHistory& old, size_t at) {
+    if (!old.slots.ranked) return old.wildcards + at * old.W;
     const uint32_t k = slotOf(old.slots, at);
     return k == NO_HISTORY_SLOT ? nullptr : old.wildcards + (size_t)k * old.W;
 }
 
 // Whether pair j of a set (read as history mapping reads an old set) hands anything to the next set.
-DEME_HD_INLINE bool pairHandsOn(const OldContactHistory& set, unsigned int j) {
+DEME_HD_INLINE bool pairHandsOn(const OldContactHistory& set, size_t j) {
     const float* h = oldPairHistory(set, j);
     return pairCarriesHistory(h, h ? set.W : 0u, oldMeshState(set, j), set.persistent ? set.persistent[j] : (uint8_t)0);
 }
 
 // 2a. Where pair i of the new set (keys `fresh`) was in the old set, or old.keys.n where it is new.
-DEME_HD_INLINE unsigned int oldIndexOfPair(const ContactKeys& fresh, const OldContactHistory& old, unsigned int i) {
+DEME_HD_INLINE size_t oldIndexOfPair(const ContactKeys& fresh, const OldContactHistory& old, size_t i) {
     const uint64_t key = pairKey(fresh.geomA[i], fresh.geomB[i]);
-    const unsigned int at = keyLowerBound(old.keys, key);
+    const size_t at = keyLowerBound(old.keys, key);
     return keyAt(old.keys, at, key) ? at : old.keys.n;
 }
 
@@ -123,8 +123,8 @@ DEME_HD_INLINE unsigned int oldIndexOfPair(const ContactKeys& fresh, const OldCo
 // old set (oldIndexOfPair): its W wildcards, mesh state and persistent flag. `s` gives the
 // geometries' owners and families.
 template <class S>
-DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const OldContactHistory& old, unsigned int i,
-                                    unsigned int at, float* wildcards, uint8_t& meshState, uint8_t& persistent) {
+DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const OldContactHistory& old, size_t i,
+                                    size_t at, float* wildcards, uint8_t& meshState, uint8_t& persistent) {
     if (at < old.keys.n) {
         const float* h = oldPairHistory(old, at);
         for (unsigned int w = 0; w < old.W; w++) wildcards[w] = h ? h[w] : 0.f;
@@ -149,7 +149,7 @@ DEME_HD_INLINE void pairHistoryFrom(const S& s, const ContactKeys& fresh, const 
 // over (`h`, W floats), keeps a slot: a history not all +0, or a sphere and a triangle, between
 // which the mesh rule hands history during the steps (dynamics/MeshContactRule.h).
 template <class S>
-DEME_HD_INLINE bool pairKeepsHistorySlot(const S& s, const ContactKeys& fresh, unsigned int i, const float* h,
+DEME_HD_INLINE bool pairKeepsHistorySlot(const S& s, const ContactKeys& fresh, size_t i, const float* h,
                                          unsigned int W) {
     return contactTypeOf(s, fresh.geomB[i]) == SPHERE_TRIANGLE || pairCarriesHistory(h, W, 0, 0);
 }
@@ -161,7 +161,7 @@ DEME_HD_INLINE void putInPool(float* pool, uint32_t k, const float* h, unsigned 
 
 // 2. Both: the history of pair i of the new set.
 template <class S>
-DEME_HD_INLINE void carryPairHistory(const S& s, const ContactKeys& fresh, const OldContactHistory& old, unsigned int i,
+DEME_HD_INLINE void carryPairHistory(const S& s, const ContactKeys& fresh, const OldContactHistory& old, size_t i,
                                      float* wildcards, uint8_t& meshState, uint8_t& persistent) {
     pairHistoryFrom(s, fresh, old, i, oldIndexOfPair(fresh, old, i), wildcards, meshState, persistent);
 }

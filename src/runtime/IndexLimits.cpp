@@ -12,4 +12,10 @@ void requireIndexable(uint64_t count, const char* what, const char* remedy, cons
                          " that 32-bit indices address; " + remedy);
 }
 
+void requireGpuPairCount(uint64_t pairs, const char* call) {
+    if (pairs <= MAX_GPU_CONTACT_PAIRS) return;
+    throwError(call, std::to_string(pairs) + " contact pairs are more than the " +
+                         std::to_string(MAX_GPU_CONTACT_PAIRS) + " a GPU contact set holds; " + FEWER_PAIRS_REMEDY);
+}
+
 }  // namespace deme

@@ -176,7 +176,7 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         const double allEntries = (byCentre ? (double)nS : entries) + (nT ? triEntries : 0.0);
         const double slabReach = 0.75 * grid.edge.z;
         const int slabs = byCentre ? detectionSlabCount(grid, slabReach, kinds, (double)nS, (double)nS) : 1;
-        detection = (snapshotKept ? nS * 24 + nO : 0) + nS * 4 +
+        detection = (snapshotKept ? nS * 24 + nO : 0) + nS * sizeof(PairOffset) +
                     (size_t)slabBinBytes(grid, slabReach, slabs, kinds, allEntries);
         // Triangles, where there are any: their global boxes (2 double3).
         if (nT) detection += nT * 48;

@@ -67,9 +67,13 @@ void Simulation::start(SimState&& state, const ModelLayout& model) {
         settings.asyncDetection || !kinematics.detectsInPlace(), 0,
         [this](size_t pairs) { return contactSetForm(pairs); }, keepRebuiltArraysUpTo("Initialize"));
     requireMemoryFor(m_memoryEstimate, dynamics.memoryAvailable(), memoryPlace(dynamics), "Initialize");
-    // So is a scene whose pairs would pass what 32-bit indices address (runtime/IndexLimits.h).
-    requireIndexable(m_memoryEstimate.pairs, "contact pairs assumed (6 a sphere)", TOO_MANY_SPHERES_REMEDY,
-                     "Initialize");
+    // So is a scene whose pairs would pass what the backend's pair indices address: 32 bits on the
+    // CPU, a GPU set's bound otherwise (runtime/IndexLimits.h).
+    if (dynamics.onGpu())
+        requireGpuPairCount(m_memoryEstimate.pairs, "Initialize");
+    else
+        requireIndexable(m_memoryEstimate.pairs, "contact pairs assumed (6 a sphere)", TOO_MANY_SPHERES_REMEDY,
+                         "Initialize");
     m_contacts.start(settings, *m_backends.dynamics, *m_backends.kinematics);
     m_contacts.period = &m_state.frame.periodic;
     // A contact set larger than the memory holds is an error naming it, before it is installed.

@@ -18,6 +18,9 @@ constexpr uint32_t WIDE_A_BLOCK = 0x80000000u;             // a base's mark: the
 constexpr uint32_t MAX_A_SPAN_IN_A_BYTE = 255u;            // the most a byte adds to its base
 constexpr uint64_t COMPACT_A_SPHERE_LIMIT = WIDE_A_BLOCK;  // As at or past it cannot be a base
 
+// Detection's per-sphere offsets into a set: 64 bits, as a GPU set may pass 2^32 pairs.
+using PairOffset = unsigned long long;
+
 DEME_HD_INLINE size_t pairABlocks(size_t pairs) { return (pairs + PAIR_A_BLOCK - 1) / PAIR_A_BLOCK; }
 
 // Whether a block whose first pair's A is `first` and last pair's A is `last` (sorted: first <=
@@ -29,19 +32,32 @@ DEME_HD_INLINE uint32_t pairABlockBase(bodyID_t first, bool wide, uint32_t row) 
     return wide ? (WIDE_A_BLOCK | row) : (uint32_t)first;
 }
 
+// What a read of pair i's A loads first: the whole A, or the block's base and the pair's byte.
+struct PairALoaded {
+    uint32_t word;
+    uint8_t delta;
+};
+
 // Pair i's A: whole (one id a pair) where `whole` is set, else from the block's base and the pair's
-// byte, or from the side table.
+// byte, or from the side table. A kernel that reads it early may load (`load`) before its dependent
+// launch's wait and decode (`decode`) after: the wait orders every load, so that the base and the
+// byte go out together (in one expression the compiler moves the byte's load past the base's branch:
+// two round trips to memory, and the early mixer's force pass 17 % slower).
 struct PairAList {
     const bodyID_t* whole;
     const uint32_t* base;  // a block's first A, or WIDE_A_BLOCK | its row of `wide`
     const uint8_t* delta;  // a pair's A minus its block's base
     const bodyID_t* wide;  // PAIR_A_BLOCK As a row
-    DEME_HD_INLINE bodyID_t operator[](size_t i) const {
-        if (whole) return whole[i];
-        const uint32_t b = base[i / PAIR_A_BLOCK];
-        if (b & WIDE_A_BLOCK) return wide[(size_t)(b & ~WIDE_A_BLOCK) * PAIR_A_BLOCK + i % PAIR_A_BLOCK];
-        return (bodyID_t)(b + delta[i]);
+    DEME_HD_INLINE PairALoaded load(size_t i) const {
+        if (whole) return PairALoaded{whole[i], 0u};
+        return PairALoaded{base[i / PAIR_A_BLOCK], delta[i]};
     }
+    DEME_HD_INLINE bodyID_t decode(const PairALoaded& l, size_t i) const {
+        if (whole) return l.word;
+        if (l.word & WIDE_A_BLOCK) return wide[(size_t)(l.word & ~WIDE_A_BLOCK) * PAIR_A_BLOCK + i % PAIR_A_BLOCK];
+        return (bodyID_t)(l.word + l.delta);
+    }
+    DEME_HD_INLINE bodyID_t operator[](size_t i) const { return decode(load(i), i); }
 };
 
 DEME_HD_INLINE PairAList wholePairAs(const bodyID_t* a) { return PairAList{a, nullptr, nullptr, nullptr}; }
@@ -63,7 +79,7 @@ struct PairAWriter {
 // Pair i's A where the set is sorted by A and A is a searched sphere k whose pairs are
 // [offset[k], offset[k + 1]) (detection's exclusive sum over n spheres, offset[n] the total): the
 // last k whose offset is not past i.
-DEME_HD_INLINE bodyID_t pairAFromOffsets(const unsigned int* offset, unsigned int n, size_t i) {
+DEME_HD_INLINE bodyID_t pairAFromOffsets(const PairOffset* offset, unsigned int n, size_t i) {
     unsigned int lo = 0, hi = n;  // offset[lo] <= i < offset[hi]
     while (hi - lo > 1) {
         const unsigned int mid = lo + (hi - lo) / 2;
@@ -89,7 +105,7 @@ struct WholePairASource {
     DEME_HD_INLINE bodyID_t operator()(size_t i) const { return a[i]; }
 };
 struct OffsetPairASource {
-    const unsigned int* offset;
+    const PairOffset* offset;
     unsigned int spheres;
     DEME_HD_INLINE bodyID_t operator()(size_t i) const { return pairAFromOffsets(offset, spheres, i); }
 };

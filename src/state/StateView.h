@@ -54,7 +54,8 @@ struct StateView {
     // (dynamics/ContactStep.h, DEME_VOXEL_PRETEST): set by the GPU's dynamics for a large set of
     // mostly apart pairs; never read on the host.
     bool voxelPretest;
-    uint32_t numOwners, numSpheres, numAnalytical, numTriangles, numContacts;
+    uint32_t numOwners, numSpheres, numAnalytical, numTriangles;
+    uint64_t numContacts;                     // a contact set may pass 2^32 pairs on the GPU
     uint32_t numClumps, numAnalyticalOwners;  // as SimState's: an owner's type (state/OwnerTypeOf.h)
     DEME_HD bodyID_t analyticalIdBase() const { return numSpheres; }
     DEME_HD bodyID_t triangleIdBase() const { return numSpheres + numAnalytical; }

@@ -17,21 +17,21 @@ namespace deme {
 namespace {
 
 ContactKeys keysOf(const std::vector<bodyID_t>& geomA, const std::vector<bodyID_t>& geomB) {
-    return ContactKeys{wholePairAs(geomA.data()), geomB.data(), (unsigned int)geomA.size()};
+    return ContactKeys{wholePairAs(geomA.data()), geomB.data(), geomA.size()};
 }
 
 // Adds to `fresh` the persistent pairs of the current set that it lacks, keeping it sorted by key.
 void mergePersistentPairs(const ContactArrays& c, DetectedContacts& fresh) {
     const ContactKeys old = keysOf(c.geomA, c.geomB), freshKeys = keysOf(fresh.geomA, fresh.geomB);
     const size_t nOld = old.n, nFresh = freshKeys.n;
-    std::vector<unsigned int> missingBefore(nOld + 1, 0);
+    std::vector<uint64_t> missingBefore(nOld + 1, 0);
 #pragma omp parallel for schedule(static) if (nOld > PARALLEL_MIN_ITEMS)
     for (size_t j = 0; j < nOld; j++)
-        missingBefore[j] = persistentPairMissing(freshKeys, old, c.persistent.data(), (unsigned int)j) ? 1u : 0u;
+        missingBefore[j] = persistentPairMissing(freshKeys, old, c.persistent.data(), j) ? 1u : 0u;
     std::vector<uint8_t> missing(missingBefore.begin(), missingBefore.end() - 1);
-    unsigned int sum = 0;
-    for (unsigned int& m : missingBefore) {
-        const unsigned int v = m;
+    uint64_t sum = 0;
+    for (uint64_t& m : missingBefore) {
+        const uint64_t v = m;
         m = sum;
         sum += v;
     }
@@ -43,13 +43,13 @@ void mergePersistentPairs(const ContactArrays& c, DetectedContacts& fresh) {
     merged.geomB.resize(nFresh + sum);
 #pragma omp parallel for schedule(static) if (nFresh > PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < nFresh; i++) {
-        const unsigned int at = mergedSlotOfFresh(freshKeys, old, missingBefore.data(), (unsigned int)i);
+        const size_t at = mergedSlotOfFresh(freshKeys, old, missingBefore.data(), i);
         merged.geomA[at] = fresh.geomA[i];
         merged.geomB[at] = fresh.geomB[i];
     }
     for (size_t j = 0; j < nOld; j++) {
         if (!missing[j]) continue;
-        const unsigned int at = mergedSlotOfOld(freshKeys, old, missingBefore.data(), (unsigned int)j);
+        const size_t at = mergedSlotOfOld(freshKeys, old, missingBefore.data(), j);
         merged.geomA[at] = c.geomA[j];
         merged.geomB[at] = c.geomB[j];
     }
@@ -92,7 +92,7 @@ void mapDenseHistory(const SimState& s, const DetectedContacts& fresh, const Old
     forEachThreadShare(nNew, mappingThreads(nNew), [&](int t, size_t b, size_t e) {
         for (size_t i = b; i < e; i++) {
             uint8_t ms, unkept;  // (no pair is persistent where the set keeps no flags)
-            carryPairHistory(s, freshKeys, old, (unsigned int)i, wildcards.data() + i * W, ms,
+            carryPairHistory(s, freshKeys, old, i, wildcards.data() + i * W, ms,
                              persistent.empty() ? unkept : persistent[i]);
             meshStates.record(t, i, ms);
         }
@@ -128,8 +128,7 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
             uint64_t word = 0;
             for (size_t i = b; i < e; i++) {
                 uint8_t ms, unkept;  // (as in mapDenseHistory)
-                carryPairHistory(s, freshKeys, old, (unsigned int)i, h.data(), ms,
-                                 persistent.empty() ? unkept : persistent[i]);
+                carryPairHistory(s, freshKeys, old, i, h.data(), ms, persistent.empty() ? unkept : persistent[i]);
                 meshStates.record(t, i, ms);
                 if (pairNeedsHistorySlot(contactTypeOf(s, fresh.geomB[i]), h.data(), W)) {
                     word |= 1ull << (i & 63);
@@ -151,9 +150,9 @@ bool mapHistoryChoosingForm(const SimState& s, const DetectedContacts& fresh, co
             pairsOf(w, b, e);
             for (size_t i = b; i < e; i++) {
                 if (!pooled)
-                    carryPairHistory(s, freshKeys, old, (unsigned int)i, &values[i * W], ms, ps);
+                    carryPairHistory(s, freshKeys, old, i, &values[i * W], ms, ps);
                 else if ((bits[w] >> (i & 63)) & 1u)
-                    carryPairHistory(s, freshKeys, old, (unsigned int)i, &values[next++ * W], ms, ps);
+                    carryPairHistory(s, freshKeys, old, i, &values[next++ * W], ms, ps);
             }
         }
     });

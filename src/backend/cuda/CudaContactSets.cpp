@@ -56,7 +56,7 @@ double CudaDynamics::maxTravelSinceOrder() {
 bool CudaDynamics::beforeDetectNow() {
     if (!trimsBeforeDetection(m_numContacts)) return m_setTrimmed;
     select();
-    unsigned int n = m_numContacts;
+    size_t n = m_numContacts;
     const auto releaseForces = [this] {
         m_pairsForSlotShare = m_numContacts;
         returnForceMemory();
@@ -122,9 +122,8 @@ void CudaDynamics::install(const DetectionReport& r, TimingStats& timing) {
     HistoryPoolPolicy policy = m_poolPolicy;
     policy.W = m_W;
     uint32_t slotsUsed = 0;
-    const unsigned int total =
-        m_history.install(fresh, m_pools[1 - m_current], (unsigned int)r.numPairs, old, m_pools[m_current],
-                          m_numContacts, m_W, policy, m_view, m_prim, m_stream, slotsUsed);
+    const size_t total = m_history.install(fresh, m_pools[1 - m_current], r.numPairs, old, m_pools[m_current],
+                                           m_numContacts, m_W, policy, m_view, m_prim, m_stream, slotsUsed);
     // Per-contact forces are written by a storing step of the set in use only (nothing carries them
     // from one set to the next), in memory lent for it then.
     old.force.release();

@@ -40,7 +40,7 @@ void CudaDynamics::upload(const SimState& s, bool withContacts) {
         returnForceMemory();  // both sets' arrays are rewritten or released here
         m_W = s.numWildcards;
         m_current = 0;
-        m_numContacts = (uint32_t)s.contacts.size();
+        m_numContacts = s.contacts.size();
         m_pairsForSlotShare = m_numContacts;
         m_setTrimmed = false;
         uploadContacts(s.contacts, m_W, m_contacts[0], st, m_history.modelWritesPersistent());

@@ -164,12 +164,12 @@ class CudaDynamics : public DynamicsBackend {
     DeviceState m_state;
     DeviceContacts m_contacts[2];  // the set in use and the one a detection fills
     int m_current = 0;
-    uint32_t m_numContacts = 0;
+    size_t m_numContacts = 0;           // (past 2^32: a pair's index is 64 bits on the GPU)
     bool m_forcesInIdleMemory = false;  // the set in use's forces hold the idle set's wildcards' memory
     // The set in use holds only the pairs it hands to the next set (beforeDetectNow), until an
     // installation or an upload replaces it: it serves no step, and no checkpoint resumes it.
     bool m_setTrimmed = false;
-    uint32_t m_pairsForSlotShare = 0;  // the set's pairs before any trim (expectedHistorySlots)
+    size_t m_pairsForSlotShare = 0;  // the set's pairs before any trim (expectedHistorySlots)
     bool m_asyncDetection = true;  // the call's detection mode (beginRun): the outbox is kept where it is
     // A contact set whose id arrays take at most this many bytes each is kept whole before a
     // synchronous detection, and its outbox kept between detections: there the memory does not

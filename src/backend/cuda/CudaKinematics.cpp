@@ -94,7 +94,7 @@ struct CudaKinematics::Work {
     // Scratch.
     DeviceBins sphereBins, triBins;
     DeviceBuffer<double3> triLo, triHi;
-    DeviceBuffer<unsigned int> pairOffset;  // each searched sphere's pair count, then (in place) offset
+    DeviceBuffer<PairOffset> pairOffset;    // each searched sphere's pair count, then (in place) offset
     DeviceBuffer<unsigned int> wideCursor;  // each wide sphere's partners written so far
     DeviceBuffer<unsigned int> laneCursor;  // each sphere's, where several threads search it
     DeviceBuffer<uint64_t> countSum;        // scanCounts's total in 64 bits
@@ -112,6 +112,9 @@ struct CudaKinematics::Work {
     // (the last entry's offset). A total past 2^32 - 1, which the 32-bit sum would wrap, is a
     // deme::Error naming `what` (runtime/IndexLimits.h).
     unsigned int scanCounts(DeviceBuffer<unsigned int>& counts, size_t entries, const char* what, const char* remedy);
+    // The same of the pair counts (pairOffset's first `entries`), in 64 bits: a GPU set may pass 2^32
+    // pairs; one past MAX_GPU_CONTACT_PAIRS is a deme::Error (runtime/IndexLimits.h).
+    size_t scanPairCounts(size_t entries);
     // inPlace: reads dT's state (shared), not the inbox, and lets go of the scratch at the end
     // where it holds more than keepScratchUpTo bytes.
     void detect(const DetectionOrder& o, bool inPlace, size_t keepScratchUpTo, void* submitted, KinematicsInbox& in,
@@ -202,6 +205,15 @@ unsigned int CudaKinematics::Work::scanCounts(DeviceBuffer<unsigned int>& counts
     counts.downloadAsync(&total, 1, stream, entries - 1);
     synchronize(stream);
     requireIndexable(wide, what, remedy, CALL);
+    return total;
+}
+
+size_t CudaKinematics::Work::scanPairCounts(size_t entries) {
+    prim.exclusiveSum((const uint64_t*)pairOffset.data(), (uint64_t*)pairOffset.data(), entries, stream);
+    PairOffset total = 0;
+    pairOffset.downloadAsync(&total, 1, stream, entries - 1);
+    synchronize(stream);
+    requireGpuPairCount(total, CALL);
     return total;
 }
 
@@ -334,7 +346,8 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
         }
         const double pairs = lastPairs ? 1.25 * (double)lastPairs : ESTIMATED_PAIRS_PER_SPHERE * (double)nSearched;
         // (The outbox's pairs: B, and A compact with its rows, 5.25 B a pair: state/CompactPairA.h.)
-        const double besides = 4.0 * ((double)nSearched + 1.0) + (sizeof(bodyID_t) + 1.25) * pairs;
+        const double besides =
+            (double)sizeof(PairOffset) * ((double)nSearched + 1.0) + (sizeof(bodyID_t) + 1.25) * pairs;
         slabs = detectionSlabCount(grid, args.centreReach, kinds, (double)nSearched, (double)nSearched, besides,
                                    (double)freeBytes);
     }
@@ -398,18 +411,18 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
         if (k > 0) binSlabItems(slabAt(k));
         if (nSearched && sLanes > 1)
             launch(kPairSearchLanes, blocksFor(laneThreads, THREADS), THREADS, 0, stream, v, args, nSearched, sLanes,
-                   searchWideFrom, pairOffset.data(), (const unsigned int*)nullptr, (unsigned int*)nullptr,
+                   searchWideFrom, pairOffset.data(), (const PairOffset*)nullptr, (unsigned int*)nullptr,
                    (bodyID_t*)nullptr);
         else if (nSearched)
             launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
-                   searchWideFrom, slabAt(k).searched, pairOffset.data(), (const unsigned int*)nullptr,
+                   searchWideFrom, slabAt(k).searched, pairOffset.data(), (const PairOffset*)nullptr,
                    (bodyID_t*)nullptr, (bodyID_t*)nullptr);
     }
     if (nWide)
         launch(kPairSearchWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, args,
                (const bodyID_t*)wideSpheres.data(), nWide, WIDE_SPHERE_LANES, pairOffset.data(),
-               (const unsigned int*)nullptr, (unsigned int*)nullptr, (bodyID_t*)nullptr);
-    const unsigned int total = scanCounts(pairOffset, nSearched + 1, "contact pairs", FEWER_PAIRS_REMEDY);
+               (const PairOffset*)nullptr, (unsigned int*)nullptr, (bodyID_t*)nullptr);
+    const size_t total = scanPairCounts(nSearched + 1);
     // The outbox is on dT's GPU: size it there (its As once they are made compact, below).
     onDevice(dTDevice, device, [&] { out.geomB.resizeDiscarding(total); });
     KinematicsOutbox& dst = staged ? localOut : out;
@@ -425,18 +438,18 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
         laneCursor.resizeDiscarding(nSearched);
         laneCursor.zeroAsync(stream);
         launch(kPairSearchLanes, blocksFor(laneThreads, THREADS), THREADS, 0, stream, v, args, nSearched, sLanes,
-               searchWideFrom, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(), laneCursor.data(),
+               searchWideFrom, (PairOffset*)nullptr, (const PairOffset*)pairOffset.data(), laneCursor.data(),
                dst.geomB.data());
         launch(kPairOrder, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, nSearched, searchWideFrom,
-               (const unsigned int*)pairOffset.data(), aOut, dst.geomB.data());
+               (const PairOffset*)pairOffset.data(), aOut, dst.geomB.data());
     } else if (total) {
         // Last slab first: its bins are still held from the count (in one slab, the whole grid's);
         // the others' are made again. (Each sphere writes at its own offset: the order is free.)
         for (int k = slabs - 1; k >= 0; k--) {
             if (k < slabs - 1) binSlabItems(slabAt(k));
             launch(kPairSearch, blocksFor(nSearched, THREADS), THREADS, 0, stream, v, args, dormantBins, ids, nSearched,
-                   searchWideFrom, slabAt(k).searched, (unsigned int*)nullptr, (const unsigned int*)pairOffset.data(),
-                   aOut, dst.geomB.data());
+                   searchWideFrom, slabAt(k).searched, (PairOffset*)nullptr, (const PairOffset*)pairOffset.data(), aOut,
+                   dst.geomB.data());
         }
     }
     if (total && nWide) {
@@ -445,16 +458,20 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
         wideCursor.resizeDiscarding(nWide);
         wideCursor.zeroAsync(stream);
         const bodyID_t* wide = wideSpheres.data();
-        const unsigned int* offsets = pairOffset.data();
+        const PairOffset* offsets = pairOffset.data();
         launch(kPairSearchWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, v, args, wide, nWide,
-               WIDE_SPHERE_LANES, (unsigned int*)nullptr, offsets, wideCursor.data(), dst.geomB.data());
+               WIDE_SPHERE_LANES, (PairOffset*)nullptr, offsets, wideCursor.data(), dst.geomB.data());
         launch(kPairRankWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, wide, nWide, WIDE_SPHERE_LANES,
                offsets, aOut, (const bodyID_t*)dst.geomB.data());
         launch(kPairFinishWide, blocksFor(wideThreads, THREADS), THREADS, 0, stream, wide, nWide, WIDE_SPHERE_LANES,
                offsets, aOut, dst.geomB.data());
     }
     // Pairs found from the moving side with a dormant sphere of lower id: into (A, B) order.
-    if (useDormant) dormant.sortPairs(v, aOut, dst.geomB.data(), total, prim, stream);
+    if (useDormant) {
+        // (The registry's sort indexes its pairs in 32 bits.)
+        requireIndexable(total, "contact pairs found beside dormant spheres", FEWER_PAIRS_REMEDY, CALL);
+        dormant.sortPairs(v, aOut, dst.geomB.data(), (unsigned int)total, prim, stream);
+    }
     // The As compact (state/CompactPairA.h), from the offsets or from the whole ones. The outbox's
     // are on dT's GPU: where that is another one, made here and copied there.
     if (staged) {

@@ -16,7 +16,7 @@ namespace {
 constexpr unsigned int THREADS = 256;
 constexpr const char* kSourcePath = "backend/cuda/kernels/HistoryMapping.cu";
 
-ContactKeys keysOf(const DeviceContacts& c, unsigned int n) { return ContactKeys{c.pairA.view(), c.geomB.data(), n}; }
+ContactKeys keysOf(const DeviceContacts& c, size_t n) { return ContactKeys{c.pairA.view(), c.geomB.data(), n}; }
 
 }  // namespace
 
@@ -46,7 +46,7 @@ void DeviceHistoryMapping::uploadRules(const std::vector<ContactInitRule>& rules
     m_numRules = (unsigned int)rules.size();
 }
 
-bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHistoryPool& pool, unsigned int& n,
+bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHistoryPool& pool, size_t& n,
                                                  unsigned int W, DevicePrimitives& prim, Stream stream,
                                                  const std::function<void()>& beforeTrim) {
     if (n == 0 || !mayKeepOnlyPairsHandedOn(m_numRules > 0)) return false;
@@ -58,16 +58,12 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
     // kernels/HistoryMapping.cu).
     const size_t numWords = ((size_t)n + 63) / 64;
     DeviceBuffer<unsigned long long> marks(numWords, stream);
-    DeviceBuffer<uint32_t> rankBase(numWords + 1, stream);
+    DeviceBuffer<uint32_t> rankBase;
     marks.zeroAsync(stream);
     launch(m_markHandedOn, blocksFor(n, THREADS), THREADS, 0, stream, h, marks.data());
-    launch(m_countMarks, blocksFor(numWords + 1, THREADS), THREADS, 0, stream, (const unsigned long long*)marks.data(),
-           (unsigned int)numWords, rankBase.data());
-    prim.exclusiveSum(rankBase.data(), rankBase.data(), numWords + 1, stream);
-    uint32_t kept = 0;
-    rankBase.downloadAsync(&kept, 1, stream, numWords);
-    synchronize(stream);
-    if (!keepingOnlyPairsHandedOnPays(n, kept)) return false;
+    const uint64_t kept = rankMarks(marks.data(), numWords, rankBase, prim, stream);
+    // (Ranks are 32-bit: a set whose pairs to keep pass that is not trimmed, as it would not pay.)
+    if (kept > MAX_INDEXED_ITEMS || !keepingOnlyPairsHandedOnPays(n, kept)) return false;
     beforeTrim();
     // The trimmed arrays, of the contact sets' group for good (they become the set's).
     auto sized = [stream](auto& buffer, size_t count) {
@@ -127,9 +123,8 @@ bool DeviceHistoryMapping::keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHist
     return true;
 }
 
-unsigned int DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, unsigned int nFresh,
-                                                   const DeviceContacts& oldSet, unsigned int nOld,
-                                                   DevicePrimitives& prim, Stream stream) {
+size_t DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, size_t nFresh, const DeviceContacts& oldSet,
+                                             size_t nOld, DevicePrimitives& prim, Stream stream) {
     m_oldHadPersistent = false;
     if (nOld == 0 || oldSet.persistent.empty()) return nFresh;  // a set without flags has no persistent pair
     const ContactKeys fresh = keysOf(freshSet, nFresh), old = keysOf(oldSet, nOld);
@@ -154,19 +149,17 @@ unsigned int DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, uns
     m_isMissing.zeroAsync(stream);
     launch(m_missing, blocksFor(nOld, THREADS), THREADS, 0, stream, fresh, old, persistent, m_isMissing.data(),
            m_any.data());
-    prim.exclusiveSum(m_isMissing.data(), m_missingBefore.data(), (size_t)nOld + 1, stream);
-    unsigned int missing = 0;
+    prim.exclusiveSum((const uint64_t*)m_isMissing.data(), (uint64_t*)m_missingBefore.data(), nOld + 1, stream);
+    unsigned long long missing = 0;
     m_missingBefore.downloadAsync(&missing, 1, stream, nOld);
     synchronize(stream);
     if (missing == 0) return nFresh;
-    requireIndexable((uint64_t)nFresh + missing, "contact pairs (found, and kept as persistent)", FEWER_PAIRS_REMEDY,
-                     "DoDynamics");
-    const unsigned int total = nFresh + missing;
+    const size_t total = nFresh + missing;
     m_mergedA.resize(total, stream);
     m_mergedB.resize(total, stream);
-    launch(m_merge, blocksFor((unsigned long long)nFresh + nOld, THREADS), THREADS, 0, stream, fresh, old,
-           (const unsigned int*)m_isMissing.data(), (const unsigned int*)m_missingBefore.data(), m_mergedA.data(),
-           m_mergedB.data());
+    launch(m_merge, blocksFor((unsigned long long)(nFresh + nOld), THREADS), THREADS, 0, stream, fresh, old,
+           (const unsigned long long*)m_isMissing.data(), (const unsigned long long*)m_missingBefore.data(),
+           m_mergedA.data(), m_mergedB.data());
     // The merged arrays become the fresh set's (its As compact: state/CompactPairA.h); its former Bs
     // are the next merge's scratch.
     DevicePairA mergedA;
@@ -179,12 +172,11 @@ unsigned int DeviceHistoryMapping::mergePersistent(DeviceContacts& freshSet, uns
     return total;
 }
 
-unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryPool& freshPool, unsigned int nFresh,
-                                           const DeviceContacts& old, const DeviceHistoryPool& oldPool,
-                                           unsigned int nOld, unsigned int W, const HistoryPoolPolicy& policy,
-                                           const StateView& view, DevicePrimitives& prim, Stream stream,
-                                           uint32_t& slotsUsed) {
-    const unsigned int total = mergePersistent(fresh, nFresh, old, nOld, prim, stream);
+size_t DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryPool& freshPool, size_t nFresh,
+                                     const DeviceContacts& old, const DeviceHistoryPool& oldPool, size_t nOld,
+                                     unsigned int W, const HistoryPoolPolicy& policy, const StateView& view,
+                                     DevicePrimitives& prim, Stream stream, uint32_t& slotsUsed) {
+    const size_t total = mergePersistent(fresh, nFresh, old, nOld, prim, stream);
     slotsUsed = 0;
     // Flags only where a pair may have one: an old pair had, or the model may set one.
     const bool flags = m_oldHadPersistent || m_modelWritesPersistent;
@@ -218,7 +210,8 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
         } else {
             launch(m_markSlots, blocksFor(total, THREADS), THREADS, 0, stream, view, keys, history, marks);
         }
-        const uint32_t withSlot = rankMarkedPairs(freshPool, prim, stream);
+        // (A count past 2^32 wrapped the ranks; it would need more slots than a pool holds, below.)
+        const uint64_t withSlot = rankMarkedPairs(freshPool, prim, stream);
         if (policy.chooses(total, withSlot)) {
             const size_t capacity = policy.capacityFor(withSlot, total);
             if (capacity >= HISTORY_SLOT_LIMIT)
@@ -231,7 +224,7 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
             freshPool.meshStateBySlot = true;
             freshPool.pool.resizeDiscarding(capacity * W);
             freshPool.capacity = (uint32_t)capacity;
-            freshPool.rankedSlots = withSlot;
+            freshPool.rankedSlots = (uint32_t)withSlot;
             freshPool.late.resizeDiscarding(freshPool.ranked.size());
             freshPool.late.zeroAsync(stream);
             freshPool.lateTable.resizeDiscarding(lateTableEntriesFor(capacity, withSlot));
@@ -240,7 +233,7 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
             launch(fromOldSide ? m_mapMarked : m_mapPooled, blocksFor(total, THREADS), THREADS, 0, stream, view, keys,
                    history, (const uint64_t*)freshPool.ranked.data(), (const uint32_t*)freshPool.rankBase.data(),
                    freshPool.pool.data(), freshPool.meshState.data(), freshPersistent);
-            slotsUsed = withSlot;
+            slotsUsed = (uint32_t)withSlot;
             return total;
         }
         freshPool.release();
@@ -252,14 +245,21 @@ unsigned int DeviceHistoryMapping::install(DeviceContacts& fresh, DeviceHistoryP
     return total;
 }
 
-uint32_t DeviceHistoryMapping::rankMarkedPairs(DeviceHistoryPool& pool, DevicePrimitives& prim, Stream stream) {
-    const size_t numWords = pool.ranked.size();
-    pool.rankBase.resizeDiscarding(numWords + 1);
-    launch(m_countMarks, blocksFor(numWords + 1, THREADS), THREADS, 0, stream,
-           (const unsigned long long*)pool.ranked.data(), (unsigned int)numWords, pool.rankBase.data());
-    prim.exclusiveSum(pool.rankBase.data(), pool.rankBase.data(), numWords + 1, stream);
-    uint32_t marked = 0;
-    pool.rankBase.downloadAsync(&marked, 1, stream, numWords);
+uint64_t DeviceHistoryMapping::rankMarkedPairs(DeviceHistoryPool& pool, DevicePrimitives& prim, Stream stream) {
+    return rankMarks(pool.ranked.data(), pool.ranked.size(), pool.rankBase, prim, stream);
+}
+
+uint64_t DeviceHistoryMapping::rankMarks(const unsigned long long* marks, size_t numWords,
+                                         DeviceBuffer<uint32_t>& rankBase, DevicePrimitives& prim, Stream stream) {
+    rankBase.resizeDiscarding(numWords + 1);
+    launch(m_countMarks, blocksFor(numWords + 1, THREADS), THREADS, 0, stream, marks, (unsigned int)numWords,
+           rankBase.data());
+    // The count in 64 bits first: the ranks' 32-bit sum wraps past 2^32 marks (a set of more pairs).
+    m_marked.resize(1, stream);
+    prim.sum(rankBase.data(), m_marked.data(), numWords + 1, stream);
+    prim.exclusiveSum(rankBase.data(), rankBase.data(), numWords + 1, stream);
+    uint64_t marked = 0;
+    m_marked.downloadAsync(&marked, 1, stream);
     synchronize(stream);
     return marked;
 }

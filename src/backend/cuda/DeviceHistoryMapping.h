@@ -39,10 +39,9 @@ class DeviceHistoryMapping {
     // carries every pair's history over, from `old`'s wildcards or pool (`oldPool.active`), into
     // fresh's wildcards or a pool (freshPool, where `policy` chooses it; its `used` slots are then
     // `slotsUsed`). Returns the new set's size. `view` gives the geometries' owners and families.
-    unsigned int install(DeviceContacts& fresh, DeviceHistoryPool& freshPool, unsigned int nFresh,
-                         const DeviceContacts& old, const DeviceHistoryPool& oldPool, unsigned int nOld, unsigned int W,
-                         const HistoryPoolPolicy& policy, const StateView& view, DevicePrimitives& prim, Stream stream,
-                         uint32_t& slotsUsed);
+    size_t install(DeviceContacts& fresh, DeviceHistoryPool& freshPool, size_t nFresh, const DeviceContacts& old,
+                   const DeviceHistoryPool& oldPool, size_t nOld, unsigned int W, const HistoryPoolPolicy& policy,
+                   const StateView& view, DevicePrimitives& prim, Stream stream, uint32_t& slotsUsed);
 
     // Before a synchronous detection: `set` (n pairs, its history in its wildcards or in `pool`)
     // keeps only the pairs that hand something to the next set (pairHandsOn), where the rules of
@@ -50,7 +49,7 @@ class DeviceHistoryMapping {
     // it trimmed: the set then serves no step, only the next installation (the pool keeps its
     // slots, and the trimmed pairs theirs, as late pairs). `beforeTrim` runs once it is decided, before the set
     // changes.
-    bool keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHistoryPool& pool, unsigned int& n, unsigned int W,
+    bool keepOnlyPairsHandedOn(DeviceContacts& set, DeviceHistoryPool& pool, size_t& n, unsigned int W,
                                DevicePrimitives& prim, Stream stream, const std::function<void()>& beforeTrim);
 
     // `pool`'s late table made lateTableEntriesFor(pool.capacity, pool.rankedSlots) entries where it
@@ -59,19 +58,25 @@ class DeviceHistoryMapping {
 
   private:
     // Each word's first rank of `pool`'s ranked bits (the pairs marked); returns the marked pairs'
-    // count.
-    uint32_t rankMarkedPairs(DeviceHistoryPool& pool, DevicePrimitives& prim, Stream stream);
+    // count (summed in 64 bits: the ranks are valid where it is below 2^32).
+    uint64_t rankMarkedPairs(DeviceHistoryPool& pool, DevicePrimitives& prim, Stream stream);
+    // Each of `numWords` words' first rank of `marks` into `rankBase` (numWords + 1 entries); returns
+    // the marked pairs' count, summed in 64 bits.
+    uint64_t rankMarks(const unsigned long long* marks, size_t numWords, DeviceBuffer<uint32_t>& rankBase,
+                       DevicePrimitives& prim, Stream stream);
     // Adds the missing persistent pairs to fresh's pair arrays; returns the new count. Sets
     // m_oldHadPersistent.
-    unsigned int mergePersistent(DeviceContacts& fresh, unsigned int nFresh, const DeviceContacts& old,
-                                 unsigned int nOld, DevicePrimitives& prim, Stream stream);
+    size_t mergePersistent(DeviceContacts& fresh, size_t nFresh, const DeviceContacts& old, size_t nOld,
+                           DevicePrimitives& prim, Stream stream);
 
     CudaModule m_module;
     CudaKernel m_missing, m_merge, m_map, m_markSlots, m_mapPooled, m_markMesh, m_markCarried, m_mapMarked,
         m_markHandedOn, m_countMarks, m_keepHandedOn, m_rehashLate;
     PairAKernels m_pairAKernels;         // merged and trimmed sets' As made compact
     DeviceBuffer<uint32_t> m_pairARows;  // their scratch
-    DeviceBuffer<unsigned int> m_isMissing, m_missingBefore, m_any;
+    DeviceBuffer<unsigned long long> m_isMissing, m_missingBefore;  // per old pair, 64-bit sums
+    DeviceBuffer<unsigned int> m_any;
+    DeviceBuffer<uint64_t> m_marked;  // rankMarks' count
     DeviceBuffer<bodyID_t> m_mergedA, m_mergedB;
     DeviceBuffer<ContactInitRule> m_rules;
     unsigned int m_numRules = 0;

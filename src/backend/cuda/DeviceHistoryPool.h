@@ -52,7 +52,7 @@ struct DeviceHistoryPool {
         v.lateMask = (uint32_t)(lateTable.size() - 1);
         return v;
     }
-    OldContactHistory oldHistory(const DeviceContacts& set, unsigned int n, unsigned int W, const uint8_t* persistent,
+    OldContactHistory oldHistory(const DeviceContacts& set, size_t n, unsigned int W, const uint8_t* persistent,
                                  const ContactInitRule* rules, unsigned int numRules) const {
         const bool bySlot = active && meshStateBySlot;
         OldContactHistory h{ContactKeys{set.pairA.view(), set.geomB.data(), n},

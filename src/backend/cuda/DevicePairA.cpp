@@ -28,7 +28,7 @@ void PairAKernels::load(const CudaModule& m) {
     put = m.kernel("deme_pair_a_put");
 }
 
-void compactPairAs(const PairAKernels& k, const bodyID_t* whole, const unsigned int* offset, unsigned int spheres,
+void compactPairAs(const PairAKernels& k, const bodyID_t* whole, const PairOffset* offset, unsigned int spheres,
                    size_t n, DevicePairA& out, DeviceBuffer<uint32_t>& rows, DevicePrimitives& prim, Stream stream) {
     const size_t blocks = pairABlocks(n);
     if (n == 0) {

@@ -49,7 +49,7 @@ struct PairAKernels {
 // Makes `out` the compact form of n As: from `whole` where given, else from detection's `offset`
 // over `spheres` searched spheres (sphere k the A of pairs [offset[k], offset[k + 1])). Waits for the
 // stream once (to size the side table); `rows` is its scratch (a word per 32 pairs).
-void compactPairAs(const PairAKernels& k, const bodyID_t* whole, const unsigned int* offset, unsigned int spheres,
+void compactPairAs(const PairAKernels& k, const bodyID_t* whole, const PairOffset* offset, unsigned int spheres,
                    size_t n, DevicePairA& out, DeviceBuffer<uint32_t>& rows, DevicePrimitives& prim, Stream stream);
 
 // The host's n whole As onto the device in the compact form, and back (both wait for the stream).

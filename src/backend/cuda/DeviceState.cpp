@@ -160,7 +160,7 @@ void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, Contact
     });
 }
 
-void viewContacts(DeviceContacts& d, uint32_t n, StateView& v) {
+void viewContacts(DeviceContacts& d, size_t n, StateView& v) {
     forEachContactField(v.contacts, d, Point{});
     v.pairAs = d.pairA.view();
     v.numContacts = n;

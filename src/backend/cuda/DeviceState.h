@@ -52,6 +52,6 @@ void uploadContacts(const ContactArrays& c, unsigned int W, DeviceContacts& d, S
 void downloadContacts(const DeviceContacts& d, size_t n, unsigned int W, ContactArrays& c, Stream stream,
                       bool historyAndForces = true);
 // Points the view's contact arrays at `d`'s (n pairs).
-void viewContacts(DeviceContacts& d, uint32_t n, StateView& v);
+void viewContacts(DeviceContacts& d, size_t n, StateView& v);
 
 }  // namespace deme::cuda

@@ -103,8 +103,8 @@ extern "C" __global__ void deme_bin_counts(const unsigned int* keys, unsigned in
 // detection in slabs searches the spheres whose centres' bins lie in the layers `searched` only
 // (the others' counts stay as they are: another slab's).
 extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, DormantBinsView d, const bodyID_t* ids,
-                                            unsigned int n, float wideRadius, LayerRange searched, unsigned int* count,
-                                            const unsigned int* offset, bodyID_t* outA, bodyID_t* outB) {
+                                            unsigned int n, float wideRadius, LayerRange searched, PairOffset* count,
+                                            const PairOffset* offset, bodyID_t* outA, bodyID_t* outB) {
     const size_t k = globalIndex();
     if (k >= n) return;
     const bodyID_t sa = ids ? ids[k] : (bodyID_t)k;
@@ -114,7 +114,8 @@ extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, Dorman
         count[k] = spherePartners(s, a, sa, nullptr, 0u) + (d.start ? dormantPartners(s, a, d, sa, nullptr, 0u) : 0u);
         return;
     }
-    const unsigned int base = offset[k], found = offset[k + 1] - base;
+    const PairOffset base = offset[k];
+    const unsigned int found = (unsigned int)(offset[k + 1] - base);
     const unsigned int own = spherePartners(s, a, sa, outB + base, found);
     if (outA)  // null: the offsets imply A (CudaKinematics, kernels/PairAKernels.cuh)
         for (unsigned int j = 0; j < own; j++) outA[base + j] = sa;
@@ -138,16 +139,16 @@ extern "C" __global__ void deme_pair_search(StateView s, DetectionArgs a, Dorman
 // partners added to count[k] (zeroed); filling, each written from offset[k] on at a slot taken by
 // an atomic add on *cursor (zeroed), in no order (the sphere's partners are ordered afterwards).
 __device__ inline void searchLane(const StateView& s, const DetectionArgs& a, bodyID_t sa, size_t k, unsigned int lane,
-                                  unsigned int lanes, unsigned int* count, const unsigned int* offset,
-                                  unsigned int* cursor, bodyID_t* outB) {
+                                  unsigned int lanes, PairOffset* count, const PairOffset* offset, unsigned int* cursor,
+                                  bodyID_t* outB) {
     const SearchedSphere A = searchedSphere(s, a, sa);
     if (outB == nullptr) {
         unsigned int found = 0;
         spherePartnersInRows(s, a, A, lane, lanes, [&](bodyID_t) { found++; });
-        if (found) atomicAdd(&count[k], found);
+        if (found) atomicAdd(&count[k], (PairOffset)found);
         return;
     }
-    const unsigned int base = offset[k];
+    const PairOffset base = offset[k];
     spherePartnersInRows(s, a, A, lane, lanes, [&](bodyID_t b) { outB[base + atomicAdd(cursor, 1u)] = b; });
 }
 
@@ -156,7 +157,7 @@ __device__ inline void searchLane(const StateView& s, const DetectionArgs& a, bo
 // (132 registers) one block did, and a grid of several threads a sphere took as many waves.
 extern "C" __global__ void __launch_bounds__(256, 4)
     deme_pair_search_lanes(StateView s, DetectionArgs a, unsigned int n, unsigned int lanes, float wideRadius,
-                           unsigned int* count, const unsigned int* offset, unsigned int* cursor, bodyID_t* outB) {
+                           PairOffset* count, const PairOffset* offset, unsigned int* cursor, bodyID_t* outB) {
     const size_t t = globalIndex(), k = t / lanes;
     if (k >= n || s.spheres.radius[k] >= wideRadius) return;
     searchLane(s, a, (bodyID_t)k, k, (unsigned int)(t % lanes), lanes, count, offset, cursor ? &cursor[k] : nullptr,
@@ -167,19 +168,19 @@ extern "C" __global__ void __launch_bounds__(256, 4)
 // contact-set order (ascending unified id: spheres, analytical components, triangles), and A (a
 // pair's type follows from B: state/ContactTypeOf.h). Not the wide spheres (deme_pair_rank_wide,
 // deme_pair_finish_wide).
-extern "C" __global__ void deme_pair_order(StateView s, unsigned int n, float wideRadius, const unsigned int* offset,
+extern "C" __global__ void deme_pair_order(StateView s, unsigned int n, float wideRadius, const PairOffset* offset,
                                            bodyID_t* outA, bodyID_t* outB) {
     const size_t k = globalIndex();
     if (k >= n || s.spheres.radius[k] >= wideRadius) return;
-    const unsigned int first = offset[k], last = offset[k + 1];
-    sortIds(outB + first, last - first);
-    for (unsigned int j = first; j < last; j++) outA[j] = (bodyID_t)k;
+    const PairOffset first = offset[k], last = offset[k + 1];
+    sortIds(outB + first, (unsigned int)(last - first));
+    for (PairOffset j = first; j < last; j++) outA[j] = (bodyID_t)k;
 }
 
 // The wide spheres wide[0, nWide), `lanes` threads each (thread t: sphere wide[t / lanes]; cursor[w]
 // is the w-th's).
 extern "C" __global__ void deme_pair_search_wide(StateView s, DetectionArgs a, const bodyID_t* wide, unsigned int nWide,
-                                                 unsigned int lanes, unsigned int* count, const unsigned int* offset,
+                                                 unsigned int lanes, PairOffset* count, const PairOffset* offset,
                                                  unsigned int* cursor, bodyID_t* outB) {
     const size_t t = globalIndex(), w = t / lanes;
     if (w >= nWide) return;
@@ -191,26 +192,26 @@ extern "C" __global__ void deme_pair_search_wide(StateView s, DetectionArgs a, c
 // unified id: spheres, analytical components, triangles) into outA's same range: each element goes
 // to its rank (the ids are distinct), the range's elements shared among the sphere's lanes.
 extern "C" __global__ void deme_pair_rank_wide(const bodyID_t* wide, unsigned int nWide, unsigned int lanes,
-                                               const unsigned int* offset, bodyID_t* outA, const bodyID_t* outB) {
+                                               const PairOffset* offset, bodyID_t* outA, const bodyID_t* outB) {
     const size_t t = globalIndex(), w = t / lanes;
     if (w >= nWide) return;
     const bodyID_t k = wide[w];
-    const unsigned int first = offset[k], last = offset[k + 1];
-    for (unsigned int e = first + (unsigned int)(t % lanes); e < last; e += lanes) {
+    const PairOffset first = offset[k], last = offset[k + 1];
+    for (PairOffset e = first + t % lanes; e < last; e += lanes) {
         const bodyID_t id = outB[e];
-        unsigned int rank = 0;
-        for (unsigned int j = first; j < last; j++) rank += outB[j] < id ? 1u : 0u;
+        PairOffset rank = 0;
+        for (PairOffset j = first; j < last; j++) rank += outB[j] < id ? 1u : 0u;
         outA[first + rank] = id;
     }
 }
 
 // Then the ordered ids back into outB, and A into outA.
 extern "C" __global__ void deme_pair_finish_wide(const bodyID_t* wide, unsigned int nWide, unsigned int lanes,
-                                                 const unsigned int* offset, bodyID_t* outA, bodyID_t* outB) {
+                                                 const PairOffset* offset, bodyID_t* outA, bodyID_t* outB) {
     const size_t t = globalIndex(), w = t / lanes;
     if (w >= nWide) return;
     const bodyID_t k = wide[w];
-    for (unsigned int e = offset[k] + (unsigned int)(t % lanes); e < offset[k + 1]; e += lanes) {
+    for (PairOffset e = offset[k] + t % lanes; e < offset[k + 1]; e += lanes) {
         outB[e] = outA[e];
         outA[e] = k;
     }

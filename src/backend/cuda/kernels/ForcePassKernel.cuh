@@ -95,13 +95,21 @@ __device__ inline void forcePassKernel(const StateView& s, const Model& model, c
     using force_pass_detail::atomicAddLoad;
     using force_pass_detail::isZeroLoad;
     constexpr uint8_t kType = NoTriangles ? NO_TRIANGLE_CONTACT : ANY_CONTACT_TYPE;
-    // The contact's ids are read before the wait (DependentLaunch.cuh): the kernel before (the last
+    // The contact's ids are loaded before the wait (DependentLaunch.cuh): the kernel before (the last
     // step's integration, or this step's load clearing or mesh rule) does not write them -- no kernel
     // of a step does -- and the round trip overlaps that kernel's end instead of following the wait.
+    // A is decoded after it (state/CompactPairA.h, PairAList::load): B, A's base and A's byte are
+    // then one round trip.
     const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
-    ContactIds ids{0u, 0u, 0u};
-    if (i < s.numContacts) ids = contactIds<kType>(s, i);
+    bodyID_t b = 0u;
+    PairALoaded a{0u, 0u};
+    if (i < s.numContacts) {
+        b = s.contacts.geomB[i];
+        a = s.pairAs.load(i);
+    }
     beginDependentKernel();
+    const ContactIds ids =
+        i < s.numContacts ? contactIdsOf<kType>(s, s.pairAs.decode(a, i), b) : ContactIds{0u, 0u, 0u};
     if constexpr (Pooled) {
         if (s.historyPool.control->filling) {  // between a paused step's pass and its integration
             if (i < s.numContacts) fillPendingHistory<Model, kType>(s, model, i, ids, (float)ctl->time, (float)ctl->dt);

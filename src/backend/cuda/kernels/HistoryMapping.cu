@@ -38,27 +38,28 @@ __device__ inline size_t globalIndex() { return (size_t)blockIdx.x * blockDim.x 
 // set that the new set lacks. Launched without `missing` first: a set with no persistent pair needs
 // no per-pair scratch.
 extern "C" __global__ void deme_persistent_missing(ContactKeys fresh, ContactKeys old, const uint8_t* oldPersistent,
-                                                   unsigned int* missing, unsigned int* anyPersistent) {
+                                                   unsigned long long* missing, unsigned int* anyPersistent) {
     const size_t j = globalIndex();
     if (j >= old.n) return;
     if (oldPersistent[j]) *anyPersistent = 1u;
-    if (missing) missing[j] = persistentPairMissing(fresh, old, oldPersistent, (unsigned int)j) ? 1u : 0u;
+    if (missing) missing[j] = persistentPairMissing(fresh, old, oldPersistent, j) ? 1u : 0u;
 }
 
 // One thread per pair of the fresh set, then per pair of the old set: each goes to its place in the
 // merged set. missingBefore is the exclusive sum of deme_persistent_missing's flags.
-extern "C" __global__ void deme_persistent_merge(ContactKeys fresh, ContactKeys old, const unsigned int* missing,
-                                                 const unsigned int* missingBefore, bodyID_t* outA, bodyID_t* outB) {
+extern "C" __global__ void deme_persistent_merge(ContactKeys fresh, ContactKeys old, const unsigned long long* missing,
+                                                 const unsigned long long* missingBefore, bodyID_t* outA,
+                                                 bodyID_t* outB) {
     const size_t t = globalIndex();
     if (t < fresh.n) {
-        const unsigned int i = (unsigned int)t;
-        const unsigned int at = mergedSlotOfFresh(fresh, old, missingBefore, i);
+        const size_t i = t;
+        const size_t at = mergedSlotOfFresh(fresh, old, (const uint64_t*)missingBefore, i);
         outA[at] = fresh.geomA[i];
         outB[at] = fresh.geomB[i];
-    } else if (t < (size_t)fresh.n + old.n) {
-        const unsigned int j = (unsigned int)(t - fresh.n);
+    } else if (t < fresh.n + old.n) {
+        const size_t j = t - fresh.n;
         if (!missing[j]) return;
-        const unsigned int at = mergedSlotOfOld(fresh, old, missingBefore, j);
+        const size_t at = mergedSlotOfOld(fresh, old, (const uint64_t*)missingBefore, j);
         outA[at] = old.geomA[j];
         outB[at] = old.geomB[j];
     }
@@ -71,9 +72,9 @@ extern "C" __global__ void deme_map_history(StateView s, ContactKeys fresh, OldC
                                             float* freshWildcards, uint8_t* freshMeshState, uint8_t* freshPersistent) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
-    const unsigned int i = (unsigned int)t;
+    const size_t i = t;
     uint8_t persistent;
-    carryPairHistory(s, fresh, old, i, freshWildcards + (size_t)i * old.W, freshMeshState[i], persistent);
+    carryPairHistory(s, fresh, old, i, freshWildcards + i * old.W, freshMeshState[i], persistent);
     if (freshPersistent) freshPersistent[i] = persistent;
 }
 
@@ -83,7 +84,7 @@ extern "C" __global__ void deme_mark_history_slots(StateView s, ContactKeys fres
                                                    unsigned long long* ranked) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
-    const unsigned int i = (unsigned int)t;
+    const size_t i = t;
     float h[MAX_POOLED_HISTORY];
     uint8_t meshState, persistent;
     carryPairHistory(s, fresh, old, i, h, meshState, persistent);
@@ -97,7 +98,7 @@ extern "C" __global__ void deme_map_history_pooled(StateView s, ContactKeys fres
                                                    uint8_t* slotMeshState, uint8_t* freshPersistent) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
-    const unsigned int i = (unsigned int)t;
+    const size_t i = t;
     float h[MAX_POOLED_HISTORY];
     uint8_t meshState, persistent;
     carryPairHistory(s, fresh, old, i, h, meshState, persistent);
@@ -122,10 +123,10 @@ extern "C" __global__ void deme_mark_carried_pairs(ContactKeys fresh, OldContact
                                                    unsigned long long* ranked) {
     const size_t j = globalIndex();
     if (j >= old.keys.n) return;
-    const float* h = oldPairHistory(old, (unsigned int)j);
+    const float* h = oldPairHistory(old, j);
     if (!h || !pairCarriesHistory(h, old.W, 0, 0)) return;
     const uint64_t key = pairKey(old.keys.geomA[j], old.keys.geomB[j]);
-    const unsigned int at = keyLowerBound(fresh, key);
+    const size_t at = keyLowerBound(fresh, key);
     if (keyAt(fresh, at, key)) setPairBit(ranked, at);
 }
 
@@ -137,7 +138,7 @@ extern "C" __global__ void deme_map_marked_history(StateView s, ContactKeys fres
                                                    uint8_t* slotMeshState, uint8_t* freshPersistent) {
     const size_t t = globalIndex();
     if (t >= fresh.n) return;
-    const unsigned int i = (unsigned int)t;
+    const size_t i = t;
     if (!pairBit(ranked, i)) {
         if (freshPersistent) freshPersistent[i] = 0u;
         return;
@@ -159,7 +160,7 @@ extern "C" __global__ void deme_map_marked_history(StateView s, ContactKeys fres
 // that hands something on.
 extern "C" __global__ void deme_mark_pairs_handed_on(OldContactHistory set, unsigned long long* marks) {
     const size_t j = globalIndex();
-    if (j >= set.keys.n || !pairHandsOn(set, (unsigned int)j)) return;
+    if (j >= set.keys.n || !pairHandsOn(set, j)) return;
     atomicOr(&marks[j >> 6], 1ull << (j & 63));
 }
 
@@ -186,7 +187,7 @@ extern "C" __global__ void deme_keep_pairs_handed_on(OldContactHistory set, cons
     const uint32_t k = rankAt((const uint64_t*)marks, rankBase, j);
     keptA[k] = set.keys.geomA[j];
     keptB[k] = set.keys.geomB[j];
-    keptMeshState[k] = oldMeshState(set, (unsigned int)j);
+    keptMeshState[k] = oldMeshState(set, j);
     if (set.persistent) keptPersistent[k] = set.persistent[j];
     if (set.slots.ranked) {
         const uint32_t slot = slotOf(set.slots, j);

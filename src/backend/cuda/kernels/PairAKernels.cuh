@@ -9,7 +9,7 @@
 namespace deme {
 
 // 1. wideFlag[k] for each block k of the n pairs.
-extern "C" __global__ void deme_pair_a_wide_blocks(const bodyID_t* whole, const unsigned int* offset,
+extern "C" __global__ void deme_pair_a_wide_blocks(const bodyID_t* whole, const PairOffset* offset,
                                                    unsigned int spheres, unsigned long long n, uint32_t* wideFlag) {
     const size_t k = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
     if (k >= pairABlocks(n)) return;
@@ -18,7 +18,7 @@ extern "C" __global__ void deme_pair_a_wide_blocks(const bodyID_t* whole, const 
 }
 
 // 2. Each block's base from the flags' exclusive sum (pairABlocks(n) + 1 entries).
-extern "C" __global__ void deme_pair_a_bases(const bodyID_t* whole, const unsigned int* offset, unsigned int spheres,
+extern "C" __global__ void deme_pair_a_bases(const bodyID_t* whole, const PairOffset* offset, unsigned int spheres,
                                              unsigned long long n, const uint32_t* rows, uint32_t* base) {
     const size_t k = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
     if (k >= pairABlocks(n)) return;
@@ -28,7 +28,7 @@ extern "C" __global__ void deme_pair_a_bases(const bodyID_t* whole, const unsign
 
 // 3. Every pair's A: one thread a pair from `whole`; one a sphere from the offsets (sphere k is the A
 // of its pairs).
-extern "C" __global__ void deme_pair_a_put(const bodyID_t* whole, const unsigned int* offset, unsigned int spheres,
+extern "C" __global__ void deme_pair_a_put(const bodyID_t* whole, const PairOffset* offset, unsigned int spheres,
                                            unsigned long long n, PairAWriter out) {
     const size_t t = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
     if (whole) {
@@ -36,7 +36,7 @@ extern "C" __global__ void deme_pair_a_put(const bodyID_t* whole, const unsigned
         return;
     }
     if (t >= spheres) return;
-    for (size_t i = offset[t]; i < offset[t + 1]; i++) out.put(i, (bodyID_t)t);
+    for (PairOffset i = offset[t]; i < offset[t + 1]; i++) out.put(i, (bodyID_t)t);
 }
 
 }  // namespace deme
