@@ -2,10 +2,13 @@
 // the spheres: by centre where it does and the rule allows (kinematics/DetectionRules.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "DetectionScenes.h"
 #include "kinematics/BinGridSizing.h"
 #include "runtime/HistoryPoolPolicy.h"
 #include "runtime/MemoryEstimate.h"
+#include "state/CompactPairA.h"
 
 using namespace deme;
 using namespace deme_test;
@@ -31,10 +34,12 @@ TEST(MemoryEstimateBins, SpheresByCentreAreOneEntryEachWhereTheBackendBinsSo) {
 
 // A synchronous detection in place on the GPU runs while the set in use holds only the pairs it kept
 // (trimmed before it), and a large scratch is let go before the installation: the run's peak is the
-// larger of the trim's or installation's (the whole set of ids, its slots' bits and ranks, 20 B per
-// 64 pairs, and the trim's marks, 12 B per 64 pairs, beside the kept pairs) and the detection's (its
-// scratch and the outbox's A and B, 8 B a pair, beside the kept pairs), not their sum. Measured on an H100 at 45.8 M
-// spheres (BENCHMARKS.md, MEMORY): a peak of 175.5 device B/sphere where the sum counted 208.7.
+// larger of the trim's or installation's (the whole set of ids -- B, and A in a byte a pair and a
+// base per 32 pairs --, its slots' bits and ranks, 20 B per 64 pairs, and the trim's marks, 12 B per
+// 64 pairs, beside the kept pairs) and the detection's (its offsets and the outbox's B, with its bins
+// while it fills, then with A compact and its rows, as the bins go first), not their sum. Measured on
+// an H100 at 45.8 M spheres (BENCHMARKS.md, MEMORY): a peak of 175.5 device B/sphere where the sum
+// counted 208.7.
 TEST(MemoryEstimateBins, ADetectionInPlaceCountsWhatItHoldsBeyondTheWholeSet) {
     const Scene scene = randomScene(3, 1500);
     SimState s = detectionState(scene, "MemoryEstimateBins");
@@ -47,7 +52,6 @@ TEST(MemoryEstimateBins, ADetectionInPlaceCountsWhatItHoldsBeyondTheWholeSet) {
     trimmed.persistentFlags = false;
     ContactSetForm whole = trimmed;
     whole.trimmedBeforeDetection = false;
-    const size_t wholeSetPerPair = 2 * sizeof(bodyID_t);  // ids (the mesh states are per slot)
     for (size_t pairs : {(size_t)6 * s.spheres.size(), s.spheres.size() / 4}) {
         SCOPED_TRACE("pairs " + std::to_string(pairs));
         auto estimate = [&](const ContactSetForm& form, bool snapshotKept, size_t keptUpTo) {
@@ -56,8 +60,12 @@ TEST(MemoryEstimateBins, ADetectionInPlaceCountsWhatItHoldsBeyondTheWholeSet) {
         };
         const MemoryEstimate kept = estimate(trimmed, false, SIZE_MAX), released = estimate(trimmed, false, 0);
         EXPECT_EQ(released.bytes[con], kept.bytes[con]);
-        const size_t wholeSet = pairs * wholeSetPerPair + (pairs + 63) / 64 * (20 + 12);
-        const size_t detecting = kept.bytes[det] + 2 * sizeof(bodyID_t) * pairs;
+        const size_t offsets = s.spheres.size() * sizeof(PairOffset);
+        const size_t bins = kept.bytes[det] - offsets;  // (no triangles, no snapshot)
+        const size_t bases = (pairs + 31) / 32 * 4, compactA = pairs + bases, rows = bases;
+        // (the ids; the mesh states are per slot)
+        const size_t wholeSet = pairs * sizeof(bodyID_t) + compactA + (pairs + 63) / 64 * (20 + 12);
+        const size_t detecting = offsets + pairs * sizeof(bodyID_t) + std::max(bins, compactA + rows);
         EXPECT_EQ(released.bytes[det], detecting > wholeSet ? detecting - wholeSet : 0);
         EXPECT_LT(released.total(), kept.total());
         // Nothing changes where a snapshot is kept, where the scratch is kept, or where the set is

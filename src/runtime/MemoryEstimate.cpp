@@ -176,21 +176,24 @@ MemoryEstimate estimateRunMemory(const SimState& s, const BinGrid& grid, bool on
         const double allEntries = (byCentre ? (double)nS : entries) + (nT ? triEntries : 0.0);
         const double slabReach = 0.75 * grid.edge.z;
         const int slabs = byCentre ? detectionSlabCount(grid, slabReach, kinds, (double)nS, (double)nS) : 1;
-        detection = (snapshotKept ? nS * 24 + nO : 0) + nS * sizeof(PairOffset) +
-                    (size_t)slabBinBytes(grid, slabReach, slabs, kinds, allEntries);
+        const size_t binBytes = (size_t)slabBinBytes(grid, slabReach, slabs, kinds, allEntries);
+        detection = (snapshotKept ? nS * 24 + nO : 0) + nS * sizeof(PairOffset) + binBytes;
         // Triangles, where there are any: their global boxes (2 double3).
         if (nT) detection += nT * 48;
         // The snapshot's triangle vertices and analytical components.
         if (snapshotKept) detection += nT * 72 + s.analytical.size() * 48;
         // A synchronous detection in place runs while the set in use holds only the pairs it kept
-        // (trimmed before the detection): its scratch and the outbox's ids (A compact and B, 5.1 B a pair, which
-        // become the fresh set's) are held beside the kept pairs, not beside the whole set that the
-        // trim and the installation hold (contacts, above), and a large scratch is let go before the
-        // installation (CudaKinematics::Work::detect). The run's peak is then the larger of the two
-        // phases: the detection counts only what it holds beyond the whole set and the trim's marks.
+        // (trimmed before the detection): its scratch and the outbox's ids (B, and A compact with its
+        // rows, which become the fresh set's) are held beside the kept pairs, not beside the whole
+        // set that the trim and the installation hold (contacts, above), and a large scratch's bins go
+        // before A is made compact, the rest before the installation (CudaKinematics::Work::detect):
+        // the detection holds the offsets and B with the bins (the fill), then with A (its
+        // compaction). The run's peak is then the larger of the two phases: the detection counts only
+        // what it holds beyond the whole set and the trim's marks.
         const size_t wholeSet = trimmedWholeSetBytes(s, e.pairs, e.form);
         if (!snapshotKept && wholeSet && detection > scratchKeptUpTo) {
-            const size_t detecting = detection + e.pairs * sizeof(bodyID_t) + compactABytes(e.pairs);
+            const size_t compactA = compactABytes(e.pairs) + pairABlocks(e.pairs) * sizeof(uint32_t);
+            const size_t detecting = detection - binBytes + e.pairs * sizeof(bodyID_t) + std::max(binBytes, compactA);
             detection = detecting > wholeSet ? detecting - wholeSet : 0;
         }
         // The table of a batch's prescriptions (a row of families per step, CudaStepBatch.cpp). (The

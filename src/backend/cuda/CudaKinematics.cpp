@@ -472,6 +472,17 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
         requireIndexable(total, "contact pairs found beside dormant spheres", FEWER_PAIRS_REMEDY, CALL);
         dormant.sortPairs(v, aOut, dst.geomB.data(), (unsigned int)total, prim, stream);
     }
+    // Between synchronous detections a large scene's bins go (below): here already, before the As are
+    // made compact, so that the detection's peak is its fill (the bins and the outbox's Bs beside
+    // the offsets), not the bins and the whole outbox (about 9 B/sphere of a slab's bins in the
+    // early mixer; a buffer's release waits for the kernels before it).
+    const bool releasingScratch = inPlace && scratchBytes() > keepScratchUpTo;
+    if (releasingScratch) {
+        sphereBins.start.release();
+        sphereBins.items.release();
+        triBins.start.release();
+        triBins.items.release();
+    }
     // The As compact (state/CompactPairA.h), from the offsets or from the whole ones. The outbox's
     // are on dT's GPU: where that is another one, made here and copied there.
     if (staged) {
@@ -487,7 +498,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     synchronize(stream);
     // Between synchronous detections the steps hold the GPU alone: a large scene's bins and counts
     // go (4 B per sphere each, and per bin), to be made again by the next detection.
-    if (inPlace && scratchBytes() > keepScratchUpTo) releaseScratch();
+    if (releasingScratch) releaseScratch();
     r.binningSeconds = binning;
     r.searchSeconds = now() - t0 - binning;
     r.order = o;
