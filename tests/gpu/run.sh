@@ -202,9 +202,12 @@ for step in "${steps[@]}"; do
         # Memory by array group (docs/memory.md) of MIXER-BENCH early spheres: MEMORY_R lists the radii
         # (default 0.004 and 0.001, 0.70 M and 45.8 M spheres), 20 steps each after Initialize, with
         # the table ShowMemoryStats prints. MEMORY_MODE: the detection mode (auto, the default; sync
-        # or async); MEMORY_STEPS: the steps (default 20, one detection; 60 take three).
+        # or async); MEMORY_STEPS: the steps (default 20, one detection; 60 take three); MEMORY_TIMEOUT:
+        # seconds a radius may take (default 500). A billion spheres on one H200 (docs/memory.md), in a
+        # command of its own after one that built build-gpu: MEMORY_R=0.000358 MEMORY_STEPS=200
+        # MEMORY_MODE=sync MEMORY_TIMEOUT=580 tests/gpu/run.sh memory.
         for r in ${MEMORY_R:-0.004 0.001}; do
-            DEME_BENCH_TIMING=1 timeout 500 ./build-gpu/bench/mixer .benchdata/internal_mixer.obj "$r" spheres 0 \
+            DEME_BENCH_TIMING=1 timeout "${MEMORY_TIMEOUT:-500}" ./build-gpu/bench/mixer .benchdata/internal_mixer.obj "$r" spheres 0 \
                 "${MEMORY_STEPS:-20}" 5e-7 1 \
                 "${MEMORY_MODE:-auto}" >>"$OUT/memory.log" 2>&1
             echo "memory r = $r: rc $?"
