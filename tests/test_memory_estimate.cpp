@@ -198,7 +198,8 @@ DEME_BACKEND_TEST(MemoryEstimate, PooledHistoryIsCountedInItsForm) {
 // Where detection is synchronous, the set in use keeps only the pairs that hand something on before
 // each detection (kinematics/CarriedPairsRule.h), and a GPU installation then holds one whole set
 // and the few pairs kept instead of two whole sets: the estimate of a pooled set counts it so (the
-// first set's pool has no slot in use here: contacts about 18 of 28 bytes a pair). Not with
+// first set's pool has no slot in use here: one set's ids and slot bits, and the trim's marks, where
+// asynchronous detection counts two sets'). Not with
 // DEME_KEEP_WHOLE_SET=1 or asynchronous detection. The CPU holds one set either way.
 DEME_BACKEND_TEST(MemoryEstimate, ASetTrimmedBeforeEachDetectionIsCountedOnce) {
     const ScopedEnvironmentVariable pooled(onGpu() ? "DEME_POOLED_HISTORY" : "DEME_CONTACT_HISTORY",
