@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include "CheckpointScenes.h"
 #include "ForceModelTestUtil.h"
@@ -154,6 +155,22 @@ TEST(SceneFingerprintModel, CustomModelNotCalledForApartPairsIsAnotherModel) {
     ModelLayout builtIn, builtInFlagged;  // the built-in models' setting is fixed: no part of the hash
     builtInFlagged.calledForApartPairs = false;
     EXPECT_EQ(sceneFingerprint(s, builtIn).model, sceneFingerprint(s, builtInFlagged).model);
+}
+
+// FNV-1a over a run of zero bytes, one multiplication by a power of the prime, is the byte loop's
+// hash (the layout without sphere offsets hashes them so; across layouts:
+// SceneAssembly.OneSphereClumpsAreTheirOwnersFromTheStart).
+TEST(SceneFingerprintHash, ZeroRunsHashAsTheirBytes) {
+    std::mt19937_64 rng(5);
+    for (uint64_t count : {0ull, 1ull, 2ull, 3ull, 12ull, 255ull, 4096ull, 123457ull}) {
+        const uint64_t start = rng();
+        uint64_t h = start;
+        for (uint64_t i = 0; i < count; i++) {
+            h ^= 0u;                // the byte
+            h *= 1099511628211ull;  // FNV's 64-bit prime
+        }
+        EXPECT_EQ(fnv1aAfterZeroBytes(start, count), h) << count << " zero bytes";
+    }
 }
 
 TEST_F(CheckpointFiles, OtherFilesAreErrors) {

@@ -9,6 +9,15 @@
 
 namespace deme {
 
+constexpr uint64_t FNV_PRIME = 1099511628211ull;
+
+uint64_t fnv1aAfterZeroBytes(uint64_t h, uint64_t count) {
+    uint64_t power = 1, p = FNV_PRIME;
+    for (; count; count >>= 1, p *= p)
+        if (count & 1) power *= p;
+    return h * power;
+}
+
 namespace {
 
 // 64-bit FNV-1a (offset basis and prime from the FNV reference); each part's length goes in before
@@ -19,9 +28,10 @@ class Hash {
         const unsigned char* b = static_cast<const unsigned char*>(p);
         for (size_t i = 0; i < n; i++) {
             m_h ^= b[i];
-            m_h *= 1099511628211ull;
+            m_h *= FNV_PRIME;
         }
     }
+    void zeroBytes(uint64_t n) { m_h = fnv1aAfterZeroBytes(m_h, n); }
     template <class T>
     void value(const T& v) {
         static_assert(std::is_trivially_copyable<T>::value, "plain values only");
@@ -83,11 +93,12 @@ uint64_t hashSphereInputs(const SimState& s) {
         using T = typename std::decay_t<decltype(field)>::value_type;
         if (!s.spheresAreOwners || field.size() == n) return h.array(field);
         h.value((uint64_t)n);
-        for (size_t i = 0; i < n; i++) {
-            if constexpr (std::is_same_v<T, bodyID_t>)
-                h.value((bodyID_t)i);  // the owners
-            else
-                h.value(T{});  // the offsets: zero
+        if constexpr (std::is_same_v<T, bodyID_t>) {
+            for (size_t i = 0; i < n; i++) h.value((bodyID_t)i);  // the owners
+        } else if constexpr (std::is_same_v<T, float3>) {
+            h.zeroBytes((uint64_t)n * sizeof(T));  // the offsets: +0, every byte zero, as one run
+        } else {
+            for (size_t i = 0; i < n; i++) h.value(T{});
         }
     });
     return h.result();

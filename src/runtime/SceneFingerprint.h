@@ -27,6 +27,11 @@ struct SceneFingerprint {
 // The fingerprint of `s` as assembled by Initialize (before any step or edit).
 SceneFingerprint sceneFingerprint(const SimState& s, const ModelLayout& model);
 
+// FNV-1a's state `h` after `count` zero bytes: each xors nothing in and multiplies by the prime, so
+// the run is one multiplication by the prime's count-th power (mod 2^64), taken by squaring: what
+// the byte loop gives, in log(count) steps (the offsets a layout without them stands for).
+uint64_t fnv1aAfterZeroBytes(uint64_t h, uint64_t count);
+
 // Empty if `checkpoint` and `mine` are the same scene; otherwise what differs first, e.g.
 // "1200 spheres in the checkpoint's scene, 1100 in this one".
 std::string fingerprintMismatch(const SceneFingerprint& checkpoint, const SceneFingerprint& mine);
