@@ -32,6 +32,11 @@ DEME_HD_INLINE uint32_t pairABlockBase(bodyID_t first, bool wide, uint32_t row) 
     return wide ? (WIDE_A_BLOCK | row) : (uint32_t)first;
 }
 
+// Pair i's entry in the side table, its block's base marking it wide.
+DEME_HD_INLINE size_t wideAEntry(uint32_t base, size_t i) {
+    return (size_t)(base & ~WIDE_A_BLOCK) * PAIR_A_BLOCK + i % PAIR_A_BLOCK;
+}
+
 // What a read of pair i's A loads first: the whole A, or the block's base and the pair's byte.
 struct PairALoaded {
     uint32_t word;
@@ -41,8 +46,8 @@ struct PairALoaded {
 // Pair i's A: whole (one id a pair) where `whole` is set, else from the block's base and the pair's
 // byte, or from the side table. A kernel that reads it early may load (`load`) before its dependent
 // launch's wait and decode (`decode`) after: the wait orders every load, so that the base and the
-// byte go out together (in one expression the compiler moves the byte's load past the base's branch:
-// two round trips to memory, and the early mixer's force pass 17 % slower).
+// byte go out together (in one expression the compiler moved the byte's load past the base's branch,
+// and B's after both: round trips one after another, and the early mixer's force pass 17 % slower).
 struct PairAList {
     const bodyID_t* whole;
     const uint32_t* base;  // a block's first A, or WIDE_A_BLOCK | its row of `wide`
@@ -54,7 +59,7 @@ struct PairAList {
     }
     DEME_HD_INLINE bodyID_t decode(const PairALoaded& l, size_t i) const {
         if (whole) return l.word;
-        if (l.word & WIDE_A_BLOCK) return wide[(size_t)(l.word & ~WIDE_A_BLOCK) * PAIR_A_BLOCK + i % PAIR_A_BLOCK];
+        if (l.word & WIDE_A_BLOCK) return wide[wideAEntry(l.word, i)];
         return (bodyID_t)(l.word + l.delta);
     }
     DEME_HD_INLINE bodyID_t operator[](size_t i) const { return decode(load(i), i); }
@@ -70,7 +75,7 @@ struct PairAWriter {
     DEME_HD_INLINE void put(size_t i, bodyID_t a) const {
         const uint32_t b = base[i / PAIR_A_BLOCK];
         if (b & WIDE_A_BLOCK)
-            wide[(size_t)(b & ~WIDE_A_BLOCK) * PAIR_A_BLOCK + i % PAIR_A_BLOCK] = a;
+            wide[wideAEntry(b, i)] = a;
         else
             delta[i] = (uint8_t)(a - b);
     }

@@ -28,7 +28,8 @@ void CudaDynamics::refreshView() {
 void CudaDynamics::upload(const SimState& s, bool withContacts) {
     select();
     // A set's As are kept compact, each block's base naming a sphere below 2^31 (state/CompactPairA.h).
-    // (The pairs' own 32-bit indices hold a scene to fewer spheres still: runtime/IndexLimits.h.)
+    // (The sets' bound on pairs holds a scene to fewer spheres still at six pairs a sphere:
+    // runtime/IndexLimits.h.)
     if (s.spheres.size() >= COMPACT_A_SPHERE_LIMIT)
         throwError("Initialize", "a GPU run holds at most " + std::to_string(COMPACT_A_SPHERE_LIMIT - 1) +
                                      " spheres (the contact sets' compact ids); the scene has " +

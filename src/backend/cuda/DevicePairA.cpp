@@ -2,12 +2,17 @@
 
 #include "backend/cuda/DevicePrimitives.h"
 #include "state/CompactPairAHost.h"
+#include "state/SimState.h"
 
 namespace deme::cuda {
 
 namespace {
 constexpr unsigned int THREADS = 256;
-}
+// A set whose As would take at most this whole gets room for every block to be wide (at most 4 B a
+// pair more, where the bytes do not matter): its side table is sized without waiting for the wide
+// blocks' count, a host round trip each detection of a lab-scale run would otherwise make.
+constexpr size_t ROOM_FOR_EVERY_WIDE_BLOCK_UP_TO = KEEP_REBUILT_ARRAYS_UP_TO;
+}  // namespace
 
 void DevicePairA::resizeDiscarding(size_t n, size_t wideRows) {
     base.resizeDiscarding(pairABlocks(n));
@@ -40,10 +45,14 @@ void compactPairAs(const PairAKernels& k, const bodyID_t* whole, const PairOffse
     rows.zeroAsync(stream);  // the last entry stays 0 for the exclusive sum
     launch(k.wideBlocks, blocksFor(blocks, THREADS), THREADS, 0, stream, whole, offset, spheres, pairs, rows.data());
     prim.exclusiveSum(rows.data(), rows.data(), blocks + 1, stream);
-    uint32_t wideRows = 0;
-    rows.downloadAsync(&wideRows, 1, stream, blocks);
-    synchronize(stream);
-    out.resizeDiscarding(n, wideRows);
+    if (n * sizeof(bodyID_t) <= ROOM_FOR_EVERY_WIDE_BLOCK_UP_TO) {
+        out.resizeDiscarding(n, blocks);
+    } else {
+        uint32_t wideRows = 0;
+        rows.downloadAsync(&wideRows, 1, stream, blocks);
+        synchronize(stream);
+        out.resizeDiscarding(n, wideRows);
+    }
     launch(k.bases, blocksFor(blocks, THREADS), THREADS, 0, stream, whole, offset, spheres, pairs,
            (const uint32_t*)rows.data(), out.base.data());
     launch(k.put, blocksFor(whole ? n : spheres, THREADS), THREADS, 0, stream, whole, offset, spheres, pairs,

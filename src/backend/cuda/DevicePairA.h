@@ -34,8 +34,8 @@ struct DevicePairA {
     size_t capacityBytes() const { return base.capacityBytes() + delta.capacityBytes() + wide.capacityBytes(); }
     // Sized to hold n pairs with `wideRows` wide blocks (contents not kept).
     void resizeDiscarding(size_t n, size_t wideRows);
-    // Sized as `src` of n pairs is (contents not kept), then `src`'s pairs (on this GPU or a peer)
-    // copied into it.
+    // Sized as `src` of n pairs is (its side table's room, contents not kept), then `src`'s pairs (on
+    // this GPU or a peer) copied into it.
     void resizeLike(const DevicePairA& src, size_t n) { resizeDiscarding(n, src.wide.size() / PAIR_A_BLOCK); }
     void copyFromAsync(const DevicePairA& src, size_t n, Stream stream);
 };
@@ -48,7 +48,8 @@ struct PairAKernels {
 
 // Makes `out` the compact form of n As: from `whole` where given, else from detection's `offset`
 // over `spheres` searched spheres (sphere k the A of pairs [offset[k], offset[k + 1])). Waits for the
-// stream once (to size the side table); `rows` is its scratch (a word per 32 pairs).
+// stream once to size the side table, where the set is large (a small one's has room for every
+// block); `rows` is its scratch (a word per 32 pairs).
 void compactPairAs(const PairAKernels& k, const bodyID_t* whole, const PairOffset* offset, unsigned int spheres,
                    size_t n, DevicePairA& out, DeviceBuffer<uint32_t>& rows, DevicePrimitives& prim, Stream stream);
 
