@@ -267,6 +267,32 @@ TEST(CudaPrimitives, ExclusiveSums) {
     EXPECT_EQ(d.download(), expected64);
 }
 
+// A 64-bit exclusive sum over more than 2^32 - 1 items (a GPU set's per-pair marks past 4.29e9
+// pairs, history mapping's persistent merge): ones in three runs of 1,000 (the start, across item
+// 2^32, the end), zeros elsewhere; each run's sums read back. Needs 34.4 GB of device memory.
+TEST(CudaPrimitives, ExclusiveSumOf64BitsPastTwoToThe32Items) {
+    SKIP_WITHOUT_GPU();
+    const size_t n = (size_t(1) << 32) + 3000;
+    if (usableDevices()[0].totalMemoryBytes < n * sizeof(uint64_t) + (size_t(8) << 30))
+        GTEST_SKIP() << "needs a GPU of 43 GB or more (this one: " << usableDevices()[0].totalMemoryBytes << " B)";
+    DeviceBuffer<uint64_t> a(n);
+    a.zeroAsync(nullptr);
+    const std::vector<uint64_t> ones(1000, 1);
+    const size_t runs[3] = {0, (size_t(1) << 32) - 500, n - 1000};
+    for (size_t r : runs) a.uploadAsync(ones.data(), ones.size(), nullptr, r);
+    DevicePrimitives prim;
+    prim.exclusiveSum(a.data(), a.data(), n, nullptr);  // in place: one buffer of 34.4 GB
+    for (int k = 0; k < 3; k++) {
+        std::vector<uint64_t> got(1000);
+        a.downloadAsync(got.data(), got.size(), nullptr, runs[k]);
+        synchronize(nullptr);
+        for (size_t j = 0; j < got.size(); j++)
+            ASSERT_EQ(got[j], 1000 * (uint64_t)k + j) << "run " << k << ", item " << j;
+    }
+    // The 32-bit sums stay limited to 2^32 - 1 items, and say so.
+    EXPECT_THROW(prim.exclusiveSum((const uint32_t*)nullptr, nullptr, size_t(1) << 32, nullptr), deme::Error);
+}
+
 // Counts summed in 64 bits: detection checks its 32-bit offsets' total against this sum
 // (runtime/IndexLimits.h), so counts whose total passes 2^32 must come back whole, not wrapped.
 TEST(CudaPrimitives, SumsCountsIn64Bits) {

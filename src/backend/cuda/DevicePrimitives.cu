@@ -19,8 +19,8 @@ namespace deme::cuda {
 
 namespace {
 
-// CUB counts items in 32 bits here: one instantiation per operation, and the engine's arrays
-// (contacts, geometries) stay below 2^32 entries.
+// CUB counts items in 32 bits here: one instantiation per operation, and the engine's arrays stay
+// below 2^32 entries but a GPU set's per-pair arrays, whose 64-bit sums count in 64 bits (below).
 uint32_t itemCount(const char* call, size_t n) {
     if (n > std::numeric_limits<uint32_t>::max())
         throwError(call, std::to_string(n) + " items is more than the 2^32 - 1 the device primitives handle");
@@ -56,8 +56,19 @@ void sortPairsImpl(RawDeviceBuffer& scratch, const Key* keysIn, Key* keysOut, co
 template <class T>
 void exclusiveSumImpl(RawDeviceBuffer& scratch, const T* in, T* out, size_t n, Stream stream) {
     const char* call = "DevicePrimitives::exclusiveSum";
+    if (n == 0) return;
+    // 64-bit sums may run over more than 2^32 - 1 items (a GPU set's per-pair marks past 4.29e9
+    // pairs): CUB's scan then counts in 64 bits, an instantiation of its own; below, in 32.
+    if constexpr (sizeof(T) == 8) {
+        if (n > std::numeric_limits<uint32_t>::max()) {
+            const unsigned long long count = n;
+            withScratch(scratch, call, stream, [&](void* temp, size_t& bytes) {
+                return cub::DeviceScan::ExclusiveSum(temp, bytes, in, out, count, toCuda(stream));
+            });
+            return;
+        }
+    }
     const uint32_t count = itemCount(call, n);
-    if (count == 0) return;
     withScratch(scratch, call, stream, [&](void* temp, size_t& bytes) {
         return cub::DeviceScan::ExclusiveSum(temp, bytes, in, out, count, toCuda(stream));
     });

@@ -25,7 +25,8 @@ class DevicePrimitives {
     void sortPairs(const uint32_t* keysIn, uint32_t* keysOut, const uint32_t* valuesIn, uint32_t* valuesOut, size_t n,
                    Stream stream, int beginBit = 0, int endBit = 32);
 
-    // out[i] = in[0] + ... + in[i-1], out[0] = 0 (in place allowed). Wraps around on overflow.
+    // out[i] = in[0] + ... + in[i-1], out[0] = 0 (in place allowed). Wraps around on overflow. Up to
+    // 2^32 - 1 items (a deme::Error past it), the 64-bit one any number.
     void exclusiveSum(const uint32_t* in, uint32_t* out, size_t n, Stream stream);
     void exclusiveSum(const uint64_t* in, uint64_t* out, size_t n, Stream stream);
     // The same of bytes, summed in 32 bits (marks 0 or 1 into indices).
