@@ -19,8 +19,8 @@ namespace deme::cuda {
 
 namespace {
 
-// CUB counts items in 32 bits here: one instantiation per operation, and the engine's arrays stay
-// below 2^32 entries but a GPU set's per-pair arrays, whose 64-bit sums count in 64 bits (below).
+// CUB counts items in 32 bits here, one instantiation per operation: the engine's arrays stay below
+// 2^32 entries, except a GPU set's per-pair marks, whose 64-bit sums may count more (exclusiveSumImpl).
 uint32_t itemCount(const char* call, size_t n) {
     if (n > std::numeric_limits<uint32_t>::max())
         throwError(call, std::to_string(n) + " items is more than the 2^32 - 1 the device primitives handle");
