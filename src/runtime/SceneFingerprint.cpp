@@ -136,9 +136,9 @@ SceneFingerprint sceneFingerprint(const SimState& s, const ModelLayout& model) {
     ownerHash.value((uint64_t)s.owners.size());
     // (The clumps' bytes, OWNER_CLUMP = 0, as one run: fnv1aAfterZeroBytes.)
     static_assert(OWNER_CLUMP == 0 && sizeof(ownerTypeOf(s, 0)) == 1, "a clump's type is a zero byte");
-    ownerHash.zeroBytes(std::min((size_t)s.numClumps, s.owners.size()));
-    for (size_t o = std::min((size_t)s.numClumps, s.owners.size()); o < s.owners.size(); o++)
-        ownerHash.value(ownerTypeOf(s, o));
+    const size_t clumps = std::min((size_t)s.numClumps, s.owners.size());
+    ownerHash.zeroBytes(clumps);
+    for (size_t o = clumps; o < s.owners.size(); o++) ownerHash.value(ownerTypeOf(s, o));
     fp.ownerInputs = hashInputs(owners, s.owners, ownerHash);
     fp.templateInputs = hashInputs(mass, s.massProps);
     Hash g;

@@ -120,6 +120,9 @@ struct CudaKinematics::Work {
     void detect(const DetectionOrder& o, bool inPlace, size_t keepScratchUpTo, void* submitted, KinematicsInbox& in,
                 KinematicsOutbox& out, DetectionReport& r);
     size_t scratchBytes() const;
+    // The spheres' and triangles' bins (the first of the scratch to go, before the As are made
+    // compact), and all of it.
+    void releaseBins();
     void releaseScratch();
 };
 
@@ -225,11 +228,15 @@ size_t CudaKinematics::Work::scratchBytes() const {
            pairARows.capacityBytes() + prim.scratchBytes();
 }
 
-void CudaKinematics::Work::releaseScratch() {
+void CudaKinematics::Work::releaseBins() {
     sphereBins.start.release();
     sphereBins.items.release();
     triBins.start.release();
     triBins.items.release();
+}
+
+void CudaKinematics::Work::releaseScratch() {
+    releaseBins();
     triLo.release();
     triHi.release();
     pairOffset.release();
@@ -477,12 +484,7 @@ void CudaKinematics::Work::detect(const DetectionOrder& o, bool inPlace, size_t 
     // the offsets), not the bins and the whole outbox (about 9 B/sphere of a slab's bins in the
     // early mixer; a buffer's release waits for the kernels before it).
     const bool releasingScratch = inPlace && scratchBytes() > keepScratchUpTo;
-    if (releasingScratch) {
-        sphereBins.start.release();
-        sphereBins.items.release();
-        triBins.start.release();
-        triBins.items.release();
-    }
+    if (releasingScratch) releaseBins();
     // The As compact (state/CompactPairA.h), from the offsets or from the whole ones. The outbox's
     // are on dT's GPU: where that is another one, made here and copied there.
     if (staged) {

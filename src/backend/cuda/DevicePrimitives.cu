@@ -57,21 +57,16 @@ template <class T>
 void exclusiveSumImpl(RawDeviceBuffer& scratch, const T* in, T* out, size_t n, Stream stream) {
     const char* call = "DevicePrimitives::exclusiveSum";
     if (n == 0) return;
+    auto scan = [&](auto count) {
+        withScratch(scratch, call, stream, [&](void* temp, size_t& bytes) {
+            return cub::DeviceScan::ExclusiveSum(temp, bytes, in, out, count, toCuda(stream));
+        });
+    };
     // 64-bit sums may run over more than 2^32 - 1 items (a GPU set's per-pair marks past 4.29e9
-    // pairs): CUB's scan then counts in 64 bits, an instantiation of its own; below, in 32.
-    if constexpr (sizeof(T) == 8) {
-        if (n > std::numeric_limits<uint32_t>::max()) {
-            const unsigned long long count = n;
-            withScratch(scratch, call, stream, [&](void* temp, size_t& bytes) {
-                return cub::DeviceScan::ExclusiveSum(temp, bytes, in, out, count, toCuda(stream));
-            });
-            return;
-        }
-    }
-    const uint32_t count = itemCount(call, n);
-    withScratch(scratch, call, stream, [&](void* temp, size_t& bytes) {
-        return cub::DeviceScan::ExclusiveSum(temp, bytes, in, out, count, toCuda(stream));
-    });
+    // pairs): CUB's scan then counts in 64 bits, an instantiation of its own; otherwise in 32.
+    if constexpr (sizeof(T) == 8)
+        if (n > std::numeric_limits<uint32_t>::max()) return scan((unsigned long long)n);
+    scan(itemCount(call, n));
 }
 
 }  // namespace
