@@ -65,6 +65,10 @@ else:
         # sqrt(8/3) R; rows and layers offset by R and R / sqrt(3) in x and y), so half sizes of 25,
         # 26.4 and 47.5 mm give 21 (x), 26 (y) and 49 (z).
         half = [0.025, 0.0264, 0.0475]
+# GRANITE_GAMMAS: some of the interaction ranges only, a comma list (for studies: E_micro and the
+# verdicts follow the largest given, as they follow 1.1 in the case).
+if os.environ.get("GRANITE_GAMMAS"):
+    gammas = [float(g) for g in os.environ["GRANITE_GAMMAS"].split(",")]
 # GRANITE_END_STRAIN: the plates' travel over the block's height at the end (a block that hardens
 # further than the default reaches shows no peak within it).
 end_strain = float(os.environ.get("GRANITE_END_STRAIN", end_strain))
