@@ -132,6 +132,11 @@ UCS, SIGMA_T = 200e6, 9.3e6
 COHESION = float(os.environ.get("GRANITE_COHESION", "200e6"))
 E_PLATE, NU_PLATE, MU_PLATE = 100e9, 0.30, 0.50
 RADIUS = 1.2e-3
+# The paper's specimen, 26,754 spheres, is this lattice's 21 x 26 x 49 (validation/README.md): HCPSampler
+# puts floor((2h - offset) / pitch) + 1 centres along an axis (pitches 2R, sqrt(3) R and sqrt(8/3) R
+# in x, y and z; rows offset by R in x, B layers by R in x and R / sqrt(3) in y), so these half sizes
+# give 21, 26 and 49; 5.16 x 5.51 x 9.65 cm with the radii.
+PAPER_BLOCK_HALF = [0.025, 0.0264, 0.0475]
 # The bending moment's cap coefficient eta: 0 by default (no moment), as in the paper's own runs, whose
 # listing's bending force is negligible (above); GRANITE_ETA=0.1 (its listing's value) applies the
 # moment its text gives (validation/README.md: the specimen is then four times too strong).

@@ -2,7 +2,7 @@
 
 Set-up (paper s. 6.4, its granite table): the paper's specimen, a hexagonal close-packed lattice of
 touching spheres of R = 1.2 mm, 21 to a row, 26 rows and 49 layers (HCPSampler; 26,754 spheres, as the
-paper's; 5.04 x 5.44 x 9.65 cm with the radii; GRANITE_BLOCK=box fills 5 x 5 x 10 cm instead, 21 x 24
+paper's; 5.16 x 5.51 x 9.65 cm with the radii; GRANITE_BLOCK=box fills 5 x 5 x 10 cm instead, 21 x 24
 x 52 = 26,208 spheres, the block of the runs before 2026-12-08), granite rho = 2640
 kg/m^3, E = 60 GPa, nu = 0.25, mu = 0.3, between two plates (E = 100 GPa, nu = 0.3, mu = 0.5), the
 lower one fixed, the upper one driven down. The bond law is Scholtes & Donze's (2013) as the paper
@@ -60,11 +60,7 @@ if case.quick:
 else:
     half, gammas, speed, end_strain = [0.025, 0.025, 0.05], [0.7, 0.9, 1.1], 0.05, 0.01
     if os.environ.get("GRANITE_BLOCK", "paper") == "paper":
-        # The paper's 26,754 spheres are this lattice's 21 x 26 x 49 (validation/README.md): HCPSampler
-        # puts floor((2h - offset) / pitch) + 1 centres along an axis (pitches 2R, sqrt(3) R and
-        # sqrt(8/3) R; rows and layers offset by R and R / sqrt(3) in x and y), so half sizes of 25,
-        # 26.4 and 47.5 mm give 21 (x), 26 (y) and 49 (z).
-        half = [0.025, 0.0264, 0.0475]
+        half = gm.PAPER_BLOCK_HALF  # 21 x 26 x 49 spheres, the paper's 26,754
 # GRANITE_GAMMAS: some of the interaction ranges only, a comma list (for studies: E_micro and the
 # verdicts follow the largest given, as they follow 1.1 in the case).
 if os.environ.get("GRANITE_GAMMAS"):

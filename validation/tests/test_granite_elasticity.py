@@ -41,3 +41,19 @@ def test_infinite_lattice_is_stiffer_than_a_block_of_it():
                             k * a * math.sqrt(2 / 3)))
     e = gm.specimen_modulus(np.array(pts), [0.0, 0.0, 0.0], 0.1)
     assert 0.3 * inf < e < inf
+
+
+def test_paper_block_is_the_papers_26754_spheres():
+    # The paper's specimen: 21 spheres to a row, 26 rows, 49 layers of the HCP lattice of touching
+    # spheres (26,754; paper s. 6.4), 5.16 x 5.51 x 9.65 cm with the radii (the offset rows and layers).
+    import deme
+
+    pts = gm.lattice(deme, gm.PAPER_BLOCK_HALF)
+    assert len(pts) == 21 * 26 * 49 == 26754
+    layers = np.unique(np.round(pts[:, 2] / gm.RADIUS, 6))
+    assert len(layers) == 49
+    layer = pts[np.isclose(pts[:, 2], pts[:, 2].min())]
+    rows = np.unique(np.round(layer[:, 1] / gm.RADIUS, 6))
+    assert len(rows) == 26 and len(layer) == 21 * 26
+    extent = pts.max(axis=0) - pts.min(axis=0) + 2 * gm.RADIUS
+    assert np.allclose(extent, [0.0516, 0.05505, 0.09646], atol=5e-5), extent
