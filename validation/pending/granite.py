@@ -15,9 +15,8 @@ neighbours and 0.9 and 1.1 also the 6 at sqrt(2) a (gap 0.83 R). The micro modul
 that its own bonds at gamma_int 1.1, uniformly strained, give E = 60 GPa along its stacking axis as
 the test measures it (the paper's block: E_micro = 42.9 GPa, the 5 x 5 x 10 cm box 43.1; the
 infinite lattice would need 39.4, the block's free faces lack bonds; granite_model.specimen_modulus);
-it is not fitted to a run. Plate
-speed 0.05 m/s instead of 5 mm/s (the quasi-static equivalent: the dynamic overstress rho c v =
-0.6 MPa, 0.3 % of the strength, with c = sqrt(E / rho) = 4.8 km/s; the
+it is not fitted to a run. Plate speed 0.05 m/s instead of 5 mm/s (the quasi-static equivalent: the
+dynamic overstress rho c v = 0.6 MPa, 0.3 % of the strength, with c = sqrt(E / rho) = 4.8 km/s; the
 loading lasts some 240 transits of an elastic wave through the block), dt = 0.1 us, to 1 % strain or
 until the specimen has failed: the test ends once the stress has fallen below 70 % of its peak
 (granite_model.STOP_RATIO, GRANITE_STOP_RATIO; 0 runs on, through the rubble's compaction).
